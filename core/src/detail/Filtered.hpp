@@ -1,0 +1,38 @@
+#pragma once
+/// @file
+/// Internal: the filter that turns a generic expression into an exact predicate.
+/// Only .cpp files of core include this header (it pulls in CGAL's number types).
+
+#include <CGAL/Exact_rational.h>
+#include <CGAL/Interval_nt.h>
+#include <CGAL/Uncertain.h>
+
+#include "laguerre/core/geometry/Predicates.hpp"
+
+namespace laguerre::core::detail {
+
+/// Evaluates `f.template operator()<NT>()` first with NT = interval arithmetic; if any comparison
+/// inside is uncertain (CGAL throws Uncertain_conversion_exception), evaluates again with NT = exact
+/// rationals. The doubles fed to NT(...) convert exactly in both, so the result is the exact answer.
+template <class F>
+auto filtered(F&& f) {
+  {
+    CGAL::Protect_FPU_rounding<true> guard;
+    try {
+      return f.template operator()<CGAL::Interval_nt<false>>();
+    } catch (CGAL::Uncertain_conversion_exception&) {
+    }
+  }
+  return f.template operator()<CGAL::Exact_rational>();
+}
+
+/// Sign of an NT value as a laguerre Sign; throws Uncertain_conversion_exception for an interval
+/// containing zero but not reduced to it.
+template <class NT>
+Sign sign_of(const NT& v) {
+  if (v > 0) return Sign::positive;
+  if (v < 0) return Sign::negative;
+  return Sign::zero;
+}
+
+}  // namespace laguerre::core::detail

@@ -1,0 +1,152 @@
+#include "laguerre/core/geometry/Predicates.hpp"
+
+#include <algorithm>
+
+#include "../detail/Filtered.hpp"
+
+namespace laguerre::core {
+
+using detail::filtered;
+using detail::sign_of;
+
+Sign orientation(Point2 a, Point2 b, Point2 c) {
+  return filtered([&]<class NT>() {
+    const NT abx = NT(b.x) - NT(a.x), aby = NT(b.y) - NT(a.y);
+    const NT acx = NT(c.x) - NT(a.x), acy = NT(c.y) - NT(a.y);
+    return sign_of<NT>(abx * acy - aby * acx);
+  });
+}
+
+Sign compare_power(Point2 q, const Circle& a, const Circle& b) {
+  return filtered([&]<class NT>() {
+    const NT ax = NT(q.x) - NT(a.x), ay = NT(q.y) - NT(a.y);
+    const NT bx = NT(q.x) - NT(b.x), by = NT(q.y) - NT(b.y);
+    const NT ra = NT(a.r), rb = NT(b.r);
+    return sign_of<NT>(ax * ax + ay * ay - ra * ra - bx * bx - by * by + rb * rb);
+  });
+}
+
+Sign compare_distance(Point2 q, Point2 a, Point2 b) {
+  return filtered([&]<class NT>() {
+    const NT ax = NT(q.x) - NT(a.x), ay = NT(q.y) - NT(a.y);
+    const NT bx = NT(q.x) - NT(b.x), by = NT(q.y) - NT(b.y);
+    return sign_of<NT>(ax * ax + ay * ay - bx * bx - by * by);
+  });
+}
+
+namespace {
+// Radical centre of (u, a, b): c = (nx, ny) / (2 d) with d = det[p_a − p_u; p_b − p_u].
+// From pow(x, s) − pow(x, u) = −2 x·(p_s − p_u) + (z_s − z_u), z_s = |p_s|² − r_s².
+template <class NT>
+struct RadicalCentre {
+  NT d, nx, ny;
+};
+
+template <class NT>
+NT lifted(const Circle& s) {
+  const NT x(s.x), y(s.y), r(s.r);
+  return x * x + y * y - r * r;
+}
+
+template <class NT>
+RadicalCentre<NT> radical_centre(const Circle& u, const Circle& a, const Circle& b) {
+  const NT aax = NT(a.x) - NT(u.x), aay = NT(a.y) - NT(u.y);
+  const NT abx = NT(b.x) - NT(u.x), aby = NT(b.y) - NT(u.y);
+  const NT zu = lifted<NT>(u);
+  const NT ba = lifted<NT>(a) - zu, bb = lifted<NT>(b) - zu;
+  return {aax * aby - aay * abx, aby * ba - aay * bb, aax * bb - abx * ba};
+}
+}  // namespace
+
+Sign radical_centre_power_side(const Circle& u, const Circle& a, const Circle& b, const Circle& t) {
+  return filtered([&]<class NT>() {
+    const auto c = radical_centre<NT>(u, a, b);
+    const Sign sd = sign_of<NT>(c.d);
+    if (sd == Sign::zero) return Sign::zero;
+    // pow(c, t) − pow(c, u) = −2 c·A_t + B_t = (−(A_t · n) + d B_t) / d.
+    const NT atx = NT(t.x) - NT(u.x), aty = NT(t.y) - NT(u.y);
+    const NT bt = lifted<NT>(t) - lifted<NT>(u);
+    const Sign sn = sign_of<NT>(c.d * bt - atx * c.nx - aty * c.ny);
+    return static_cast<Sign>(static_cast<int>(sn) * static_cast<int>(sd));
+  });
+}
+
+Sign radical_centre_outside_unit_disc(const Circle& u, const Circle& a, const Circle& b) {
+  return filtered([&]<class NT>() {
+    const auto c = radical_centre<NT>(u, a, b);
+    if (sign_of<NT>(c.d) == Sign::zero) return Sign::zero;
+    return sign_of<NT>(c.nx * c.nx + c.ny * c.ny - 4 * c.d * c.d);
+  });
+}
+
+bool segment_meets_power_cell(Point2 s0, Point2 s1, const Circle& site, const Circle* others, std::size_t count) {
+  return filtered([&]<class NT>() {
+    auto pw = [](const NT& qx, const NT& qy, const Circle& c) -> NT {
+      const NT dx = qx - NT(c.x), dy = qy - NT(c.y), r(c.r);
+      return dx * dx + dy * dy - r * r;
+    };
+    const NT x0(s0.x), y0(s0.y), x1(s1.x), y1(s1.y);
+    const NT p0 = pw(x0, y0, site), p1 = pw(x1, y1, site);
+    NT lo(0), hi(1);  // feasible parameters t ∈ [lo, hi]
+    for (std::size_t i = 0; i < count; ++i) {
+      // f(t) = pow(s(t), site) − pow(s(t), o) is affine in t; we need f(t) ≤ 0.
+      const NT f0 = p0 - pw(x0, y0, others[i]);
+      const NT f1 = p1 - pw(x1, y1, others[i]);
+      if (f0 <= 0 && f1 <= 0) continue;
+      if (f0 > 0 && f1 > 0) return false;
+      const NT t = f0 / (f0 - f1);  // the root, in [0, 1]
+      if (f0 <= 0) {                // f increasing: t ≤ root
+        if (t < hi) hi = t;
+      } else if (t > lo) {          // f decreasing: t ≥ root
+        lo = t;
+      }
+      if (lo > hi) return false;
+    }
+    return true;
+  });
+}
+
+Sign compare_deviation(Point2 v, Point2 t, Point2 a, Point2 b) {
+  return filtered([&]<class NT>() {
+    const NT tx = NT(t.x) - NT(v.x), ty = NT(t.y) - NT(v.y);
+    auto q = [&](Point2 p) -> NT {  // cos(angle)·|cos(angle)|·|t − v|², a monotone image of cos
+      const NT dx = NT(p.x) - NT(v.x), dy = NT(p.y) - NT(v.y);
+      const NT len2 = dx * dx + dy * dy;
+      if (len2 == 0) return NT(0);
+      const NT dot = dx * tx + dy * ty;
+      return NT((dot < 0 ? NT(-dot * dot) : NT(dot * dot)) / len2);
+    };
+    // Smaller angle ⇔ larger cosine.
+    return sign_of<NT>(q(b) - q(a));
+  });
+}
+
+bool segments_intersect(Point2 a, Point2 b, Point2 c, Point2 d) {
+  const int o1 = static_cast<int>(orientation(a, b, c)), o2 = static_cast<int>(orientation(a, b, d));
+  const int o3 = static_cast<int>(orientation(c, d, a)), o4 = static_cast<int>(orientation(c, d, b));
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  auto on_segment = [](Point2 p, Point2 q, Point2 r) {  // r collinear with pq: is r within the box?
+    return std::min(p.x, q.x) <= r.x && r.x <= std::max(p.x, q.x) && std::min(p.y, q.y) <= r.y &&
+           r.y <= std::max(p.y, q.y);
+  };
+  if (o1 == 0 && on_segment(a, b, c)) return true;
+  if (o2 == 0 && on_segment(a, b, d)) return true;
+  if (o3 == 0 && on_segment(c, d, a)) return true;
+  if (o4 == 0 && on_segment(c, d, b)) return true;
+  return false;
+}
+
+Sign compare_crossings_along(Point2 p, Point2 q, Point2 a1, Point2 b1, Point2 a2, Point2 b2) {
+  return filtered([&]<class NT>() {
+    auto orient = [](Point2 a, Point2 b, Point2 c) -> NT {
+      return (NT(b.x) - NT(a.x)) * (NT(c.y) - NT(a.y)) - (NT(b.y) - NT(a.y)) * (NT(c.x) - NT(a.x));
+    };
+    auto param = [&](Point2 a, Point2 b) -> NT {
+      const NT op = orient(a, b, p), oq = orient(a, b, q);
+      return op / (op - oq);
+    };
+    return sign_of<NT>(param(a1, b1) - param(a2, b2));
+  });
+}
+
+}  // namespace laguerre::core

@@ -1,0 +1,189 @@
+#include "laguerre/core/graph/PlanarGraph.hpp"
+
+#include <algorithm>
+#include <iostream>
+#include <numeric>
+#include <stdexcept>
+#include <tuple>
+#include <unordered_map>
+
+namespace laguerre::core {
+
+namespace {
+[[noreturn]] void fail(const std::string& what) { throw std::invalid_argument(what); }
+}  // namespace
+
+PlanarGraph PlanarGraph::from_rotation(std::vector<std::vector<Vertex>> rotation,
+                                       std::vector<std::uint64_t> ids, Dart outer) {
+  PlanarGraph g;
+  const std::size_t n = rotation.size();
+  if (n == 0) fail("The graph has no vertices.");
+  if (ids.empty()) {
+    ids.resize(n);
+    std::iota(ids.begin(), ids.end(), std::uint64_t{0});
+  }
+  if (ids.size() != n) fail("The id list has " + std::to_string(ids.size()) + " entries for " +
+                            std::to_string(n) + " vertices.");
+  g.ids_ = std::move(ids);
+  g.offset_.assign(n + 1, 0);
+  for (std::size_t v = 0; v < n; ++v) g.offset_[v + 1] = g.offset_[v] + static_cast<std::uint32_t>(rotation[v].size());
+  const std::size_t nd = g.offset_[n];
+  g.head_.resize(nd);
+  g.tail_.resize(nd);
+  for (Vertex v = 0; v < n; ++v) {
+    auto sorted = rotation[v];
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 0; i < sorted.size(); ++i) {
+      if (sorted[i] >= n) fail("Vertex " + std::to_string(g.ids_[v]) + " lists a neighbour index out of range.");
+      if (sorted[i] == v) fail("Vertex " + std::to_string(g.ids_[v]) + " has a loop; the graph must be simple.");
+      if (i > 0 && sorted[i] == sorted[i - 1])
+        fail("Edge " + std::to_string(g.ids_[v]) + "-" + std::to_string(g.ids_[sorted[i]]) +
+             " appears twice; the graph must be simple.");
+    }
+    for (std::size_t i = 0; i < rotation[v].size(); ++i) {
+      g.head_[g.offset_[v] + i] = rotation[v][i];
+      g.tail_[g.offset_[v] + i] = v;
+    }
+  }
+  // Twins by sorting (tail, head) keys.
+  std::vector<Dart> order(nd);
+  std::iota(order.begin(), order.end(), Dart{0});
+  auto key = [&](Dart d) { return std::pair{g.tail_[d], g.head_[d]}; };
+  std::sort(order.begin(), order.end(), [&](Dart a, Dart b) { return key(a) < key(b); });
+  g.twin_.assign(nd, none);
+  for (Dart d = 0; d < nd; ++d) {
+    const auto want = std::pair{g.head_[d], g.tail_[d]};
+    auto it = std::lower_bound(order.begin(), order.end(), want,
+                               [&](Dart a, const std::pair<Vertex, Vertex>& k) { return key(a) < k; });
+    if (it == order.end() || key(*it) != want)
+      fail("Vertex " + std::to_string(g.ids_[g.tail_[d]]) + " lists " + std::to_string(g.ids_[g.head_[d]]) +
+           " as a neighbour but not the other way round.");
+    g.twin_[d] = *it;
+  }
+  // Connectivity.
+  std::vector<std::uint8_t> seen(n, 0);
+  std::vector<Vertex> stack{0};
+  seen[0] = 1;
+  std::size_t reached = 1;
+  while (!stack.empty()) {
+    const Vertex v = stack.back();
+    stack.pop_back();
+    for (Vertex w : g.neighbours(v))
+      if (!seen[w]) {
+        seen[w] = 1;
+        ++reached;
+        stack.push_back(w);
+      }
+  }
+  if (reached != n) {
+    Vertex lost = 0;
+    while (seen[lost]) ++lost;
+    fail("The graph is not connected: vertex " + std::to_string(g.ids_[lost]) + " cannot be reached from vertex " +
+         std::to_string(g.ids_[0]) + ".");
+  }
+  g.build_faces();
+  const long long euler = static_cast<long long>(n) - static_cast<long long>(g.num_edges()) +
+                          static_cast<long long>(g.num_faces());
+  if (n > 1 && euler != 2)
+    fail("The rotation system is not a planar embedding: V - E + F = " + std::to_string(euler) + " instead of 2.");
+  g.boundary_.assign(n, 0);
+  if (nd == 0) {  // a single vertex
+    g.outer_ = none;
+    return g;
+  }
+  const Dart od = outer == none ? g.default_outer_dart() : outer;
+  if (od >= nd) fail("The outer dart index is out of range.");
+  g.outer_ = g.face_of_[od];
+  for (Dart d : g.face_darts(g.outer_)) g.boundary_[g.tail_[d]] = 1;
+  return g;
+}
+
+void PlanarGraph::build_faces() {
+  const std::size_t nd = head_.size();
+  face_of_.assign(nd, none);
+  face_offset_.assign(1, 0);
+  face_dart_.clear();
+  face_dart_.reserve(nd);
+  for (Dart start = 0; start < nd; ++start) {
+    if (face_of_[start] != none) continue;
+    const Face f = static_cast<Face>(face_offset_.size() - 1);
+    Dart d = start;
+    do {
+      face_of_[d] = f;
+      face_dart_.push_back(d);
+      d = next_in_face(d);
+    } while (d != start);
+    face_offset_.push_back(static_cast<std::uint32_t>(face_dart_.size()));
+  }
+}
+
+Dart PlanarGraph::find_dart(Vertex u, Vertex v) const {
+  for (Dart d = offset_[u]; d < offset_[u + 1]; ++d)
+    if (head_[d] == v) return d;
+  return none;
+}
+
+std::vector<Vertex> PlanarGraph::boundary_cycle() const {
+  std::vector<Vertex> cycle;
+  if (outer_ == none) return cycle;
+  for (Dart d : face_darts(outer_)) cycle.push_back(tail_[d]);
+  return cycle;
+}
+
+PlanarGraph PlanarGraph::with_outer_dart(Dart d) const {
+  PlanarGraph g = *this;
+  g.outer_ = face_of_[d];
+  std::fill(g.boundary_.begin(), g.boundary_.end(), 0);
+  for (Dart e : g.face_darts(g.outer_)) g.boundary_[g.tail_[e]] = 1;
+  return g;
+}
+
+Dart PlanarGraph::default_outer_dart() const {
+  Dart best = none;
+  std::pair<std::uint64_t, std::uint64_t> best_key{};
+  for (Dart d = 0; d < head_.size(); ++d) {
+    const std::uint64_t a = ids_[tail_[d]], b = ids_[head_[d]];
+    if (a > b) continue;
+    const std::pair key{a, b};
+    if (best == none || key < best_key) {
+      best = d;
+      best_key = key;
+    }
+  }
+  return best;
+}
+
+std::optional<Vertex> PlanarGraph::vertex_of_id(std::uint64_t id) const {
+  for (Vertex v = 0; v < ids_.size(); ++v)
+    if (ids_[v] == id) return v;
+  return std::nullopt;
+}
+
+bool PlanarGraph::inner_faces_are_triangles() const {
+  for (Face f = 0; f < num_faces(); ++f)
+    if (f != outer_ && face_size(f) != 3) return false;
+  return true;
+}
+
+bool PlanarGraph::is_valid(bool verbose) const {
+  auto bad = [&](const std::string& why) {
+    if (verbose) std::cerr << "PlanarGraph::is_valid: " << why << '\n';
+    return false;
+  };
+  const std::size_t n = num_vertices();
+  if (ids_.size() != n || boundary_.size() != n) return bad("per-vertex arrays have the wrong size");
+  for (Dart d = 0; d < num_darts(); ++d) {
+    if (twin_[twin_[d]] != d) return bad("twin is not an involution at dart " + std::to_string(d));
+    if (head_[twin_[d]] != tail_[d]) return bad("twin does not reverse dart " + std::to_string(d));
+    if (face_of_[next_in_face(d)] != face_of_[d]) return bad("face walk leaves its face at dart " + std::to_string(d));
+  }
+  if (n > 1 && static_cast<long long>(n) - static_cast<long long>(num_edges()) +
+                       static_cast<long long>(num_faces()) != 2)
+    return bad("Euler's formula fails");
+  std::vector<std::uint64_t> sorted = ids_;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return bad("duplicate user ids");
+  return true;
+}
+
+}  // namespace laguerre::core
