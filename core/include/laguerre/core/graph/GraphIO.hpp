@@ -1,0 +1,113 @@
+#pragma once
+/// @file
+/// Reading and writing planar graphs: edge lists, straight-line drawings ("coords") and plantri's
+/// planar_code.
+///
+/// ## Formats
+///
+/// **edges** (text). One edge `u v` per line, two non-negative 64-bit integer vertex ids separated by
+/// blanks. Blank lines are ignored; `#` starts a comment that runs to the end of the line. One optional
+/// directive, a comment line of the form
+///
+///     # outer: a b c ...
+///
+/// gives the outer face as a cycle of at least 3 vertex ids in boundary order. Ids are kept as the
+/// user's ids; vertex indices are assigned in increasing id order. The embedding is computed by
+/// Boost.Graph's Boyer–Myrvold planarity test. With `# outer:`, an apex vertex joined to the listed
+/// vertices is embedded with the graph and then removed, which forces that cycle to be a face (this is
+/// what makes triangulated discs, whose embedding is otherwise not unique, come out right); the
+/// embedding is then oriented so that `PlanarGraph::boundary_cycle()` lists the outer face in the
+/// order given. Without it the outer face is `PlanarGraph::default_outer_dart()`'s face and the
+/// orientation (a mirror image is as good as the original) is whatever Boyer–Myrvold returns.
+///
+/// **coords** (text): a straight-line plane drawing. Same comments, blank lines and `# outer:`
+/// directive as edges, and two sections introduced by header lines consisting of the single word
+/// `vertices` and then `edges`:
+///
+///     # a unit square with a diagonal
+///     vertices
+///     1 0 0
+///     2 1 0
+///     3 1 1
+///     4 0 1
+///     edges
+///     1 2
+///     2 3
+///     3 4
+///     4 1
+///     1 3
+///
+/// A vertex line is `id x y` (id a non-negative 64-bit integer, x and y finite decimal numbers); an edge
+/// line is `u v` with declared ids. The rotation at each vertex is the counter-clockwise order of its
+/// edges around its position (decided exactly), and the drawing must be plane: distinct positions, no
+/// two edges crossing or overlapping, no edge through a vertex (checked exactly). The outer face is the
+/// unbounded face unless `# outer:` names another face. The positions are returned.
+///
+/// **planar_code** (binary, plantri's format). A header `>>planar_code<<`, `>>planar_code le<<` or
+/// `>>planar_code be<<` (optional when the format is requested explicitly), then one or more graphs
+/// back to back. A graph is its number of vertices n followed, for each vertex 1..n, by its neighbours
+/// in clockwise order and a terminating 0. Entries are single bytes, unless the graph starts with a 0
+/// byte: then n and every following entry of that graph are 2-byte integers, little-endian unless the
+/// header says `be`. Ids are 1..n as in plantri; the outer face is the default one. Graph i (from 1) of
+/// file F is named "F#i".
+///
+/// **automatic**: planar_code if the input starts with `>>planar_code`, coords if a line consists of the
+/// word `vertices`, edges otherwise.
+///
+/// Every problem is reported as a GraphInputError naming the source and, where it applies, the line or
+/// the graph index.
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "laguerre/core/geometry/Predicates.hpp"
+#include "laguerre/core/graph/GraphError.hpp"
+#include "laguerre/core/graph/PlanarGraph.hpp"
+
+namespace laguerre::core {
+
+/// A graph file format (see the file comment for each).
+enum class GraphFormat { automatic, edges, planar_code, coords };
+
+/// Parses "automatic", "edges", "planar_code" or "coords"; throws std::invalid_argument listing them.
+GraphFormat parse_graph_format(std::string_view name);
+
+/// Name of a format, as accepted by parse_graph_format.
+std::string_view to_string(GraphFormat format);
+
+/// One graph read from an input.
+struct GraphInput {
+  PlanarGraph graph;             ///< the embedded graph, with its outer face
+  std::vector<Point2> positions; ///< vertex positions indexed by Vertex; empty unless the input had them
+  std::string name;              ///< e.g. "file.txt" or "file.pc#3"
+  bool outer_given = false;      ///< whether the input chose the outer face (rather than the default rule)
+};
+
+/// Reads every graph of the file at `path`. Throws GraphInputError (also if the file cannot be read).
+std::vector<GraphInput> read_graphs(const std::string& path, GraphFormat format = GraphFormat::automatic);
+
+/// Reads every graph of `data` (text, or planar_code bytes); `source_name` is used in names and errors.
+std::vector<GraphInput> read_graphs_from_string(std::string_view data, const std::string& source_name = "<input>",
+                                                GraphFormat format = GraphFormat::automatic);
+
+/// Builds a graph from a straight-line drawing: vertex i has user id ids[i] and position positions[i];
+/// edges are pairs of vertex indices. The rotation is the exact counter-clockwise order around each
+/// position; the outer face is the unbounded one (`outer_given` is true). Throws GraphInputError (with
+/// `source` and no line) if the drawing is not a plane drawing of a simple connected graph; with
+/// `check_crossings` false the O(m log m + crossings) segment test is skipped (for trusted drawings).
+GraphInput graph_from_drawing(std::vector<std::uint64_t> ids, std::vector<Point2> positions,
+                              const std::vector<std::pair<Vertex, Vertex>>& edges, const std::string& source,
+                              bool check_crossings = true);
+
+/// Writes `g` in the edges format: a comment, a `# outer:` line (boundary_cycle() order) and one
+/// `u v` line per edge (user ids, smaller first, sorted).
+std::string write_edge_list(const PlanarGraph& g);
+
+/// Writes graphs in planar_code with the header `>>planar_code le<<`; vertex i becomes i + 1 (user ids
+/// are not stored) and neighbours are listed clockwise. Throws std::invalid_argument beyond 65535 vertices.
+std::string write_planar_code(const std::vector<PlanarGraph>& graphs);
+
+}  // namespace laguerre::core

@@ -1,0 +1,86 @@
+#pragma once
+/// @file
+/// Greedy power embeddings: Thurston's iteration stopped by LPD/GLPD, exact packing or angle error.
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "laguerre/core/geometry/Circle.hpp"
+#include "laguerre/core/packing/Layout.hpp"
+#include "laguerre/core/packing/Thurston.hpp"
+#include "laguerre/core/power/LocalPowerDiagram.hpp"
+
+namespace laguerre::core {
+
+/// Which condition ends the iteration.
+enum class StopRule {
+  lpd,    ///< LPD (triangulations) / GLPD (3-connected graphs) at every vertex: a greedy embedding
+  exact,  ///< the thesis's exact packing: every edge's tangency error ≤ tolerance × smaller radius
+  angle,  ///< every interior angle sum within `angle_epsilon` of 2π
+  cap     ///< only the iteration cap
+};
+
+/// Name of a stopping rule ("lpd", "exact", "angle", "cap").
+std::string_view to_string(StopRule rule);
+/// Parses a stopping rule name; throws std::invalid_argument listing the valid names.
+StopRule parse_stop_rule(std::string_view name);
+
+/// How a packing run ended.
+enum class PackStatus {
+  converged,      ///< the stopping rule holds
+  iteration_cap,  ///< `max_iterations` sweeps without the rule holding
+  precision_loss  ///< the layout became unrepresentable in doubles; nothing is claimed
+};
+
+/// Name of a status.
+std::string_view to_string(PackStatus status);
+
+/// Parameters of a packing run.
+struct PackOptions {
+  StopRule stop = StopRule::lpd;                 ///< the stopping rule
+  Sweep sweep = Sweep::jacobi;                   ///< update order
+  UpdateRule update = UpdateRule::uniform_neighbour;  ///< per-vertex update
+  RootRule root = RootRule::deepest;             ///< layout root
+  int steps_per_check = 1;                       ///< N: sweeps between two layouts and checks
+  int max_iterations = 100000;                   ///< cap on sweeps
+  double angle_epsilon = 1e-9;                   ///< for StopRule::angle (radians)
+  double tangency_tolerance = 0.01;              ///< for StopRule::exact (fraction of smaller radius)
+  bool track_all = false;                        ///< evaluate every rule at every check (for tables)
+};
+
+/// Result of a packing run.
+struct PackResult {
+  PackStatus status = PackStatus::iteration_cap;  ///< how it ended
+  StopRule rule = StopRule::lpd;                  ///< the rule that was asked for
+  int iterations = 0;                             ///< sweeps performed
+  int first_lpd = -1;       ///< first checked iteration with LPD/GLPD everywhere (-1: never seen)
+  int first_exact = -1;     ///< first checked iteration with an exact packing (tracked rules only)
+  int first_angle = -1;     ///< first checked iteration with angle error ≤ epsilon (tracked only)
+  double angle_error = 0;   ///< max |θ − 2π| at the end
+  double max_tangency_error = 0;  ///< max tangency error over G's edges at the end
+  CircleEmbedding circles;        ///< φ on G's vertices (indexed by Vertex of G)
+  CircleEmbedding face_circles;   ///< circles of the face vertices (3-connected graphs), per face vertex
+  std::vector<LocalCondition> local;  ///< LPD/GLPD outcome per vertex of G at the end
+  std::size_t local_ok = 0;           ///< number of vertices where it holds
+  Layout layout;                      ///< the final layout of the whole complex
+  Radii radii;                        ///< final X = e^{-2h} per vertex of the complex
+};
+
+/// Observer of a packing run (Boost.Graph-style visitor); the default does nothing.
+class PackVisitor {
+public:
+  virtual ~PackVisitor() = default;
+  /// After each checked iteration: iteration count, angle error, vertices satisfying LPD/GLPD.
+  virtual void on_check(int /*iteration*/, double /*angle_error*/, std::size_t /*local_ok*/) {}
+};
+
+/// Computes a greedy power embedding of G (a triangulated disc or a 3-connected planar graph whose
+/// outer face is set) by the algorithm of thesis §5.3.1: horocycles on the boundary, radius 1 inside,
+/// then repeat {N Thurston sweeps; layout; check} until the stopping rule holds.
+PackResult pack(const PlanarGraph& g, const PackOptions& options = {}, PackVisitor* visitor = nullptr);
+
+/// Largest tangency error over the edges of G in a layout (see tangency_error).
+double max_tangency_error(const PlanarGraph& g, const CircleEmbedding& circles);
+
+}  // namespace laguerre::core

@@ -1,0 +1,47 @@
+#pragma once
+/// @file
+/// A reusable router: routes many packets over one embedded graph without per-route allocations.
+
+#include <cstdint>
+#include <vector>
+
+#include "laguerre/core/routing/Routing.hpp"
+
+namespace laguerre::core {
+
+/// Routes packets over one graph and embedding, keeping scratch state between routes (the visited
+/// marks of compass routing, the path buffer). Results are identical to the free function route().
+/// The router keeps references: `g` and `phi` must outlive it and stay unchanged. Not thread-safe;
+/// use one router per thread.
+class Router {
+public:
+  /// Binds the router to `g` and `phi`. Throws std::invalid_argument if phi.size() != g.num_vertices().
+  Router(const PlanarGraph& g, const CircleEmbedding& phi);
+
+  /// Routes one packet; see route() for the meaning of the arguments and of the result.
+  Route route(Scheme s, Vertex source, Vertex target, std::size_t ttl = 0);
+  /// Same, writing into `out` and reusing its path's storage.
+  void route(Scheme s, Vertex source, Vertex target, std::size_t ttl, Route& out);
+
+  /// One forwarding decision of a memoryless scheme (greedy_power, greedy_euclid, compass): the next
+  /// hop from `at` towards `target`, or `none`. Throws std::invalid_argument for gfg, whose decisions
+  /// depend on state carried in the packet.
+  Vertex next_hop(Scheme s, Vertex at, Vertex target) const;
+
+  /// The graph routed over.
+  const PlanarGraph& graph() const { return *g_; }
+  /// The embedding routed on.
+  const CircleEmbedding& embedding() const { return *phi_; }
+
+private:
+  void route_memoryless(Scheme s, Vertex target, std::size_t ttl, Route& out);
+  void route_gfg(Vertex target, std::size_t ttl, Route& out) const;
+  void check_vertex(Vertex v, const char* role) const;
+
+  const PlanarGraph* g_;
+  const CircleEmbedding* phi_;
+  std::vector<std::uint32_t> visit_mark_;  // compass loop detection: == epoch_ when visited this route
+  std::uint32_t epoch_ = 0;
+};
+
+}  // namespace laguerre::core

@@ -1,0 +1,113 @@
+#include "laguerre/core/packing/Packer.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace laguerre::core {
+
+std::string_view to_string(StopRule rule) {
+  switch (rule) {
+    case StopRule::lpd: return "lpd";
+    case StopRule::exact: return "exact";
+    case StopRule::angle: return "angle";
+    case StopRule::cap: return "cap";
+  }
+  return "?";
+}
+
+StopRule parse_stop_rule(std::string_view name) {
+  for (StopRule r : {StopRule::lpd, StopRule::exact, StopRule::angle, StopRule::cap})
+    if (to_string(r) == name) return r;
+  throw std::invalid_argument("Unknown stopping rule '" + std::string(name) +
+                              "'; expected one of lpd, exact, angle, cap.");
+}
+
+std::string_view to_string(PackStatus status) {
+  switch (status) {
+    case PackStatus::converged: return "converged";
+    case PackStatus::iteration_cap: return "iteration_cap";
+    case PackStatus::precision_loss: return "precision_loss";
+  }
+  return "?";
+}
+
+double max_tangency_error(const PlanarGraph& g, const CircleEmbedding& circles) {
+  double err = 0;
+  for (Dart d = 0; d < g.num_darts(); ++d)
+    if (g.tail(d) < g.head(d)) err = std::max(err, tangency_error(circles, g.tail(d), g.head(d)));
+  return err;
+}
+
+PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* visitor) {
+  if (options.steps_per_check < 1) throw std::invalid_argument("steps_per_check must be at least 1.");
+  const PackingComplex k = PackingComplex::from_graph(g);
+  PackResult result;
+  result.rule = options.stop;
+  result.radii = initial_radii(k);
+  Radii scratch;
+  const Vertex root = choose_root(k, options.root);
+  const std::size_t n = g.num_vertices();
+
+  auto check = [&](int iteration) {
+    // Returns whether the requested rule holds; records first occurrences of tracked rules.
+    result.layout = lay_out(k, result.radii, root);
+    result.circles.assign(result.layout.circles.begin(), result.layout.circles.begin() + static_cast<long>(n));
+    result.angle_error = angle_error(k, result.radii);
+    if (result.layout.precision == Precision::unrepresentable) {
+      result.status = PackStatus::precision_loss;
+      result.local.assign(n, LocalCondition::site_outside_cell);
+      result.local_ok = 0;
+      return true;
+    }
+    const bool want_lpd = options.stop == StopRule::lpd || options.track_all;
+    const bool want_exact = options.stop == StopRule::exact || options.track_all;
+    const bool want_angle = options.stop == StopRule::angle || options.track_all;
+    bool lpd = false, exact = false, angle = false;
+    if (want_lpd || options.stop == StopRule::cap) {
+      result.local = check_all(g, result.circles);
+      result.local_ok = 0;
+      for (LocalCondition c : result.local) result.local_ok += c == LocalCondition::holds;
+      lpd = result.local_ok == n;
+      if (lpd && result.first_lpd < 0) result.first_lpd = iteration;
+    }
+    if (want_exact) {
+      result.max_tangency_error = max_tangency_error(g, result.circles);
+      exact = result.max_tangency_error <= options.tangency_tolerance;
+      if (exact && result.first_exact < 0) result.first_exact = iteration;
+    }
+    if (want_angle) {
+      angle = result.angle_error <= options.angle_epsilon;
+      if (angle && result.first_angle < 0) result.first_angle = iteration;
+    }
+    if (visitor) visitor->on_check(iteration, result.angle_error, result.local_ok);
+    switch (options.stop) {
+      case StopRule::lpd: return lpd;
+      case StopRule::exact: return exact;
+      case StopRule::angle: return angle;
+      case StopRule::cap: return false;
+    }
+    return false;
+  };
+
+  int it = 0;
+  bool done = check(0);
+  while (!done && it < options.max_iterations) {
+    const int steps = std::min(options.steps_per_check, options.max_iterations - it);
+    for (int s = 0; s < steps; ++s) thurston_sweep(k, result.radii, options.sweep, options.update, scratch);
+    it += steps;
+    done = check(it);
+  }
+  result.iterations = it;
+  if (result.status != PackStatus::precision_loss) result.status = done ? PackStatus::converged : PackStatus::iteration_cap;
+  // Final statistics that the run may not have tracked.
+  if (result.local.empty()) {
+    result.local = check_all(g, result.circles);
+    result.local_ok = 0;
+    for (LocalCondition c : result.local) result.local_ok += c == LocalCondition::holds;
+  }
+  result.max_tangency_error = max_tangency_error(g, result.circles);
+  result.face_circles.assign(result.layout.circles.begin() + static_cast<long>(n), result.layout.circles.end());
+  return result;
+}
+
+}  // namespace laguerre::core

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages laguerre needs (only those missing) and builds a CMake preset.
+#   tools/bootstrap.sh [--preset release|debug-asan] [--no-build]
+# Safe to run again: installed packages are skipped, the build is incremental.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+preset=release
+build=1
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --preset) preset="$2"; shift 2 ;;
+    --no-build) build=0; shift ;;
+    -h|--help) sed -n '2,4p' "$0"; exit 0 ;;
+    *) echo "bootstrap: unknown argument '$1' (expected --preset NAME or --no-build)" >&2; exit 2 ;;
+  esac
+done
+
+packages=(
+  build-essential cmake pkg-config ccache git
+  libcgal-dev libgmp-dev libmpfr-dev          # exact predicates, diagrams
+  libboost-dev libboost-graph-dev             # planarity (Boyer–Myrvold), graph algorithms
+  libeigen3-dev                               # linear algebra
+  libyaml-cpp-dev libcli11-dev nlohmann-json3-dev  # scenario files, CLI, JSON output
+  libcairo2-dev                               # pictures (SVG, PNG)
+  libgtest-dev libgmock-dev libbenchmark-dev  # tests and benchmarks
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "bootstrap: installing ${missing[*]}"
+  if [ "$(id -u)" -eq 0 ]; then sudo=(); elif command -v sudo >/dev/null; then sudo=(sudo); else
+    echo "bootstrap: need root (or sudo) to install: ${missing[*]}" >&2; exit 1
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo[@]}" apt-get update -qq
+  "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+if [ "$build" -eq 1 ]; then
+  cmake --preset "$preset" >/dev/null
+  cmake --build --preset "$preset"
+fi

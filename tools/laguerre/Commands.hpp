@@ -1,0 +1,21 @@
+#pragma once
+/// @file
+/// Subcommands of the `laguerre` program: each registers its options on a CLI11 app and runs.
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace laguerre::tools {
+
+/// A registered subcommand's action, run after parsing; returns the process exit code.
+using Action = std::function<int()>;
+
+/// `laguerre pack GRAPH …`: greedy power embedding, JSON and picture.
+Action add_pack_command(CLI::App& app);
+/// `laguerre route GRAPH-or-EMBEDDING …`: routing table over pairs.
+Action add_route_command(CLI::App& app);
+/// `laguerre thesis-table …`: the experiment of thesis §5.4.1.
+Action add_thesis_table_command(CLI::App& app);
+
+}  // namespace laguerre::tools

@@ -1,0 +1,165 @@
+// `laguerre pack`: compute a greedy power embedding and write it as JSON plus a picture.
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include "Commands.hpp"
+#include "Common.hpp"
+#include "EmbeddingJson.hpp"
+#include "Render.hpp"
+#include "laguerre/core/packing/Packer.hpp"
+#include "laguerre/core/power/LocalPowerDiagram.hpp"
+
+namespace laguerre::tools {
+
+namespace {
+struct PackArgs {
+  std::string graph;
+  std::string format = "automatic";
+  std::size_t index = 1;
+  std::string stop = "lpd";
+  std::string sweep = "jacobi";
+  std::string root = "deepest";
+  int steps = 1;
+  int max_iterations = 100000;
+  double epsilon = 1e-9;
+  std::string out;
+  bool force = false;
+  bool json_stdout = false;
+  bool no_picture = false;
+};
+
+class ProgressPrinter : public core::PackVisitor {
+public:
+  explicit ProgressPrinter(std::size_t n) : n_(n), start_(std::chrono::steady_clock::now()), last_(start_) {}
+  void on_check(int iteration, double angle_error, std::size_t ok) override {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::seconds(1)) return;
+    last_ = now;
+    std::fprintf(stderr, "\r  iteration %d: %zu/%zu vertices satisfy LPD, angle error %.3g   ", iteration, ok, n_,
+                 angle_error);
+    shown_ = true;
+  }
+  ~ProgressPrinter() override {
+    if (shown_) std::fprintf(stderr, "\n");
+  }
+
+private:
+  std::size_t n_;
+  std::chrono::steady_clock::time_point start_, last_;
+  bool shown_ = false;
+};
+
+int run_pack(const PackArgs& a) {
+  const LoadedGraph loaded = load_graph(a.graph, a.format, a.index);
+  const core::PlanarGraph& g = loaded.input.graph;
+  core::PackOptions opt;
+  opt.stop = core::parse_stop_rule(a.stop);
+  opt.sweep = a.sweep == "gauss-seidel" ? core::Sweep::gauss_seidel : core::Sweep::jacobi;
+  opt.root = a.root == "smallest-id" ? core::RootRule::smallest_id : core::RootRule::deepest;
+  opt.steps_per_check = a.steps;
+  opt.max_iterations = a.max_iterations;
+  opt.angle_epsilon = a.epsilon;
+
+  const std::string stem = a.out.empty() ? file_stem(a.graph) + "-packing" : a.out;
+  if (!a.json_stdout) check_writable(stem + ".json", a.force);
+  if (!a.no_picture) {
+    check_writable(stem + ".svg", a.force);
+    check_writable(stem + ".png", a.force);
+  }
+
+  const auto t0 = std::chrono::steady_clock::now();
+  core::PackResult r;
+  {
+    ProgressPrinter progress(g.num_vertices());
+    r = core::pack(g, opt, &progress);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  nlohmann::json doc = embedding_to_json(g, r.circles);
+  doc["format"] = "laguerre-embedding";
+  doc["version"] = 1;
+  doc["name"] = loaded.input.name;
+  doc["kind"] = std::string(core::to_string(loaded.kind));
+  doc["packing"] = {{"status", std::string(core::to_string(r.status))},
+                    {"stop_rule", std::string(core::to_string(r.rule))},
+                    {"iterations", r.iterations},
+                    {"steps_per_check", a.steps},
+                    {"sweep", a.sweep},
+                    {"angle_error", r.angle_error},
+                    {"max_tangency_error", r.max_tangency_error},
+                    {"local_ok", r.local_ok},
+                    {"smallest_radius", r.layout.smallest_radius},
+                    {"root", r.layout.root == core::none ? nlohmann::json() : nlohmann::json(g.id(r.layout.root))},
+                    {"seconds", seconds}};
+  for (core::Vertex v = 0; v < g.num_vertices(); ++v)
+    doc["vertices"][v]["local"] = std::string(core::to_string(r.local[v]));
+  nlohmann::json faces = nlohmann::json::array();
+  const core::PackingComplex k = core::PackingComplex::from_graph(g);
+  for (std::size_t i = 0; i < r.face_circles.size(); ++i) {
+    nlohmann::json ids = nlohmann::json::array();
+    for (core::Dart d : g.face_darts(k.face_of_vertex[i])) ids.push_back(g.id(g.tail(d)));
+    faces.push_back({{"face", ids}, {"x", r.face_circles[i].x}, {"y", r.face_circles[i].y}, {"r", r.face_circles[i].r}});
+  }
+  doc["face_circles"] = faces;
+
+  if (a.json_stdout) {
+    std::cout << doc.dump(1) << '\n';
+  } else {
+    std::ofstream(stem + ".json") << doc.dump(1) << '\n';
+  }
+  std::vector<std::string> pictures;
+  if (!a.no_picture) {
+    PackingPicture pic;
+    pic.graph = &g;
+    pic.circles = &r.circles;
+    for (auto c : r.local) pic.ok.push_back(c == core::LocalCondition::holds);
+    for (core::Vertex v = 0; v < g.num_vertices(); ++v) pic.cells.push_back(core::local_cell_polygon(g, r.circles, v));
+    if (!r.face_circles.empty()) pic.face_circles = &r.face_circles;
+    pic.title = loaded.input.name + ": " + std::to_string(r.iterations) + " iterations, " +
+                std::string(core::to_string(r.status)) + " (" + a.stop + ")";
+    pictures = render_packing(pic, stem);
+  }
+  std::ostream& os = a.json_stdout ? std::cerr : std::cout;
+  os << "graph        " << loaded.input.name << ": " << g.num_vertices() << " vertices, " << g.num_edges()
+     << " edges, " << core::to_string(loaded.kind) << ", boundary of " << g.boundary_cycle().size() << '\n'
+     << "status       " << core::to_string(r.status) << " (stop rule " << core::to_string(r.rule) << ") after "
+     << r.iterations << " iterations, " << seconds << " s\n"
+     << (loaded.kind == core::GraphKind::triangulated_disc ? "LPD          " : "GLPD         ") << r.local_ok << " / "
+     << g.num_vertices() << " vertices\n"
+     << "angle error  " << r.angle_error << " rad\n"
+     << "tangency     max error " << r.max_tangency_error << " of the smaller radius\n"
+     << "radii        smallest " << r.layout.smallest_radius
+     << (r.layout.precision == core::Precision::ok ? "" : " (precision degraded)") << '\n';
+  if (!a.json_stdout) os << "wrote        " << stem << ".json\n";
+  for (const auto& p : pictures) os << "wrote        " << p << '\n';
+  return r.status == core::PackStatus::converged ? 0 : 3;
+}
+}  // namespace
+
+Action add_pack_command(CLI::App& app) {
+  auto args = std::make_shared<PackArgs>();
+  CLI::App* cmd = app.add_subcommand("pack", "Compute a greedy power embedding of a planar graph (thesis §5.3).");
+  cmd->footer("Exit status: 0 converged, 3 not converged (cap or precision loss), 2 bad input.");
+  cmd->add_option("graph", args->graph, "Graph file (edge list, coords or planar_code)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--format", args->format, "Input format: automatic, edges, coords, planar_code")->capture_default_str();
+  cmd->add_option("--index", args->index, "Which graph of a multi-graph file (from 1)")->capture_default_str();
+  cmd->add_option("--stop", args->stop, "Stopping rule: lpd (LPD/GLPD everywhere), exact, angle, cap")
+      ->check(CLI::IsMember({"lpd", "exact", "angle", "cap"}))->capture_default_str();
+  cmd->add_option("--sweep", args->sweep, "Update order: jacobi or gauss-seidel")
+      ->check(CLI::IsMember({"jacobi", "gauss-seidel"}))->capture_default_str();
+  cmd->add_option("--root", args->root, "Layout root: deepest or smallest-id")
+      ->check(CLI::IsMember({"deepest", "smallest-id"}))->capture_default_str();
+  cmd->add_option("--steps-per-check,-N", args->steps, "Thurston sweeps between two layouts and checks")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--max-iterations", args->max_iterations, "Cap on sweeps")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--epsilon", args->epsilon, "Angle-sum tolerance for --stop angle (radians)")->capture_default_str();
+  cmd->add_option("-o,--out", args->out, "Output path stem (writes STEM.json, STEM.svg, STEM.png); default GRAPHNAME-packing");
+  cmd->add_flag("--force", args->force, "Overwrite existing output files");
+  cmd->add_flag("--json", args->json_stdout, "Print the embedding JSON on standard output instead of writing STEM.json");
+  cmd->add_flag("--no-picture", args->no_picture, "Do not draw the SVG/PNG picture");
+  return [args] { return run_pack(*args); };
+}
+
+}  // namespace laguerre::tools

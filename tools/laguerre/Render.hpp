@@ -1,0 +1,28 @@
+#pragma once
+/// @file
+/// Pictures of packings and routes (Cairo: SVG and PNG side by side).
+
+#include <string>
+#include <vector>
+
+#include "laguerre/core/geometry/Circle.hpp"
+#include "laguerre/core/geometry/Predicates.hpp"
+#include "laguerre/core/graph/PlanarGraph.hpp"
+
+namespace laguerre::tools {
+
+/// What a packing picture shows.
+struct PackingPicture {
+  const core::PlanarGraph* graph = nullptr;              ///< the network
+  const core::CircleEmbedding* circles = nullptr;        ///< φ, one circle per vertex
+  std::vector<bool> ok;                                  ///< per vertex: LPD/GLPD holds (filled green) or not (red)
+  std::vector<std::vector<core::Point2>> cells;          ///< local power cells to outline (may be empty)
+  const core::CircleEmbedding* face_circles = nullptr;   ///< orthogonal face circles (dashed), optional
+  std::vector<std::vector<core::Vertex>> routes;         ///< paths to draw on top, optional
+  std::string title;                                     ///< caption
+};
+
+/// Writes `stem.svg` and `stem.png` (size × size pixels) and returns the two paths.
+std::vector<std::string> render_packing(const PackingPicture& picture, const std::string& stem, int size = 900);
+
+}  // namespace laguerre::tools

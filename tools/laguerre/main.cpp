@@ -1,0 +1,39 @@
+// The `laguerre` command-line program: one executable, one subcommand per task.
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "Commands.hpp"
+#include "laguerre/core/graph/GraphError.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"laguerre — greedy power routing over circle packings (Wormser 2008, Part IV).\n"
+               "Run `laguerre COMMAND --help` for the options of a command."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "laguerre 0.1.0");
+  using namespace laguerre::tools;
+  Action pack = add_pack_command(app);
+  Action route = add_route_command(app);
+  Action table = add_thesis_table_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (app.got_subcommand("pack")) return pack();
+    if (app.got_subcommand("route")) return route();
+    if (app.got_subcommand("thesis-table")) return table();
+  } catch (const laguerre::core::GraphInputError& e) {
+    std::cerr << "laguerre: " << e.what() << '\n';
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "laguerre: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "laguerre: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}
