@@ -1,5 +1,6 @@
 // `laguerre pack`: compute a greedy power embedding and write it as JSON plus a picture.
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -117,7 +118,7 @@ int run_pack(const PackArgs& a) {
     for (auto c : r.local) pic.ok.push_back(c == core::LocalCondition::holds);
     for (core::Vertex v = 0; v < g.num_vertices(); ++v) pic.cells.push_back(core::local_cell_polygon(g, r.circles, v));
     if (!r.face_circles.empty()) pic.face_circles = &r.face_circles;
-    pic.title = loaded.input.name + ": " + std::to_string(r.iterations) + " iterations, " +
+    pic.title = std::filesystem::path(loaded.input.name).filename().string() + ": " + std::to_string(r.iterations) + " iterations, " +
                 std::string(core::to_string(r.status)) + " (" + a.stop + ")";
     pictures = render_packing(pic, stem);
   }

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   Action pack = add_pack_command(app);
   Action route = add_route_command(app);
   Action table = add_thesis_table_command(app);
+  Action generate = add_generate_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("pack")) return pack();
     if (app.got_subcommand("route")) return route();
     if (app.got_subcommand("thesis-table")) return table();
+    if (app.got_subcommand("generate")) return generate();
   } catch (const laguerre::core::GraphInputError& e) {
     std::cerr << "laguerre: " << e.what() << '\n';
     return 2;

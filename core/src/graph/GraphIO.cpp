@@ -450,7 +450,9 @@ void check_no_crossings(const std::vector<Point2>& pos, const IndexEdges& edges,
   }
   std::vector<std::size_t> order(edges.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return boxes[i].xmin < boxes[j].xmin; });
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+    return std::pair{boxes[i].xmin, i} < std::pair{boxes[j].xmin, j};
+  });
   for (std::size_t k = 0; k < order.size(); ++k) {
     const std::size_t i = order[k];
     for (std::size_t l = k + 1; l < order.size() && boxes[order[l]].xmin <= boxes[i].xmax; ++l) {
@@ -483,7 +485,8 @@ GraphInput graph_from_drawing(std::vector<std::uint64_t> ids, std::vector<Point2
     std::vector<Vertex> order(n);
     std::iota(order.begin(), order.end(), Vertex{0});
     auto key = [&](Vertex v) { return std::pair{positions[v].x, positions[v].y}; };
-    std::sort(order.begin(), order.end(), [&](Vertex a, Vertex b) { return key(a) < key(b); });
+    std::sort(order.begin(), order.end(),
+              [&](Vertex a, Vertex b) { return std::pair{key(a), a} < std::pair{key(b), b}; });
     for (std::size_t k = 1; k < n; ++k)
       if (key(order[k]) == key(order[k - 1]))
         throw GraphInputError(source, 0, 0,

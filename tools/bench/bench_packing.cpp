@@ -1,0 +1,72 @@
+// Benchmarks of the packing core: one Thurston sweep, one layout + LPD check, and whole runs to LPD
+// and to an exact packing, on random Delaunay triangulations of n points in the unit disc.
+// tools/bench/run.sh prints the table; run directly for Google Benchmark's own output.
+#include <benchmark/benchmark.h>
+
+#include <map>
+
+#include "laguerre/core/graph/GraphKind.hpp"
+#include "laguerre/core/graph/RandomGraphs.hpp"
+#include "laguerre/core/packing/Packer.hpp"
+
+using namespace laguerre::core;
+
+namespace {
+const PlanarGraph& triangulation(std::size_t n) {
+  static std::map<std::size_t, PlanarGraph> cache;
+  auto it = cache.find(n);
+  if (it == cache.end()) it = cache.emplace(n, prepare_for_packing(random_delaunay_triangulation(n, 42))).first;
+  return it->second;
+}
+
+void BM_ThurstonSweep(benchmark::State& state) {
+  const PackingComplex k = PackingComplex::from_graph(triangulation(static_cast<std::size_t>(state.range(0))));
+  Radii X = initial_radii(k), scratch;
+  const Sweep sweep = state.range(1) ? Sweep::gauss_seidel : Sweep::jacobi;
+  for (auto _ : state) {
+    thurston_sweep(k, X, sweep, UpdateRule::uniform_neighbour, scratch);
+    benchmark::DoNotOptimize(X.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(k.graph.num_vertices()));
+  state.SetLabel(state.range(1) ? "gauss-seidel" : "jacobi");
+}
+BENCHMARK(BM_ThurstonSweep)->ArgsProduct({{1000, 10000, 100000, 1000000}, {0, 1}})->Unit(benchmark::kMillisecond);
+
+void BM_LayoutAndLpdCheck(benchmark::State& state) {
+  const PlanarGraph& g = triangulation(static_cast<std::size_t>(state.range(0)));
+  const PackingComplex k = PackingComplex::from_graph(g);
+  Radii X = initial_radii(k), scratch;
+  for (int i = 0; i < 20; ++i) thurston_sweep(k, X, Sweep::jacobi, UpdateRule::uniform_neighbour, scratch);
+  const Vertex root = choose_root(k, RootRule::deepest);
+  for (auto _ : state) {
+    const Layout lay = lay_out(k, X, root);
+    const auto status = check_all(g, lay.circles);
+    benchmark::DoNotOptimize(status.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(g.num_vertices()));
+}
+BENCHMARK(BM_LayoutAndLpdCheck)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond);
+
+// Whole runs: counters report the sweeps to LPD (and to an exact packing for the smaller sizes).
+void BM_PackToLpd(benchmark::State& state) {
+  const PlanarGraph& g = triangulation(static_cast<std::size_t>(state.range(0)));
+  PackOptions opt;
+  opt.stop = state.range(1) ? StopRule::exact : StopRule::lpd;
+  opt.steps_per_check = static_cast<int>(state.range(2));
+  opt.max_iterations = 1000000;
+  PackResult r;
+  for (auto _ : state) r = pack(g, opt);
+  state.counters["sweeps"] = r.iterations;
+  state.counters["converged"] = r.status == PackStatus::converged;
+  state.counters["min_radius"] = r.layout.smallest_radius;
+  state.SetLabel(state.range(1) ? "to exact packing" : "to LPD");
+}
+BENCHMARK(BM_PackToLpd)
+    ->Args({1000, 0, 1})->Args({1000, 1, 1})
+    ->Args({10000, 0, 10})->Args({10000, 1, 10})
+    ->Args({100000, 0, 100})->Args({100000, 1, 100})
+    ->Args({1000000, 0, 1000})
+    ->Iterations(1)->Unit(benchmark::kSecond);
+}  // namespace
+
+BENCHMARK_MAIN();

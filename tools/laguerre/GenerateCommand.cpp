@@ -1,0 +1,68 @@
+// `laguerre generate`: write a random graph of one of the documented families to a file.
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "Commands.hpp"
+#include "Common.hpp"
+#include "laguerre/core/graph/RandomGraphs.hpp"
+
+namespace laguerre::tools {
+
+namespace {
+struct GenerateArgs {
+  std::string family;
+  std::size_t size = 50;
+  std::uint64_t seed = 1;
+  std::string out;
+  std::string format = "coords";
+  bool force = false;
+};
+
+std::string write_coords(const core::GraphInput& in) {
+  const core::PlanarGraph& g = in.graph;
+  std::ostringstream os;
+  os << std::setprecision(17);
+  os << "# " << in.name << ": " << g.num_vertices() << " vertices, " << g.num_edges() << " edges\n# outer:";
+  for (core::Vertex v : g.boundary_cycle()) os << ' ' << g.id(v);
+  os << "\nvertices\n";
+  for (core::Vertex v = 0; v < g.num_vertices(); ++v)
+    os << g.id(v) << ' ' << in.positions[v].x << ' ' << in.positions[v].y << '\n';
+  os << "edges\n";
+  for (core::Dart d = 0; d < g.num_darts(); ++d)
+    if (g.tail(d) < g.head(d)) os << g.id(g.tail(d)) << ' ' << g.id(g.head(d)) << '\n';
+  return os.str();
+}
+
+int run_generate(const GenerateArgs& a) {
+  const core::GraphInput in = a.family == "delaunay" ? core::random_delaunay_triangulation(a.size, a.seed)
+                                                     : core::random_three_connected(a.size, a.seed);
+  const std::string text = a.format == "coords" ? write_coords(in) : core::write_edge_list(in.graph);
+  if (a.out.empty() || a.out == "-") {
+    std::cout << text;
+    return 0;
+  }
+  check_writable(a.out, a.force);
+  std::ofstream(a.out) << text;
+  std::cerr << "wrote " << a.out << ": " << in.graph.num_vertices() << " vertices, " << in.graph.num_edges()
+            << " edges\n";
+  return 0;
+}
+}  // namespace
+
+Action add_generate_command(CLI::App& app) {
+  auto args = std::make_shared<GenerateArgs>();
+  CLI::App* cmd = app.add_subcommand("generate", "Write a random planar graph (interim families, see RandomGraphs.hpp).");
+  cmd->add_option("family", args->family, "delaunay (triangulated disc) or three-connected")
+      ->required()->check(CLI::IsMember({"delaunay", "three-connected"}));
+  cmd->add_option("--size,-n", args->size, "Number of vertices")->check(CLI::Range(4, 100000000))->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str();
+  cmd->add_option("--format", args->format, "coords (with positions) or edges")
+      ->check(CLI::IsMember({"coords", "edges"}))->capture_default_str();
+  cmd->add_option("-o,--out", args->out, "Output file (default: standard output)");
+  cmd->add_flag("--force", args->force, "Overwrite an existing output file");
+  return [args] { return run_generate(*args); };
+}
+
+}  // namespace laguerre::tools
