@@ -61,6 +61,8 @@ const std::string k4 = "1 2\n1 3\n1 4\n2 3\n2 4\n3 4\n";
 const std::string wheel = "0 1\n0 2\n0 3\n0 4\n0 5\n1 2\n2 3\n3 4\n4 5\n5 1\n";
 // Two K4s {1,2,3,4} and {3,4,5,6} glued along the edge 3-4: {3, 4} separates.
 const std::string two_k4_on_an_edge = "1 2\n1 3\n1 4\n2 3\n2 4\n3 4\n3 5\n3 6\n4 5\n4 6\n5 6\n";
+// Two cubes sharing the edge 0-1: {0, 1} is the only separating pair, and many faces are squares.
+const std::string two_cubes = cube + "1 9\n9 8\n8 0\n10 11\n11 12\n12 13\n13 10\n0 10\n1 11\n9 12\n8 13\n";
 // Two K4s sharing vertex 4: a cut vertex.
 const std::string two_k4_on_a_vertex = "1 2\n1 3\n1 4\n2 3\n2 4\n3 4\n4 5\n4 6\n4 7\n5 6\n5 7\n6 7\n";
 
@@ -89,6 +91,7 @@ TEST(GraphKind, ThreeConnectivityKnownAnswers) {
   EXPECT_EQ(glued.id(pair[0]), 3u);
   EXPECT_EQ(glued.id(pair[1]), 4u);
 
+  EXPECT_FALSE(is_three_connected(from_edges(two_cubes)));
   const PlanarGraph pinched = from_edges(two_k4_on_a_vertex);
   const auto cut = find_small_separator(pinched);
   ASSERT_EQ(cut.size(), 1u);
@@ -173,20 +176,21 @@ TEST(GraphKind, ThreeConnectedOuterFaceRule) {
 
 TEST(GraphKind, RejectsGraphsOfNeitherKind) {
   try {
-    prepare_for_packing(from_edges(two_k4_on_an_edge), false, nullptr, "glued.txt");
+    prepare_for_packing(from_edges(two_cubes), false, nullptr, "glued.txt");
     FAIL() << "no exception";
   } catch (const GraphInputError& e) {
     EXPECT_EQ(e.source(), "glued.txt");
     const std::string what = e.what();
     EXPECT_EQ(what.rfind("glued.txt: the graph is neither a triangulated disc", 0), 0u) << what;
-    EXPECT_NE(what.find("removing vertices 3 and 4 disconnects it"), std::string::npos) << what;
+    EXPECT_NE(what.find("removing vertices 0 and 1 disconnects it"), std::string::npos) << what;
     EXPECT_NE(what.find("'# outer: a b c ...'"), std::string::npos) << what;
   }
   try {
+    // Whichever face the second K4 sits in, that face is the only non-triangle and visits 4 twice.
     prepare_for_packing(from_edges(two_k4_on_a_vertex), false);
     FAIL() << "no exception";
   } catch (const GraphInputError& e) {
-    EXPECT_NE(std::string(e.what()).find("removing vertex 4 disconnects it"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("visits vertex 4 twice"), std::string::npos) << e.what();
   }
   try {
     prepare_for_packing(from_edges("1 2\n"), false);
