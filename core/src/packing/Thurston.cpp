@@ -1,5 +1,6 @@
 #include "laguerre/core/packing/Thurston.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -32,31 +33,36 @@ double angle_sum_at(const PackingComplex& k, const Radii& X, Vertex v, double xv
   return sum;
 }
 
-// Solve θ(v; √X = t) = 2π on t ∈ (0, 1) by the Illinois variant of regula falsi (θ increases with t).
+// Solve θ(v; √X = t) = 2π for t ∈ (0, 1); θ increases with t. Secant iterations started at the
+// current value (which is close to the answer once the iteration settles, so 2–4 evaluations suffice),
+// kept inside a bracket [lo, hi] that every evaluation tightens, with bisection whenever a secant step
+// would leave it. Deterministic: the same inputs give the same bits.
 double solve_exact(const PackingComplex& k, const Radii& X, Vertex v) {
   double lo = 0, hi = 1;
-  double flo = -two_pi;                                                   // θ(0) = 0 (infinite radius)
-  double fhi = angle_sum_at(k, X, v, 1 - 1e-15) - two_pi;                 // vanishing radius: ≥ π·deg − 2π
-  double t = std::sqrt(X[v]);
-  int side = 0;
-  for (int it = 0; it < 200 && hi - lo > 1e-16; ++it) {
-    t = (lo * fhi - hi * flo) / (fhi - flo);
-    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
-    const double ft = angle_sum_at(k, X, v, t * t) - two_pi;
-    if (ft == 0) break;
-    if (ft < 0) {
-      lo = t;
-      flo = ft;
-      if (side == -1) fhi *= 0.5;
-      side = -1;
-    } else {
-      hi = t;
-      fhi = ft;
-      if (side == 1) flo *= 0.5;
-      side = 1;
-    }
+  auto f = [&](double t) { return angle_sum_at(k, X, v, t * t) - two_pi; };
+  auto tighten = [&](double t, double ft) {
+    if (ft < 0) lo = std::max(lo, t);
+    else hi = std::min(hi, t);
+  };
+  double t0 = std::sqrt(X[v]);
+  if (!(t0 > 0 && t0 < 1)) t0 = 0.5;
+  double f0 = f(t0);
+  tighten(t0, f0);
+  double t1 = std::clamp(t0 * (f0 < 0 ? 1.0009765625 : 0.9990234375), 1e-300, 1 - 1e-16);
+  double f1 = f(t1);
+  tighten(t1, f1);
+  for (int it = 0; it < 100; ++it) {
+    if (f1 == 0 || hi - lo <= 4e-16 * hi) return t1 * t1;
+    double t2 = f1 != f0 ? t1 - f1 * (t1 - t0) / (f1 - f0) : 0.5 * (lo + hi);
+    if (!(t2 > lo && t2 < hi)) t2 = 0.5 * (lo + hi);
+    if (std::abs(t2 - t1) <= 1e-16 * t1) return t2 * t2;
+    t0 = t1;
+    f0 = f1;
+    t1 = t2;
+    f1 = f(t1);
+    tighten(t1, f1);
   }
-  return t * t;
+  return t1 * t1;
 }
 }  // namespace
 

@@ -90,9 +90,13 @@ bool angle_less(const Circle& v, const Circle& a, const Circle& b) {
 //  Read literally, Def. 5.2.2 would put it outside the unit disc, but the proof of Theorem 5.2.1
 //  needs exactly that vertex inside (it is the one vertex of e(v, w) in D²), and for an exact packing
 //  it is the incentre of the triangle of tangent circles, inside the disc: Theorem 5.2.5 would fail.
-//  The rule is about the corner on the outer-face side, which for n = 2 does not exist (the closing
-//  turn is ≥ π since the chain turn is < π), so a degree-2 boundary vertex needs (1) and (2) only.
-//  The same reading is what the general closure test implements.
+//  The definition itself glosses "empty" as "which means that Cell(v) is unbounded": the rule is
+//  about the corner on the outer-face side, which for n = 2 does not exist (the closing turn is > π
+//  since the chain turn is < π), so a degree-2 boundary vertex needs (1) and (2) only. The general
+//  closure test above implements exactly this reading.
+//
+// Orientation: the thesis accepts the cyclic order up to a global mirror; laguerre's rotation systems
+// are counter-clockwise, so a mirrored (clockwise) layout fails with `neighbour_order`.
 //
 // Perturbation: with `prio` non-null, prio[0] is v's id and prio[1 + i] w_i's; (1) and (4) are then
 // decided on the perturbed embedding (PowerDetail.hpp). Orientations do not depend on the weights.

@@ -479,7 +479,7 @@ void Router::route_gfg(Vertex target, std::size_t ttl, Route& out) const {
       const Sign sa = fast_orientation(p, t, pa), sb = fast_orientation(p, t, pb);
       if (static_cast<int>(sa) * static_cast<int>(sb) < 0) {
         const Along q{Along::Kind::edge, pa, pb};
-        if (compare_along(p, t, q, last) != Sign::negative && compare_along(p, t, q, at_target) != Sign::positive) {
+        if (compare_along(p, t, q, last) == Sign::positive && compare_along(p, t, q, at_target) != Sign::positive) {
           last = q;
           if (fast_orientation(pa, pb, t) == Sign::positive) {
             // T is left of a→b: continue in the face on the other side of the edge, from a.

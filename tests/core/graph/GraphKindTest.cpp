@@ -201,3 +201,11 @@ TEST(GraphKind, RejectsGraphsOfNeitherKind) {
   // A cycle: two faces of length 5, neither a disc nor 3-connected.
   EXPECT_THROW(prepare_for_packing(from_edges("1 2\n2 3\n3 4\n4 5\n5 1\n"), false), GraphInputError);
 }
+
+TEST(GraphKind, RandomThreeConnectedGraphsPassTheBruteForceTest) {
+  for (std::uint64_t seed = 0; seed < 150; ++seed) {
+    const std::size_t n = 4 + seed % 37;
+    const GraphInput in = random_three_connected(n, seed, 2.0, 4 + seed % 6);
+    EXPECT_TRUE(brute_force_three_connected(in.graph)) << in.name << "\n" << write_edge_list(in.graph);
+  }
+}

@@ -39,7 +39,7 @@ void check_family(bool three_connected) {
     const RoutingStats gfg = evaluate_routing(g, r.circles, Scheme::gfg, {});
     ASSERT_EQ(gfg.delivered, gfg.pairs) << "GFG failed: " << in.name << " seed " << seed;
   }
-  RecordProperty("mean_iterations_to_lpd", lpd_iterations / std::max(1, count));
+  ::testing::Test::RecordProperty("mean_iterations_to_lpd", lpd_iterations / std::max(1, count));
 }
 }  // namespace
 

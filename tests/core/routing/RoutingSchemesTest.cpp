@@ -1,10 +1,234 @@
+// Hand-built embeddings with known routes for every scheme.
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "laguerre/core/geometry/Predicates.hpp"
+#include "laguerre/core/routing/Router.hpp"
 #include "laguerre/core/routing/Routing.hpp"
 
 using namespace laguerre::core;
 
-TEST(Routing, SchemeNamesRoundTrip) {
+namespace {
+
+using Path = std::vector<Vertex>;
+
+/// The graph on the circles' centres whose rotation is the exact counter-clockwise order of the
+/// neighbours (a plane straight-line drawing when the edges do not cross).
+PlanarGraph graph_of(const CircleEmbedding& phi, const std::vector<std::pair<Vertex, Vertex>>& edges) {
+  std::vector<std::vector<Vertex>> rot(phi.size());
+  for (const auto& [a, b] : edges) {
+    rot[a].push_back(b);
+    rot[b].push_back(a);
+  }
+  for (Vertex v = 0; v < phi.size(); ++v) {
+    const Point2 p = centre(phi[v]);
+    auto half = [&](Vertex w) { return (phi[w].y > p.y || (phi[w].y == p.y && phi[w].x > p.x)) ? 0 : 1; };
+    std::sort(rot[v].begin(), rot[v].end(), [&](Vertex a, Vertex b) {
+      if (half(a) != half(b)) return half(a) < half(b);
+      return orientation(p, centre(phi[a]), centre(phi[b])) == Sign::positive;
+    });
+  }
+  return PlanarGraph::from_rotation(std::move(rot));
+}
+
+}  // namespace
+
+TEST(Routing, SchemeAndOutcomeNamesRoundTrip) {
   for (const Scheme s : all_schemes) EXPECT_EQ(parse_scheme(to_string(s)), s);
   EXPECT_FALSE(parse_scheme("greedy").has_value());
+  EXPECT_FALSE(parse_scheme("").has_value());
+  EXPECT_EQ(to_string(RouteOutcome::dead_end), "dead_end");
+  EXPECT_EQ(to_string(RouteOutcome::ttl_exceeded), "ttl_exceeded");
+}
+
+TEST(Routing, RejectsBadInput) {
+  const CircleEmbedding phi{{0, 0, 1}, {2, 0, 1}};
+  const PlanarGraph g = graph_of(phi, {{0, 1}});
+  EXPECT_THROW(route(g, CircleEmbedding{{0, 0, 1}}, Scheme::greedy_power, 0, 1), std::invalid_argument);
+  EXPECT_THROW(route(g, phi, Scheme::greedy_power, 0, 2), std::invalid_argument);
+  EXPECT_THROW(Router(g, phi).next_hop(Scheme::gfg, 0, 1), std::invalid_argument);
+}
+
+TEST(Routing, SourceEqualsTargetIsDeliveredInZeroHops) {
+  const CircleEmbedding phi{{0, 0, 1}, {2, 0, 1}};
+  const PlanarGraph g = graph_of(phi, {{0, 1}});
+  for (const Scheme s : all_schemes) {
+    const Route r = route(g, phi, s, 1, 1);
+    EXPECT_EQ(r.outcome, RouteOutcome::delivered);
+    EXPECT_EQ(r.path, Path{1});
+    EXPECT_EQ(r.hops(), 0u);
+    EXPECT_EQ(r.stuck, none);
+  }
+}
+
+TEST(GreedyPower, DeliversAlongTangentCircles) {
+  const CircleEmbedding phi{{0, 0, 1}, {2, 0, 1}, {4, 0, 1}, {6, 0, 1}};
+  const PlanarGraph g = graph_of(phi, {{0, 1}, {1, 2}, {2, 3}});
+  for (const Scheme s : all_schemes) {
+    const Route r = route(g, phi, s, 0, 3);
+    EXPECT_EQ(r.outcome, RouteOutcome::delivered) << to_string(s);
+    EXPECT_EQ(r.path, (Path{0, 1, 2, 3})) << to_string(s);
+    EXPECT_EQ(route(g, phi, s, 3, 0).path, (Path{3, 2, 1, 0})) << to_string(s);
+  }
+}
+
+TEST(GreedyPower, FollowsPowerNotEuclideanDistance) {
+  // From s = 0 towards t = 3 at (8, 0): a = 1 at (4, 3) has |a − t|² = 25 but radius 4.5 (power 4.75);
+  // b = 2 at (4, −1) has |b − t|² = 17, radius 0.5 (power 16.75). Power picks a, Euclid picks b.
+  const CircleEmbedding phi{{0, 0, 1}, {4, 3, 4.5}, {4, -1, 0.5}, {8, 0, 1}};
+  const PlanarGraph g = graph_of(phi, {{0, 1}, {0, 2}, {1, 2}, {1, 3}, {2, 3}});
+  EXPECT_EQ(greedy_power_next_hop(g, phi, 0, 3), 1u);
+  EXPECT_EQ(greedy_euclid_next_hop(g, phi, 0, 3), 2u);
+  EXPECT_EQ(route(g, phi, Scheme::greedy_power, 0, 3).path, (Path{0, 1, 3}));
+  EXPECT_EQ(route(g, phi, Scheme::greedy_euclid, 0, 3).path, (Path{0, 2, 3}));
+  EXPECT_EQ(greedy_power_next_hop(g, phi, 3, 3), none);
+}
+
+TEST(GreedyPower, StopsAtTheLocalMinimum) {
+  // 0 (0,0) r .5 — 1 (3,0) r 2.4 — 2 (3,5) r .5 — 3 (8,0) r .5, plus 0–2. Towards 3:
+  // pow from 0: 63.75; its neighbours 1: 25 − 5.76 = 19.24 and 2: 49.75 → 1. At 1 the neighbours are
+  // 0 (63.75) and 2 (49.75), both worse than 19.24: a dead end at 1 although 1–2–3 reaches t.
+  const CircleEmbedding phi{{0, 0, 0.5}, {3, 0, 2.4}, {3, 5, 0.5}, {8, 0, 0.5}};
+  const PlanarGraph g = graph_of(phi, {{0, 1}, {1, 2}, {2, 3}, {0, 2}});
+  const Route r = route(g, phi, Scheme::greedy_power, 0, 3);
+  EXPECT_EQ(r.outcome, RouteOutcome::dead_end);
+  EXPECT_EQ(r.stuck, 1u);
+  EXPECT_EQ(r.path, (Path{0, 1}));
+  EXPECT_EQ(greedy_power_next_hop(g, phi, 1, 3), none);
+  // The plane drawing lets GFG recover.
+  const Route gfg = route(g, phi, Scheme::gfg, 0, 3);
+  EXPECT_EQ(gfg.outcome, RouteOutcome::delivered);
+  EXPECT_EQ(gfg.path.back(), 3u);
+}
+
+TEST(GreedyPower, EqualPowerIsNotProgressAndTiesGoToTheSmallestIndex) {
+  // t = 1 at (4, 0). s = 0 at (0, 0), r = 0: pow = 16. u = 2 at (4, 5), r = 3: pow = 25 − 9 = 16 exactly.
+  const CircleEmbedding phi{{0, 0, 0}, {4, 0, 0}, {4, 5, 3}, {-4, 9, 0}};
+  const PlanarGraph g = graph_of(phi, {{0, 2}, {2, 1}, {0, 3}, {3, 2}});
+  const Route r = route(g, phi, Scheme::greedy_power, 0, 1);
+  EXPECT_EQ(r.outcome, RouteOutcome::dead_end);
+  EXPECT_EQ(r.stuck, 0u);
+
+  // Mirror-symmetric neighbours at equal power: the smaller index wins whatever the rotation order.
+  // 0 (0,0); 3 (1,1) and 1 (1,−1) equal; target 2 (2,0).
+  const CircleEmbedding sym{{0, 0, 0.25}, {1, -1, 0.5}, {2, 0, 0.25}, {1, 1, 0.5}};
+  const PlanarGraph gs = graph_of(sym, {{0, 1}, {0, 3}, {1, 2}, {3, 2}});
+  EXPECT_EQ(greedy_power_next_hop(gs, sym, 0, 2), 1u);
+  EXPECT_EQ(greedy_euclid_next_hop(gs, sym, 0, 2), 1u);
+  EXPECT_EQ(compass_next_hop(gs, sym, 0, 2), 1u);
+}
+
+TEST(GreedyPower, DecidesExactlyBelowDoublePrecision) {
+  // Two neighbours whose powers differ by one part in 2^-60 of their size: rounding cannot see it.
+  const double e = std::ldexp(1.0, -30);
+  // pow(t, 1) = (1 + e)² = 1 + 2e + e², pow(t, 2) = 1 + 2e (radius² = e² exactly): 2 is strictly closer.
+  const CircleEmbedding phi{{-5, -5, 0}, {1 + e, 0, 0}, {0, 1 + e, e}, {0, 0, 0}};
+  const PlanarGraph g = graph_of(phi, {{0, 1}, {0, 2}, {1, 3}, {2, 3}});
+  EXPECT_EQ(greedy_power_next_hop(g, phi, 0, 3), 2u);
+  EXPECT_EQ(greedy_euclid_next_hop(g, phi, 0, 3), 1u);  // without the radius, 1 and 2 tie: smaller index
+}
+
+TEST(GreedyEuclid, DeadEndInFrontOfAVoid) {
+  // s = 0 at (0,0) wants t = 3 at (10,0); its only neighbour 1 at (−1,5) is farther (146 > 100).
+  // The way round the void: 0 – 1 – 2 (10,5) – 3.
+  const CircleEmbedding phi{{0, 0, 0}, {-1, 5, 0}, {10, 5, 0}, {10, 0, 0}};
+  const PlanarGraph g = graph_of(phi, {{0, 1}, {1, 2}, {2, 3}});
+  const Route r = route(g, phi, Scheme::greedy_euclid, 0, 3);
+  EXPECT_EQ(r.outcome, RouteOutcome::dead_end);
+  EXPECT_EQ(r.stuck, 0u);
+  EXPECT_EQ(r.path, (Path{0}));
+  const Route f = route(g, phi, Scheme::gfg, 0, 3);
+  EXPECT_EQ(f.outcome, RouteOutcome::delivered);
+  EXPECT_EQ(f.path, (Path{0, 1, 2, 3}));
+}
+
+TEST(GreedyFaceGreedy, WalksAroundAConcaveVoid) {
+  // A U-shaped wall: s = 0 at the bottom of the U, t = 1 beyond its closed end. Greedy is stuck at s.
+  //   7(0,4)          6(4,4)
+  //   |                 |
+  //   8(0,2)  0(2,2)  5(4,2)     1(2,-3) below, reached via 4 – 1
+  //   |                 |
+  //   3(0,0) ------- 4(4,0)
+  // with 0 joined to 7 and 6 only (above), so every neighbour of 0 is farther from 1 than 0 is.
+  const CircleEmbedding phi{{2, 2, 0}, {2, -3, 0}, {9, 9, 0}, {0, 0, 0}, {4, 0, 0},
+                            {4, 2, 0}, {4, 4, 0},  {0, 4, 0}, {0, 2, 0}};
+  const PlanarGraph g = graph_of(phi, {{0, 7}, {0, 6}, {7, 8}, {8, 3}, {3, 4}, {4, 5}, {5, 6}, {4, 1}, {6, 2}});
+  EXPECT_EQ(route(g, phi, Scheme::greedy_euclid, 0, 1).outcome, RouteOutcome::dead_end);
+  const Route r = route(g, phi, Scheme::gfg, 0, 1);
+  EXPECT_EQ(r.outcome, RouteOutcome::delivered);
+  EXPECT_EQ(r.path.back(), 1u);
+  // Every ordered pair is delivered.
+  for (Vertex s = 0; s < g.num_vertices(); ++s)
+    for (Vertex t = 0; t < g.num_vertices(); ++t)
+      EXPECT_EQ(route(g, phi, Scheme::gfg, s, t).outcome, RouteOutcome::delivered) << s << " -> " << t;
+}
+
+TEST(GreedyFaceGreedy, SegmentThroughVerticesAndAlongEdges) {
+  // Vertices on the x axis: 0 (0,0), 2 (4,0), 3 (6,0), 4 (8,0), with the edges 2–3 and 3–4 along it;
+  // 0's neighbours 1 (−1,3) and 5 (−1,−3) lie behind it, so greedy is stuck at 0 towards 4. Many
+  // perimeter segments of the all-pairs loop below pass through vertices or along edges.
+  const CircleEmbedding phi{{0, 0, 0}, {-1, 3, 0}, {4, 0, 0}, {6, 0, 0}, {8, 0, 0}, {-1, -3, 0}, {4, 3, 0}, {4, -3, 0}};
+  const PlanarGraph g =
+      graph_of(phi, {{0, 1}, {0, 5}, {1, 6}, {6, 2}, {2, 3}, {3, 4}, {5, 7}, {7, 2}, {6, 3}, {7, 3}});
+  EXPECT_EQ(route(g, phi, Scheme::greedy_euclid, 0, 4).outcome, RouteOutcome::dead_end);
+  for (Vertex s = 0; s < g.num_vertices(); ++s)
+    for (Vertex t = 0; t < g.num_vertices(); ++t)
+      EXPECT_EQ(route(g, phi, Scheme::gfg, s, t).outcome, RouteOutcome::delivered) << s << " -> " << t;
+}
+
+TEST(GreedyFaceGreedy, ReportsAFruitlessFaceWalkAsALoop) {
+  // A planar rotation system drawn with crossing edges (2–3 crosses 0–1): from 3 (1,6) towards 0 (1,5)
+  // greedy is stuck at 3 (its neighbours 1 and 2 are farther), and the "face" the rotation walks,
+  // 3 → 2 → 1 → 3, never meets the segment [p(3), p(0)]. GFG must report the fruitless walk, not spin.
+  const PlanarGraph g = PlanarGraph::from_rotation({{1, 2}, {3, 0, 2}, {3, 1, 0}, {1, 2}});
+  const CircleEmbedding phi{{1, 5, 0}, {8, 6, 0}, {2, 1, 0}, {1, 6, 0}};
+  EXPECT_TRUE(segments_intersect({2, 1}, {1, 6}, {1, 5}, {8, 6}));
+  const Route r = route(g, phi, Scheme::gfg, 3, 0);
+  EXPECT_EQ(r.outcome, RouteOutcome::loop);
+  EXPECT_EQ(r.path, (Path{3, 2, 1, 3}));
+  EXPECT_EQ(r.stuck, 3u);
+}
+
+TEST(Compass, LoopsOnAKnownDrawingAndGfgDoesNot) {
+  // Found by a seeded search and checked by hand: towards t = 3 (6,16), compass goes
+  // 0 → 1 → 6 → 5 → 4 → 0 (deviations 53°, 34°, 4°, 77°, 13° at the successive nodes).
+  const CircleEmbedding phi{{3, 15, 0}, {4, 18, 0}, {5, 12, 0}, {6, 16, 0}, {8, 2, 0}, {13, 15, 0}, {19, 15, 0}};
+  const PlanarGraph g =
+      graph_of(phi, {{0, 1}, {0, 2}, {0, 4}, {1, 2}, {1, 6}, {2, 3}, {4, 5}, {4, 6}, {5, 6}});
+  const Route r = route(g, phi, Scheme::compass, 0, 3);
+  EXPECT_EQ(r.outcome, RouteOutcome::loop);
+  EXPECT_EQ(r.path, (Path{0, 1, 6, 5, 4, 0}));
+  EXPECT_EQ(r.stuck, 0u);
+  const Route f = route(g, phi, Scheme::gfg, 0, 3);
+  EXPECT_EQ(f.outcome, RouteOutcome::delivered);
+}
+
+TEST(Compass, PingPongOnATreeIsALoop) {
+  // 0 (1,1) has the single neighbour 1 (4,11); from 1 the best-aligned neighbour towards 2 (5,0) is 0.
+  const CircleEmbedding phi{{1, 1, 0}, {4, 11, 0}, {5, 0, 0}, {6, 0, 0}, {7, 8, 0}};
+  const PlanarGraph g = graph_of(phi, {{0, 1}, {1, 4}, {2, 3}, {3, 4}});
+  const Route r = route(g, phi, Scheme::compass, 0, 2);
+  EXPECT_EQ(r.outcome, RouteOutcome::loop);
+  EXPECT_EQ(r.path, (Path{0, 1, 0}));
+  EXPECT_EQ(route(g, phi, Scheme::gfg, 0, 2).outcome, RouteOutcome::delivered);
+}
+
+TEST(Routing, TtlStopsLongRoutes) {
+  const CircleEmbedding phi{{0, 0, 1}, {2, 0, 1}, {4, 0, 1}, {6, 0, 1}, {8, 0, 1}};
+  const PlanarGraph g = graph_of(phi, {{0, 1}, {1, 2}, {2, 3}, {3, 4}});
+  for (const Scheme s : all_schemes) {
+    const Route r = route(g, phi, s, 0, 4, 2);
+    EXPECT_EQ(r.outcome, RouteOutcome::ttl_exceeded) << to_string(s);
+    EXPECT_EQ(r.path, (Path{0, 1, 2})) << to_string(s);
+    EXPECT_EQ(r.stuck, 2u) << to_string(s);
+    EXPECT_EQ(route(g, phi, s, 0, 4, 4).outcome, RouteOutcome::delivered) << to_string(s);
+  }
+  EXPECT_EQ(default_ttl(g, Scheme::greedy_power), 4u * 5u + 16u);
+  EXPECT_GT(default_ttl(g, Scheme::gfg), default_ttl(g, Scheme::greedy_power));
 }

@@ -41,7 +41,9 @@
 /// line is `u v` with declared ids. The rotation at each vertex is the counter-clockwise order of its
 /// edges around its position (decided exactly), and the drawing must be plane: distinct positions, no
 /// two edges crossing or overlapping, no edge through a vertex (checked exactly). The outer face is the
-/// unbounded face unless `# outer:` names another face. The positions are returned.
+/// unbounded face (walked clockwise in the drawing) unless `# outer:` names another face, given in either
+/// direction; either way `outer_given` is true. Vertex indices follow increasing ids, as for edges. The
+/// positions are returned.
 ///
 /// **planar_code** (binary, plantri's format). A header `>>planar_code<<`, `>>planar_code le<<` or
 /// `>>planar_code be<<` (optional when the format is requested explicitly), then one or more graphs
@@ -96,8 +98,10 @@ std::vector<GraphInput> read_graphs_from_string(std::string_view data, const std
 /// Builds a graph from a straight-line drawing: vertex i has user id ids[i] and position positions[i];
 /// edges are pairs of vertex indices. The rotation is the exact counter-clockwise order around each
 /// position; the outer face is the unbounded one (`outer_given` is true). Throws GraphInputError (with
-/// `source` and no line) if the drawing is not a plane drawing of a simple connected graph; with
-/// `check_crossings` false the O(m log m + crossings) segment test is skipped (for trusted drawings).
+/// `source` and no line) if the drawing is not a plane drawing of a simple connected graph. The crossing
+/// test sweeps the edges' bounding boxes in x order: O(m log m) plus one exact segment test per pair of
+/// edges whose boxes overlap (O(m²) in the worst case, about m√m for uniform random points); with
+/// `check_crossings` false it is skipped (for drawings known to be plane, e.g. Delaunay triangulations).
 GraphInput graph_from_drawing(std::vector<std::uint64_t> ids, std::vector<Point2> positions,
                               const std::vector<std::pair<Vertex, Vertex>>& edges, const std::string& source,
                               bool check_crossings = true);

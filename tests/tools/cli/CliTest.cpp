@@ -1,0 +1,145 @@
+// Runs the `laguerre` program as a user would and checks exit codes, messages and outputs.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+struct Outcome {
+  int status = -1;
+  std::string out;  // stdout and stderr together
+};
+
+Outcome run(const std::string& args) {
+  const std::string cmd = std::string(LAGUERRE_EXE) + " " + args + " 2>&1";
+  Outcome r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  std::size_t got;
+  while ((got = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), got);
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+class Cli : public ::testing::Test {
+protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("laguerre-cli-" + std::to_string(::getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name)) << text;
+    return path(name);
+  }
+  fs::path dir_;
+};
+
+const std::string example = std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/graphs/delaunay-60.txt";
+const std::string example3 = std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/graphs/three-connected-60.txt";
+}  // namespace
+
+TEST_F(Cli, HelpForEveryCommand) {
+  for (const char* c : {"", "pack", "route", "thesis-table", "generate"}) {
+    const Outcome r = run(std::string(c) + " --help");
+    EXPECT_EQ(r.status, 0) << c;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << c;
+  }
+}
+
+TEST_F(Cli, PackWritesAGreedyEmbeddingAndPicture) {
+  for (const auto& g : {example, example3}) {
+    const std::string stem = path(fs::path(g).stem().string());
+    const Outcome r = run("pack " + g + " -o " + stem);
+    ASSERT_EQ(r.status, 0) << r.out;
+    std::ifstream in(stem + ".json");
+    const auto doc = nlohmann::json::parse(in);
+    EXPECT_EQ(doc["format"], "laguerre-embedding");
+    EXPECT_EQ(doc["packing"]["status"], "converged");
+    ASSERT_EQ(doc["vertices"].size(), 60u);
+    for (const auto& v : doc["vertices"]) EXPECT_EQ(v["local"], "holds");
+    std::ifstream png(stem + ".png", std::ios::binary);
+    char sig[8] = {};
+    png.read(sig, 8);
+    EXPECT_EQ(std::string(sig + 1, 3), "PNG");
+    EXPECT_TRUE(fs::file_size(stem + ".svg") > 1000);
+  }
+}
+
+TEST_F(Cli, PackRefusesToOverwriteWithoutForce) {
+  const std::string stem = path("e");
+  ASSERT_EQ(run("pack " + example + " -o " + stem).status, 0);
+  const Outcome again = run("pack " + example + " -o " + stem);
+  EXPECT_EQ(again.status, 2);
+  EXPECT_NE(again.out.find("Refusing to overwrite"), std::string::npos) << again.out;
+  EXPECT_EQ(run("pack " + example + " -o " + stem + " --force").status, 0);
+}
+
+TEST_F(Cli, RouteOnAnEmbeddingDeliversEverything) {
+  const std::string stem = path("e");
+  ASSERT_EQ(run("pack " + example + " -o " + stem).status, 0);
+  const Outcome r = run("route " + stem + ".json --scheme greedy-power --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["schemes"][0]["pairs"], 60 * 59);
+  EXPECT_EQ(doc["schemes"][0]["delivered"], 60 * 59);
+}
+
+TEST_F(Cli, BadInputGetsAClearErrorAndExitCode2) {
+  const Outcome missing = run("pack " + path("nope.txt"));
+  EXPECT_NE(missing.status, 0);
+  const std::string bad = write("bad.txt", "1 2\n2 3\nthree 1\n");
+  Outcome r = run("pack " + bad);
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("bad.txt:3"), std::string::npos) << r.out;
+  // K5 is not planar.
+  const std::string k5 = write("k5.txt", "1 2\n1 3\n1 4\n1 5\n2 3\n2 4\n2 5\n3 4\n3 5\n4 5\n");
+  r = run("pack " + k5);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("planar"), std::string::npos) << r.out;
+  // A path is neither a triangulated disc nor 3-connected.
+  const std::string path3 = write("path.txt", "1 2\n2 3\n3 4\n");
+  r = run("pack " + path3);
+  EXPECT_EQ(r.status, 2) << r.out;
+  r = run("route " + example + " --pairs many");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("--pairs"), std::string::npos) << r.out;
+  r = run("pack " + example + " --stop sometimes");
+  EXPECT_NE(r.status, 0);
+}
+
+TEST_F(Cli, ThesisTableRunsOnASmallSample) {
+  const Outcome r = run("thesis-table --count 2 --size 30 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto pos = r.out.find('{');
+  const auto doc = nlohmann::json::parse(r.out.substr(pos));
+  ASSERT_EQ(doc["families"].size(), 2u);
+  for (const auto& f : doc["families"]) {
+    EXPECT_EQ(f["graphs"], 2);
+    EXPECT_EQ(f["greedy_delivery_min"], 1.0);
+    EXPECT_GE(f["ratio_mean"].template get<double>(), 1.0);
+  }
+}
+
+TEST_F(Cli, GenerateIsDeterministic) {
+  const Outcome a = run("generate three-connected -n 40 --seed 9");
+  const Outcome b = run("generate three-connected -n 40 --seed 9");
+  const Outcome c = run("generate three-connected -n 40 --seed 10");
+  EXPECT_EQ(a.status, 0);
+  EXPECT_EQ(a.out, b.out);
+  EXPECT_NE(a.out, c.out);
+}
