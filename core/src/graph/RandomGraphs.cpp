@@ -10,6 +10,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 
 #include "laguerre/core/graph/GraphKind.hpp"
@@ -43,23 +44,38 @@ using Tds = CGAL::Triangulation_data_structure_2<VertexBase>;
 using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
 
 /// n distinct uniform points in the open unit disc and their Delaunay edges (as index pairs).
-/// Redraws (continuing the stream) in the probability-zero event that all points are collinear.
+/// A point equal to an earlier one is redrawn; the whole set is redrawn in the probability-zero event
+/// that all points are collinear. The Delaunay edges of points in general position do not depend on
+/// the insertion order, so CGAL's spatial sorting of the range does not affect the result.
 void draw_delaunay(std::size_t n, Random& random, std::vector<Point2>& points,
                    std::vector<std::pair<Vertex, Vertex>>& edges) {
-  for (;;) {
-    Delaunay dt;
-    points.clear();
-    Delaunay::Face_handle hint;
-    while (points.size() < n) {
+  const auto draw_point = [&random]() {
+    for (;;) {
       const double x = 2 * random.uniform01() - 1, y = 2 * random.uniform01() - 1;
-      if (x * x + y * y >= 1) continue;
-      const std::size_t before = dt.number_of_vertices();
-      const auto vh = dt.insert(Kernel::Point_2(x, y), hint);
-      if (dt.number_of_vertices() == before) continue;  // a repeated point: draw another
-      vh->info() = static_cast<Vertex>(points.size());
-      hint = vh->face();
-      points.push_back({x, y});
+      if (x * x + y * y < 1) return Point2{x, y};
     }
+  };
+  for (;;) {
+    points.clear();
+    for (std::size_t i = 0; i < n; ++i) points.push_back(draw_point());
+    for (;;) {  // replace repeated points, in index order
+      std::vector<Vertex> order(n);
+      for (Vertex i = 0; i < n; ++i) order[i] = i;
+      const auto key = [&](Vertex i) { return std::tuple{points[i].x, points[i].y, i}; };
+      std::sort(order.begin(), order.end(), [&](Vertex a, Vertex b) { return key(a) < key(b); });
+      bool repeated = false;
+      for (std::size_t k = 1; k < n; ++k)
+        if (points[order[k]].x == points[order[k - 1]].x && points[order[k]].y == points[order[k - 1]].y) {
+          points[order[k]] = draw_point();
+          repeated = true;
+        }
+      if (!repeated) break;
+    }
+    std::vector<std::pair<Kernel::Point_2, Vertex>> sites;
+    sites.reserve(n);
+    for (Vertex i = 0; i < n; ++i) sites.emplace_back(Kernel::Point_2(points[i].x, points[i].y), i);
+    Delaunay dt;
+    dt.insert(sites.begin(), sites.end());
     if (dt.dimension() < 2) continue;
     edges.clear();
     for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {

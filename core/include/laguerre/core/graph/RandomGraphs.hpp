@@ -17,8 +17,8 @@
 namespace laguerre::core {
 
 /// Delaunay triangulation of n points drawn uniformly in the unit disc (rejection from the square
-/// [-1, 1]², points redrawn if they repeat one). A triangulated disc whose outer face is the convex
-/// hull (`outer_given` is true), with positions; vertex ids 0..n-1 in drawing order.
+/// [-1, 1]², a point redrawn if it repeats an earlier one). A triangulated disc whose outer face is the
+/// convex hull (`outer_given` is true), with positions; vertex ids 0..n-1 in drawing order.
 /// Requires n ≥ 3 (std::invalid_argument otherwise). Cost O(n log n) expected.
 GraphInput random_delaunay_triangulation(std::size_t n, std::uint64_t seed);
 
