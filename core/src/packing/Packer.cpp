@@ -1,5 +1,7 @@
 #include "laguerre/core/packing/Packer.hpp"
 
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -34,7 +36,11 @@ std::string_view to_string(PackStatus status) {
 double max_tangency_error(const PlanarGraph& g, const CircleEmbedding& circles) {
   double err = 0;
   for (Dart d = 0; d < g.num_darts(); ++d)
-    if (g.tail(d) < g.head(d)) err = std::max(err, tangency_error(circles, g.tail(d), g.head(d)));
+    if (g.tail(d) < g.head(d)) {
+      const double e = tangency_error(circles, g.tail(d), g.head(d));
+      if (std::isnan(e)) return std::numeric_limits<double>::infinity();  // never "within tolerance"
+      err = std::max(err, e);
+    }
   return err;
 }
 
@@ -53,12 +59,9 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     result.layout = lay_out(k, result.radii, root);
     result.circles.assign(result.layout.circles.begin(), result.layout.circles.begin() + static_cast<long>(n));
     result.angle_error = angle_error(k, result.radii);
-    if (result.layout.precision == Precision::unrepresentable) {
-      result.status = PackStatus::precision_loss;
-      result.local.assign(n, LocalCondition::site_outside_cell);
-      result.local_ok = 0;
-      return true;
-    }
+    // An unrepresentable layout (NaN or infinite circles) is no claim of anything: before convergence
+    // the wave can accumulate that much inconsistency, so it only means "not yet"; check_all reports
+    // such vertices as LocalCondition::unrepresentable and the tangency error is NaN (never ≤ tol).
     const bool want_lpd = options.stop == StopRule::lpd || options.track_all;
     const bool want_exact = options.stop == StopRule::exact || options.track_all;
     const bool want_angle = options.stop == StopRule::angle || options.track_all;
@@ -98,7 +101,9 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     done = check(it);
   }
   result.iterations = it;
-  if (result.status != PackStatus::precision_loss) result.status = done ? PackStatus::converged : PackStatus::iteration_cap;
+  result.status = done ? PackStatus::converged : PackStatus::iteration_cap;
+  // Never claim anything on circles the doubles cannot carry.
+  if (result.layout.precision == Precision::unrepresentable) result.status = PackStatus::precision_loss;
   // Final statistics that the run may not have tracked.
   if (result.local.empty()) {
     result.local = check_all(g, result.circles);

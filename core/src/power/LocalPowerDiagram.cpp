@@ -1,5 +1,7 @@
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 
+#include <cmath>
+
 #include <cassert>
 
 #include "PowerDetail.hpp"
@@ -17,6 +19,7 @@ std::string_view to_string(LocalCondition c) {
     case LocalCondition::boundary_vertex_inside_disc: return "boundary_vertex_inside_disc";
     case LocalCondition::face_not_convex: return "face_not_convex";
     case LocalCondition::cell_crosses_face: return "cell_crosses_face";
+    case LocalCondition::unrepresentable: return "unrepresentable";
   }
   return "unknown";
 }
@@ -102,9 +105,17 @@ bool angle_less(const Circle& v, const Circle& a, const Circle& b) {
 // decided on the perturbed embedding (PowerDetail.hpp). Orientations do not depend on the weights.
 // ---------------------------------------------------------------------------------------------
 
+bool representable(const Circle& c) {
+  return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.r) && c.r >= 0;
+}
+
 LocalCondition lpd_core(const Circle& v, std::span<const Circle> w, bool boundary, bool perturbed,
                         std::uint64_t pv, std::span<const std::uint64_t> pw) {
   const std::size_t n = w.size();
+  // Non-finite inputs have no exact value: nothing can be decided (and exact arithmetic would abort).
+  if (!representable(v)) return LocalCondition::unrepresentable;
+  for (const Circle& c : w)
+    if (!representable(c)) return LocalCondition::unrepresentable;
   if (n == 0) return LocalCondition::holds;
   auto prio = [&](std::size_t i) { return perturbed ? pw[i] : std::uint64_t{0}; };
   // (1) p(v) in the closed local cell.
@@ -231,6 +242,8 @@ LocalCondition check_glpd(const PlanarGraph& g, const CircleEmbedding& phi, Vert
   for (Dart d = first; d < first + deg; ++d) {
     if (g.face_of(d) == g.outer_face()) continue;
     collect_face(g, phi, d, fc, fid);
+    for (const Circle& c : fc.span())
+      if (!representable(c)) return LocalCondition::unrepresentable;
     if (!is_strictly_convex(fc.span())) return LocalCondition::face_not_convex;
   }
   // 2. LPD(v) in G(φ), perturbed. v's neighbours in G(φ): after each dart v→u_i whose left face f is

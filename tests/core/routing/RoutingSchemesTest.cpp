@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -231,4 +232,82 @@ TEST(Routing, TtlStopsLongRoutes) {
   }
   EXPECT_EQ(default_ttl(g, Scheme::greedy_power), 4u * 5u + 16u);
   EXPECT_GT(default_ttl(g, Scheme::gfg), default_ttl(g, Scheme::greedy_power));
+}
+
+namespace {
+
+/// Reference next hops that use only the exact predicates of Predicates.hpp.
+Vertex reference_next_hop(const PlanarGraph& g, const CircleEmbedding& phi, Scheme s, Vertex at, Vertex target) {
+  if (at == target) return none;
+  const Point2 t = centre(phi[target]), v = centre(phi[at]);
+  auto cmp = [&](Vertex a, Vertex b) {
+    switch (s) {
+      case Scheme::greedy_power: return compare_power(t, phi[a], phi[b]);
+      case Scheme::greedy_euclid: return compare_distance(t, centre(phi[a]), centre(phi[b]));
+      default: return compare_deviation(v, t, centre(phi[a]), centre(phi[b]));
+    }
+  };
+  Vertex best = none;
+  for (const Vertex u : g.neighbours(at)) {
+    if (best == none) {
+      best = u;
+      continue;
+    }
+    const Sign c = cmp(u, best);
+    if (c == Sign::negative || (c == Sign::zero && u < best)) best = u;
+  }
+  if (best == none || s == Scheme::compass) return best;
+  return cmp(best, at) == Sign::negative ? best : none;
+}
+
+Vertex fast_next_hop(const PlanarGraph& g, const CircleEmbedding& phi, Scheme s, Vertex at, Vertex target) {
+  switch (s) {
+    case Scheme::greedy_power: return greedy_power_next_hop(g, phi, at, target);
+    case Scheme::greedy_euclid: return greedy_euclid_next_hop(g, phi, at, target);
+    default: return compass_next_hop(g, phi, at, target);
+  }
+}
+
+}  // namespace
+
+TEST(Routing, FastDecisionsEqualExactPredicatesOnNearTies) {
+  // A star (centre 0, leaves 1..12) plus a target hanging off leaf 1. Centres sit on a coarse lattice
+  // moved by 0, ±1 or ±2 ulps, radii come from a small set: most comparisons are exact ties or closer
+  // than double rounding can resolve. Every scale from 2^-600 to 2^600 must give the same answers
+  // (scaling by a power of two is exact and preserves every decision).
+  std::mt19937_64 rng(77);
+  std::vector<std::vector<Vertex>> rot(14);
+  for (Vertex leaf = 1; leaf <= 12; ++leaf) {
+    rot[0].push_back(leaf);
+    rot[leaf].push_back(0);
+  }
+  rot[1].push_back(13);
+  rot[13].push_back(1);
+  const PlanarGraph g = PlanarGraph::from_rotation(rot);
+  const double radii[] = {0, 0.5, 0.25, 1.0 / 3.0, 1};
+  std::size_t checked = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    CircleEmbedding base;
+    for (int i = 0; i < 14; ++i) {
+      auto coord = [&] {
+        double x = static_cast<double>(static_cast<int>(rng() % 7) - 3) * 0.5;
+        for (int k = static_cast<int>(rng() % 5) - 2; k != 0; k += k > 0 ? -1 : 1)
+          x = std::nextafter(x, k > 0 ? 10.0 : -10.0);
+        return x;
+      };
+      const double x = coord(), y = coord();
+      base.push_back({x, y, radii[rng() % 5]});
+    }
+    for (const int e : {0, -600, 600}) {
+      CircleEmbedding phi = base;
+      for (Circle& c : phi) c = {std::ldexp(c.x, e), std::ldexp(c.y, e), std::ldexp(c.r, e)};
+      for (const Scheme s : {Scheme::greedy_power, Scheme::greedy_euclid, Scheme::compass})
+        for (const Vertex target : {Vertex{13}, Vertex{1}, Vertex{5}}) {
+          ASSERT_EQ(fast_next_hop(g, phi, s, 0, target), reference_next_hop(g, phi, s, 0, target))
+              << to_string(s) << " trial " << trial << " scale 2^" << e;
+          ++checked;
+        }
+    }
+  }
+  EXPECT_EQ(checked, 600u * 3u * 9u);
 }

@@ -43,6 +43,7 @@ enum class LocalCondition : std::uint8_t {
   boundary_vertex_inside_disc,  ///< Cell(v) ∩ Cell(w1) ∩ Cell(wn) is a point in the closed unit disc
   face_not_convex,              ///< an inner face incident to v is not strictly convex (GLPD only)
   cell_crosses_face,            ///< the local cell in G meets a face edge not incident to v (GLPD only)
+  unrepresentable,              ///< a circle involved has a NaN or infinite coordinate or a negative radius
 };
 
 /// Name of a LocalCondition ("holds", "site_outside_cell", …).
