@@ -5,6 +5,8 @@
 #include <fstream>
 #include <iostream>
 
+#include <unistd.h>
+
 #include "Commands.hpp"
 #include "Common.hpp"
 #include "EmbeddingJson.hpp"
@@ -29,12 +31,15 @@ struct PackArgs {
   bool force = false;
   bool json_stdout = false;
   bool no_picture = false;
+  bool accelerate = false;
 };
 
 class ProgressPrinter : public core::PackVisitor {
 public:
-  explicit ProgressPrinter(std::size_t n) : n_(n), start_(std::chrono::steady_clock::now()), last_(start_) {}
+  explicit ProgressPrinter(std::size_t n)
+      : n_(n), tty_(::isatty(2) != 0), start_(std::chrono::steady_clock::now()), last_(start_) {}
   void on_check(int iteration, double angle_error, std::size_t ok) override {
+    if (!tty_) return;  // progress is for people watching a terminal, not for logs
     const auto now = std::chrono::steady_clock::now();
     if (now - last_ < std::chrono::seconds(1)) return;
     last_ = now;
@@ -48,6 +53,7 @@ public:
 
 private:
   std::size_t n_;
+  bool tty_;
   std::chrono::steady_clock::time_point start_, last_;
   bool shown_ = false;
 };
@@ -62,6 +68,7 @@ int run_pack(const PackArgs& a) {
   opt.steps_per_check = a.steps;
   opt.max_iterations = a.max_iterations;
   opt.angle_epsilon = a.epsilon;
+  opt.accelerate = a.accelerate;
 
   const std::string stem = a.out.empty() ? file_stem(a.graph) + "-packing" : a.out;
   if (!a.json_stdout) check_writable(stem + ".json", a.force);
@@ -86,6 +93,7 @@ int run_pack(const PackArgs& a) {
   doc["packing"] = {{"status", std::string(core::to_string(r.status))},
                     {"stop_rule", std::string(core::to_string(r.rule))},
                     {"iterations", r.iterations},
+                    {"accelerated_jumps", r.jumps},
                     {"steps_per_check", a.steps},
                     {"sweep", a.sweep},
                     {"angle_error", r.angle_error},
@@ -158,6 +166,7 @@ Action add_pack_command(CLI::App& app) {
   cmd->add_option("--epsilon", args->epsilon, "Angle-sum tolerance for --stop angle (radians)")->capture_default_str();
   cmd->add_option("-o,--out", args->out, "Output path stem (writes STEM.json, STEM.svg, STEM.png); default GRAPHNAME-packing");
   cmd->add_flag("--force", args->force, "Overwrite existing output files");
+  cmd->add_flag("--accelerate", args->accelerate, "Extrapolate with super steps (Collins-Stephenson style)");
   cmd->add_flag("--json", args->json_stdout, "Print the embedding JSON on standard output instead of writing STEM.json");
   cmd->add_flag("--no-picture", args->no_picture, "Do not draw the SVG/PNG picture");
   return [args] { return run_pack(*args); };

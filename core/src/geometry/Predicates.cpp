@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "../detail/FastFilter.hpp"
 #include "../detail/Filtered.hpp"
 
 namespace laguerre::core {
@@ -9,7 +10,13 @@ namespace laguerre::core {
 using detail::filtered;
 using detail::sign_of;
 
+// Each predicate first tries the double-precision filter of detail/FastFilter.hpp (no rounding-mode
+// switch), then the interval filter, then exact rationals.
+
 Sign orientation(Point2 a, Point2 b, Point2 c) {
+  const double ux = b.x - a.x, uy = b.y - a.y, wx = c.x - a.x, wy = c.y - a.y;
+  if (detail::in_range(ux) && detail::in_range(uy) && detail::in_range(wx) && detail::in_range(wy))
+    if (const auto s = detail::certified_difference(ux * wy, uy * wx)) return *s;
   return filtered([&]<class NT>() {
     const NT abx = NT(b.x) - NT(a.x), aby = NT(b.y) - NT(a.y);
     const NT acx = NT(c.x) - NT(a.x), acy = NT(c.y) - NT(a.y);
@@ -18,6 +25,10 @@ Sign orientation(Point2 a, Point2 b, Point2 c) {
 }
 
 Sign compare_power(Point2 q, const Circle& a, const Circle& b) {
+  // Equal radii cancel exactly: the comparison is then one of distances, whose filter does not
+  // carry the (possibly large) r² terms.
+  if (a.r == b.r) return compare_distance(q, centre(a), centre(b));
+  if (const auto s = detail::certified_sign(detail::approx_power(q, a), detail::approx_power(q, b))) return *s;
   return filtered([&]<class NT>() {
     const NT ax = NT(q.x) - NT(a.x), ay = NT(q.y) - NT(a.y);
     const NT bx = NT(q.x) - NT(b.x), by = NT(q.y) - NT(b.y);
@@ -27,6 +38,7 @@ Sign compare_power(Point2 q, const Circle& a, const Circle& b) {
 }
 
 Sign compare_distance(Point2 q, Point2 a, Point2 b) {
+  if (const auto s = detail::certified_sign(detail::approx_distance(q, a), detail::approx_distance(q, b))) return *s;
   return filtered([&]<class NT>() {
     const NT ax = NT(q.x) - NT(a.x), ay = NT(q.y) - NT(a.y);
     const NT bx = NT(q.x) - NT(b.x), by = NT(q.y) - NT(b.y);

@@ -1,5 +1,7 @@
 #include "laguerre/core/packing/Packer.hpp"
 
+#include "laguerre/core/packing/Accelerator.hpp"
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -93,14 +95,21 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   };
 
   int it = 0;
+  Accelerator accelerator;
+  Radii previous;
   bool done = check(0);
   while (!done && it < options.max_iterations) {
     const int steps = std::min(options.steps_per_check, options.max_iterations - it);
-    for (int s = 0; s < steps; ++s) thurston_sweep(k, result.radii, options.sweep, options.update, scratch);
+    for (int s = 0; s < steps; ++s) {
+      if (options.accelerate) previous = result.radii;
+      thurston_sweep(k, result.radii, options.sweep, options.update, scratch);
+      if (options.accelerate) accelerator.after_sweep(k, previous, result.radii);
+    }
     it += steps;
     done = check(it);
   }
   result.iterations = it;
+  result.jumps = accelerator.jumps();
   result.status = done ? PackStatus::converged : PackStatus::iteration_cap;
   // Never claim anything on circles the doubles cannot carry.
   if (result.layout.precision == Precision::unrepresentable) result.status = PackStatus::precision_loss;

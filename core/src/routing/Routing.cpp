@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "../detail/FastFilter.hpp"
 #include "../detail/Filtered.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
 #include "laguerre/core/routing/Router.hpp"
@@ -15,119 +16,28 @@ namespace laguerre::core {
 
 namespace {
 
+
 // ---------------------------------------------------------------------------------------------------
-// Fast exact decisions.
-//
-// Routing all pairs of a few thousand vertices makes hundreds of millions of comparisons, and the
-// interval filter of Predicates.cpp pays a rounding-mode switch per call. So each decision here first
-// evaluates its expression in plain double arithmetic (round to nearest) together with a proven bound
-// on the absolute error; only when the computed value does not clear the bound do we call the exact
-// predicate. Each approximation states the magnitude range in which its bound is proven (no overflow,
-// no underflow that the bound does not absorb); outside it the error is "unknown" (infinite) and the
-// exact predicate decides. The answers are therefore always the exact ones; a randomized test checks
-// them against the plain exact predicates on near-ties at scales 2^-600 .. 2^600.
+// Fast exact decisions: the double filters of detail/FastFilter.hpp, then the exact predicates.
 // ---------------------------------------------------------------------------------------------------
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
+using detail::Approx;
+using detail::approx_alignment;
+using detail::approx_distance;
+using detail::approx_power;
+using detail::certified_sign;
+using detail::in_range;
 
-bool in_range(double d, double lo, double hi) {
-  const double a = std::fabs(d);
-  return a == 0 || (a >= lo && a <= hi);
-}
-bool in_range(double d) { return in_range(d, 1e-100, 1e100); }
-
-/// A double value approximating an exact real, with a bound on the absolute error (∞: no bound).
-struct Approx {
-  double value = 0;
-  double error = kInfinity;
-};
-
-/// Sign of a − b when the error bounds decide it. With both errors generous by a factor ≥ 1.8 over
-/// the true worst case (see the constants below), |fl(a − b)| > ea + eb also absorbs the rounding of
-/// the subtraction itself.
-std::optional<Sign> certified_sign(const Approx& a, const Approx& b) {
-  const double d = a.value - b.value, e = a.error + b.error;
-  if (d > e) return Sign::positive;
-  if (d < -e) return Sign::negative;
-  return std::nullopt;
-}
-
-// Unit roundoff u = 2^-53 ≈ 1.11e-16. Worst-case errors: |p − q|² ≤ 4u·M, power ≤ 5u·M (M the sum of the
-// magnitudes of the squared terms); the constant below is about 9u. The bound holds whenever the computed
-// M' lies in [1e-200, 1e200]: no term overflowed, and a term that underflowed adds at most ~2^-1074,
-// far below 1e-15·M'. Outside that range only the exactly-zero case (coincident centres, zero radius)
-// is certified; everything else goes to the exact predicate.
-constexpr double kSquaresError = 1e-15;
-
-/// pow(q, c) = |q − p(c)|² − r(c)².
-Approx approx_power(Point2 q, const Circle& c) {
-  const double dx = q.x - c.x, dy = q.y - c.y;
-  const double sx = dx * dx, sy = dy * dy, sr = c.r * c.r, m = sx + sy + sr;
-  if (m >= 1e-200 && m <= 1e200) return {sx + sy - sr, kSquaresError * m};
-  if (dx == 0 && dy == 0 && c.r == 0) return {0, 0};
-  return {};
-}
-
-/// |q − a|².
-Approx approx_distance(Point2 q, Point2 a) {
-  const double dx = q.x - a.x, dy = q.y - a.y;
-  const double s = dx * dx + dy * dy;
-  if (s >= 1e-200 && s <= 1e200) return {s, kSquaresError * s};
-  if (dx == 0 && dy == 0) return {0, 0};
-  return {};
-}
-
-/// The alignment of a with the direction v → t, the quantity compare_deviation compares:
-/// dot·|dot| / |a − v|² with dot = (a − v)·(t − v), a strictly increasing function of the cosine of the
-/// angle at v (for a fixed t). Error ≤ 15u·D²/|a − v|² with D = |dx·tx| + |dy·ty|; we use 18u.
-Approx approx_alignment(Point2 v, Point2 t, Point2 a) {
-  const double tx = t.x - v.x, ty = t.y - v.y, dx = a.x - v.x, dy = a.y - v.y;
-  constexpr double lo = 1e-60, hi = 1e60;  // keeps the degree-4 terms away from underflow and overflow
-  if (!in_range(tx, lo, hi) || !in_range(ty, lo, hi) || !in_range(dx, lo, hi) || !in_range(dy, lo, hi)) return {};
-  const double len2 = dx * dx + dy * dy;
-  if (len2 == 0) return {};  // the zero-length convention of compare_deviation: let it decide
-  const double px = dx * tx, py = dy * ty, dot = px + py, mag = std::fabs(px) + std::fabs(py);
-  if (mag == 0) return {0, 0};  // both products exactly zero (no underflow in range): dot is exactly 0
-  const double scale = mag * mag / len2;
-  if (!(scale >= 1e-280 && scale <= 1e280)) return {};
-  return {dot * std::fabs(dot) / len2, 2e-15 * scale};
-}
-
-// Shewchuk's orient2d bound is (3 + 16u)u·(|l| + |r|); we use 1e-15 ≈ 9u.
-constexpr double kOrientError = 1e-15;
-
-/// orientation(a, b, c) with a double-precision filter in front.
-Sign fast_orientation(Point2 a, Point2 b, Point2 c) {
-  const double abx = b.x - a.x, aby = b.y - a.y, acx = c.x - a.x, acy = c.y - a.y;
-  if (in_range(abx) && in_range(aby) && in_range(acx) && in_range(acy)) {
-    const double l = abx * acy, r = aby * acx, det = l - r;
-    const double err = kOrientError * (std::fabs(l) + std::fabs(r));
-    if (det > err) return Sign::positive;
-    if (det < -err) return Sign::negative;
-    if (err == 0) return Sign::zero;  // both products exactly zero
-  }
-  return orientation(a, b, c);
-}
-
-/// Sign of (a − p)·(b − p). Exact, filtered like fast_orientation.
+/// Sign of (a − p)·(b − p). Exact, filtered like orientation().
 Sign dot_sign(Point2 p, Point2 a, Point2 b) {
   const double ax = a.x - p.x, ay = a.y - p.y, bx = b.x - p.x, by = b.y - p.y;
   if (in_range(ax) && in_range(ay) && in_range(bx) && in_range(by)) {
-    const double l = ax * bx, r = ay * by, dot = l + r;
-    const double err = kOrientError * (std::fabs(l) + std::fabs(r));
-    if (dot > err) return Sign::positive;
-    if (dot < -err) return Sign::negative;
-    if (err == 0) return Sign::zero;
+    if (const auto s = detail::certified_difference(ax * bx, -(ay * by))) return *s;
   }
   return detail::filtered([&]<class NT>() {
     const NT ex = (NT(a.x) - NT(p.x)) * (NT(b.x) - NT(p.x)) + (NT(a.y) - NT(p.y)) * (NT(b.y) - NT(p.y));
     return detail::sign_of<NT>(ex);
   });
-}
-
-Sign fast_compare_distance(Point2 q, Point2 a, Point2 b) {
-  if (const auto s = certified_sign(approx_distance(q, a), approx_distance(q, b))) return *s;
-  return compare_distance(q, a, b);
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -182,10 +92,10 @@ Sign compare_along(Point2 p, Point2 t, const Along& x, const Along& y) {
 /// vertex at P). With `same_ray` (a vertex of degree one: A and B are the same neighbour) the sector is
 /// the full turn minus the ray P→A.
 bool in_open_sector(Point2 p, Point2 a, Point2 b, Point2 t, bool same_ray) {
-  const Sign a_t = fast_orientation(p, a, t);  // positive: t strictly left of P→A
+  const Sign a_t = orientation(p, a, t);  // positive: t strictly left of P→A
   if (same_ray) return a_t != Sign::zero || dot_sign(p, a, t) == Sign::negative;
-  const Sign t_b = fast_orientation(p, t, b);
-  switch (fast_orientation(p, a, b)) {
+  const Sign t_b = orientation(p, t, b);
+  switch (orientation(p, a, b)) {
     case Sign::positive:  // convex sector (< π): strictly left of P→A and strictly right of P→B
       return a_t == Sign::positive && t_b == Sign::positive;
     case Sign::negative:  // reflex sector (> π): the complement of the closed convex sector B→A
@@ -492,12 +402,12 @@ void Router::route_gfg(Vertex target, std::size_t ttl, Route& out) const {
     for (;;) {
       const Vertex a = g.tail(d), b = g.head(d);
       const Point2 pa = pt(a), pb = pt(b);
-      const Sign sa = fast_orientation(p, t, pa), sb = fast_orientation(p, t, pb);
+      const Sign sa = orientation(p, t, pa), sb = orientation(p, t, pb);
       if (static_cast<int>(sa) * static_cast<int>(sb) < 0) {
         const Along q{Along::Kind::edge, pa, pb};
         if (compare_along(p, t, q, last) == Sign::positive && compare_along(p, t, q, at_target) != Sign::positive) {
           last = q;
-          if (fast_orientation(pa, pb, t) == Sign::positive) {
+          if (orientation(pa, pb, t) == Sign::positive) {
             // T is left of a→b: continue in the face on the other side of the edge, from a.
             d = g.next_ccw(d);
             walk_start = d;
@@ -510,7 +420,7 @@ void Router::route_gfg(Vertex target, std::size_t ttl, Route& out) const {
       out.path.push_back(b);
       v = b;
       if (v == target) return stop(RouteOutcome::delivered, none);
-      if (fast_compare_distance(t, pt(v), p) == Sign::negative) break;  // back to greedy mode
+      if (compare_distance(t, pt(v), p) == Sign::negative) break;  // back to greedy mode
       d = g.next_ccw(g.twin(d));
       if (d == walk_start) return stop(RouteOutcome::loop, v);
     }

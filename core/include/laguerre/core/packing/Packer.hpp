@@ -47,6 +47,7 @@ struct PackOptions {
   double angle_epsilon = 1e-9;                   ///< for StopRule::angle (radians)
   double tangency_tolerance = 0.01;              ///< for StopRule::exact (fraction of smaller radius)
   bool track_all = false;                        ///< evaluate every rule at every check (for tables)
+  bool accelerate = false;                       ///< extrapolate with super steps (see Accelerator)
 };
 
 /// Result of a packing run.
@@ -57,6 +58,7 @@ struct PackResult {
   int first_lpd = -1;       ///< first checked iteration with LPD/GLPD everywhere (-1: never seen)
   int first_exact = -1;     ///< first checked iteration with an exact packing (tracked rules only)
   int first_angle = -1;     ///< first checked iteration with angle error ≤ epsilon (tracked only)
+  int jumps = 0;            ///< extrapolations taken (PackOptions::accelerate)
   double angle_error = 0;   ///< max |θ − 2π| at the end
   double max_tangency_error = 0;  ///< max tangency error over G's edges at the end
   CircleEmbedding circles;        ///< φ on G's vertices (indexed by Vertex of G)

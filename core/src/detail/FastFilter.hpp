@@ -1,0 +1,103 @@
+#pragma once
+/// @file
+/// Internal: double-precision filters with proven error bounds, the first stage of the exact
+/// predicates (Predicates.cpp) and of the routing decisions (Routing.cpp).
+///
+/// Routing all pairs of a few thousand vertices makes hundreds of millions of comparisons, and the
+/// interval filter of Predicates.cpp pays a rounding-mode switch per call. So each decision here first
+/// evaluates its expression in plain double arithmetic (round to nearest) together with a proven bound
+/// on the absolute error; only when the computed value does not clear the bound do we call the exact
+/// predicate. Each approximation states the magnitude range in which its bound is proven (no overflow,
+/// no underflow that the bound does not absorb); outside it the error is "unknown" (infinite) and the
+/// exact predicate decides. The answers are therefore always the exact ones; a randomized test checks
+/// them against the plain exact predicates on near-ties at scales 2^-600 .. 2^600.
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "laguerre/core/geometry/Predicates.hpp"
+
+namespace laguerre::core::detail {
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+inline bool in_range(double d, double lo, double hi) {
+  const double a = std::fabs(d);
+  return a == 0 || (a >= lo && a <= hi);
+}
+inline bool in_range(double d) { return in_range(d, 1e-100, 1e100); }
+
+/// A double value approximating an exact real, with a bound on the absolute error (∞: no bound).
+struct Approx {
+  double value = 0;
+  double error = kInfinity;
+};
+
+/// Sign of a − b when the error bounds decide it. With both errors generous by a factor ≥ 1.8 over
+/// the true worst case (see the constants below), |fl(a − b)| > ea + eb also absorbs the rounding of
+/// the subtraction itself.
+inline std::optional<Sign> certified_sign(const Approx& a, const Approx& b) {
+  const double d = a.value - b.value, e = a.error + b.error;
+  if (d > e) return Sign::positive;
+  if (d < -e) return Sign::negative;
+  return std::nullopt;
+}
+
+// Unit roundoff u = 2^-53 ≈ 1.11e-16. Worst-case errors: |p − q|² ≤ 4u·M, power ≤ 5u·M (M the sum of the
+// magnitudes of the squared terms); the constant below is about 9u. The bound holds whenever the computed
+// M' lies in [1e-200, 1e200]: no term overflowed, and a term that underflowed adds at most ~2^-1074,
+// far below 1e-15·M'. Outside that range only the exactly-zero case (coincident centres, zero radius)
+// is certified; everything else goes to the exact predicate.
+inline constexpr double kSquaresError = 1e-15;
+
+/// pow(q, c) = |q − p(c)|² − r(c)².
+inline Approx approx_power(Point2 q, const Circle& c) {
+  const double dx = q.x - c.x, dy = q.y - c.y;
+  const double sx = dx * dx, sy = dy * dy, sr = c.r * c.r, m = sx + sy + sr;
+  if (m >= 1e-200 && m <= 1e200) return {sx + sy - sr, kSquaresError * m};
+  if (dx == 0 && dy == 0 && c.r == 0) return {0, 0};
+  return {};
+}
+
+/// |q − a|².
+inline Approx approx_distance(Point2 q, Point2 a) {
+  const double dx = q.x - a.x, dy = q.y - a.y;
+  const double s = dx * dx + dy * dy;
+  if (s >= 1e-200 && s <= 1e200) return {s, kSquaresError * s};
+  if (dx == 0 && dy == 0) return {0, 0};
+  return {};
+}
+
+/// The alignment of a with the direction v → t, the quantity compare_deviation compares:
+/// dot·|dot| / |a − v|² with dot = (a − v)·(t − v), a strictly increasing function of the cosine of the
+/// angle at v (for a fixed t). Error ≤ 15u·D²/|a − v|² with D = |dx·tx| + |dy·ty|; we use 18u.
+inline Approx approx_alignment(Point2 v, Point2 t, Point2 a) {
+  const double tx = t.x - v.x, ty = t.y - v.y, dx = a.x - v.x, dy = a.y - v.y;
+  constexpr double lo = 1e-60, hi = 1e60;  // keeps the degree-4 terms away from underflow and overflow
+  if (!in_range(tx, lo, hi) || !in_range(ty, lo, hi) || !in_range(dx, lo, hi) || !in_range(dy, lo, hi)) return {};
+  const double len2 = dx * dx + dy * dy;
+  if (len2 == 0) return {};  // the zero-length convention of compare_deviation: let it decide
+  const double px = dx * tx, py = dy * ty, dot = px + py, mag = std::fabs(px) + std::fabs(py);
+  if (mag == 0) return {0, 0};  // both products exactly zero (no underflow in range): dot is exactly 0
+  const double scale = mag * mag / len2;
+  if (!(scale >= 1e-280 && scale <= 1e280)) return {};
+  return {dot * std::fabs(dot) / len2, 2e-15 * scale};
+}
+
+// Shewchuk's orient2d bound is (3 + 16u)u·(|l| + |r|); we use 1e-15 ≈ 9u.
+inline constexpr double kOrientError = 1e-15;
+
+
+/// Sign of l − r (orient2d's two products, or a dot product's with r negated) when the double filter
+/// decides it; Shewchuk's bound (3 + 16u)u·(|l| + |r|), taken as 1e-15·(|l| + |r|).
+inline std::optional<Sign> certified_difference(double l, double r) {
+  const double det = l - r;
+  const double err = kOrientError * (std::fabs(l) + std::fabs(r));
+  if (det > err) return Sign::positive;
+  if (det < -err) return Sign::negative;
+  if (err == 0) return Sign::zero;  // both products exactly zero
+  return std::nullopt;
+}
+
+}  // namespace laguerre::core::detail
