@@ -72,10 +72,13 @@ struct Placer {
   Layout& out;
 
   bool interior(Vertex v) const { return !k.graph.is_boundary(v); }
-  double cos_of(Vertex u, Vertex v) const { return k.cos_angle[k.graph.find_dart(u, v)]; }
+  double cos_of(Vertex u, Vertex v) const {
+    return k.has_face_vertices() ? k.cos_angle[k.graph.find_dart(u, v)] : 1.0;
+  }
 
   // Angle at x of the triangle (x, y, z).
   double angle(Vertex x, Vertex y, Vertex z) const {
+    if (!k.has_face_vertices()) return tangent_angle(X[x], X[y], X[z]);
     return overlap_angle(X[x], X[y], X[z], cos_of(x, y), cos_of(x, z), cos_of(y, z));
   }
 
@@ -229,7 +232,8 @@ Layout lay_out(const PackingComplex& k, const Radii& X, Vertex root) {
           listed[w] = 1;
           candidates.push_back(w);
         }
-    std::sort(candidates.begin(), candidates.end());
+    // No sorting needed: a round's placements read only positions from earlier rounds, so the order
+    // in which candidates are visited cannot change any bit of the result.
     placements.clear();
     for (Vertex w : candidates) {
       listed[w] = 0;
