@@ -17,6 +17,7 @@ struct GenerateArgs {
   std::uint64_t seed = 1;
   std::string out;
   std::string format = "coords";
+  std::size_t count = 1;
   bool force = false;
 };
 
@@ -35,18 +36,30 @@ std::string write_coords(const core::GraphInput& in) {
   return os.str();
 }
 
+core::GraphInput make(const GenerateArgs& a, std::uint64_t seed) {
+  return a.family == "delaunay" ? core::random_delaunay_triangulation(a.size, seed)
+                                : core::random_three_connected(a.size, seed);
+}
+
 int run_generate(const GenerateArgs& a) {
-  const core::GraphInput in = a.family == "delaunay" ? core::random_delaunay_triangulation(a.size, a.seed)
-                                                     : core::random_three_connected(a.size, a.seed);
-  const std::string text = a.format == "coords" ? write_coords(in) : core::write_edge_list(in.graph);
+  if (a.count != 1 && a.format != "planar_code")
+    throw std::invalid_argument("--count greater than 1 needs --format planar_code (the only multi-graph format).");
+  std::string text;
+  if (a.format == "planar_code") {
+    std::vector<core::PlanarGraph> graphs;
+    for (std::size_t i = 0; i < a.count; ++i) graphs.push_back(make(a, a.seed + i).graph);
+    text = core::write_planar_code(graphs);
+  } else {
+    const core::GraphInput in = make(a, a.seed);
+    text = a.format == "coords" ? write_coords(in) : core::write_edge_list(in.graph);
+  }
   if (a.out.empty() || a.out == "-") {
     std::cout << text;
     return 0;
   }
   check_writable(a.out, a.force);
-  std::ofstream(a.out) << text;
-  std::cerr << "wrote " << a.out << ": " << in.graph.num_vertices() << " vertices, " << in.graph.num_edges()
-            << " edges\n";
+  std::ofstream(a.out, std::ios::binary) << text;
+  std::cerr << "wrote " << a.out << ": " << a.count << " graph(s) of " << a.size << " vertices\n";
   return 0;
 }
 }  // namespace
@@ -58,8 +71,10 @@ Action add_generate_command(CLI::App& app) {
       ->required()->check(CLI::IsMember({"delaunay", "three-connected"}));
   cmd->add_option("--size,-n", args->size, "Number of vertices")->check(CLI::Range(4, 100000000))->capture_default_str();
   cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str();
-  cmd->add_option("--format", args->format, "coords (with positions) or edges")
-      ->check(CLI::IsMember({"coords", "edges"}))->capture_default_str();
+  cmd->add_option("--format", args->format, "coords (with positions), edges or planar_code (binary)")
+      ->check(CLI::IsMember({"coords", "edges", "planar_code"}))->capture_default_str();
+  cmd->add_option("--count", args->count, "Number of graphs (seeds SEED, SEED+1, ...; planar_code only)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("-o,--out", args->out, "Output file (default: standard output)");
   cmd->add_flag("--force", args->force, "Overwrite an existing output file");
   return [args] { return run_generate(*args); };

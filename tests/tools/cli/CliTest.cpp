@@ -143,3 +143,20 @@ TEST_F(Cli, GenerateIsDeterministic) {
   EXPECT_EQ(a.out, b.out);
   EXPECT_NE(a.out, c.out);
 }
+
+TEST_F(Cli, PlanarCodeFilesWithSeveralGraphs) {
+  const std::string pc = std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/graphs/three-connected-40x5.pc";
+  for (int i = 1; i <= 5; ++i) {
+    const Outcome r = run("pack " + pc + " --index " + std::to_string(i) + " --no-picture -o " + path("g" + std::to_string(i)));
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("#" + std::to_string(i)), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("GLPD         40 / 40"), std::string::npos) << r.out;
+  }
+  const Outcome bad = run("pack " + pc + " --index 6 --no-picture -o " + path("g6"));
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.out.find("holds 5 graph(s)"), std::string::npos) << bad.out;
+  const Outcome routed = run("route " + pc + " --index 2 --scheme greedy-power --json");
+  ASSERT_EQ(routed.status, 0) << routed.out;
+  const auto doc = nlohmann::json::parse(routed.out);
+  EXPECT_EQ(doc["schemes"][0]["delivered"], doc["schemes"][0]["pairs"]);
+}
