@@ -55,7 +55,7 @@ void BM_LayoutAndLpdCheckAtLpd(benchmark::State& state) {
   const PlanarGraph& g = triangulation(static_cast<std::size_t>(state.range(0)));
   const PackingComplex k = PackingComplex::from_graph(g);
   PackOptions opt;
-  opt.accelerate = true;
+  opt.acceleration = Acceleration::anderson;
   opt.steps_per_check = std::max(1, static_cast<int>(state.range(0) / 1000));
   const Radii X = pack(g, opt).radii;
   const Vertex root = choose_root(k, RootRule::deepest);
@@ -71,25 +71,25 @@ void BM_LayoutAndLpdCheckAtLpd(benchmark::State& state) {
 BENCHMARK(BM_LayoutAndLpdCheckAtLpd)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 
 // Whole runs: counters report the sweeps to LPD or to an exact packing. Arguments: n, rule (0 LPD,
-// 1 exact packing), N (sweeps per check), acceleration (0 plain Thurston, 1 super steps).
+// 1 exact packing), N (sweeps per check), acceleration (0 plain, 1 superstep, 2 anderson).
 void BM_Pack(benchmark::State& state) {
   const PlanarGraph& g = triangulation(static_cast<std::size_t>(state.range(0)));
   PackOptions opt;
   opt.stop = state.range(1) ? StopRule::exact : StopRule::lpd;
   opt.steps_per_check = static_cast<int>(state.range(2));
-  opt.accelerate = state.range(3) != 0;
+  opt.acceleration = static_cast<Acceleration>(state.range(3));
   opt.max_iterations = 2000000;
   PackResult r;
   for (auto _ : state) r = pack(g, opt);
   state.counters["sweeps"] = r.iterations;
   state.counters["converged"] = r.status == PackStatus::converged;
   state.counters["min_radius"] = r.layout.smallest_radius;
-  state.SetLabel(std::string(state.range(1) ? "exact" : "LPD") + (opt.accelerate ? ", accelerated" : ", plain"));
+  state.SetLabel(std::string(state.range(1) ? "exact" : "LPD") + ", " + std::string(to_string(opt.acceleration)));
 }
 BENCHMARK(BM_Pack)
-    ->Args({1000, 0, 1, 0})->Args({1000, 1, 1, 0})->Args({1000, 0, 1, 1})->Args({1000, 1, 1, 1})
-    ->Args({10000, 0, 10, 0})->Args({10000, 1, 10, 0})->Args({10000, 0, 10, 1})->Args({10000, 1, 10, 1})
-    ->Args({100000, 0, 100, 1})->Args({100000, 1, 100, 1})
+    ->ArgsProduct({{1000}, {0, 1}, {1}, {0, 1, 2}})
+    ->ArgsProduct({{10000}, {0, 1}, {10}, {0, 1, 2}})
+    ->ArgsProduct({{100000}, {0, 1}, {100}, {2}})
     // 10^6 is left out: at ~0.3 s per sweep and sweeps growing faster than n it would run for hours
     // (see the README's benchmark section); add ->Args({1000000, 0, 1000, 1}) to try.
     ->Iterations(1)->Unit(benchmark::kSecond);

@@ -31,7 +31,7 @@ struct PackArgs {
   bool force = false;
   bool json_stdout = false;
   bool no_picture = false;
-  bool accelerate = false;
+  std::string accelerate = "plain";
 };
 
 class ProgressPrinter : public core::PackVisitor {
@@ -68,7 +68,7 @@ int run_pack(const PackArgs& a) {
   opt.steps_per_check = a.steps;
   opt.max_iterations = a.max_iterations;
   opt.angle_epsilon = a.epsilon;
-  opt.accelerate = a.accelerate;
+  opt.acceleration = core::parse_acceleration(a.accelerate);
 
   const std::string stem = a.out.empty() ? file_stem(a.graph) + "-packing" : a.out;
   if (!a.json_stdout) check_writable(stem + ".json", a.force);
@@ -166,7 +166,8 @@ Action add_pack_command(CLI::App& app) {
   cmd->add_option("--epsilon", args->epsilon, "Angle-sum tolerance for --stop angle (radians)")->capture_default_str();
   cmd->add_option("-o,--out", args->out, "Output path stem (writes STEM.json, STEM.svg, STEM.png); default GRAPHNAME-packing");
   cmd->add_flag("--force", args->force, "Overwrite existing output files");
-  cmd->add_flag("--accelerate", args->accelerate, "Extrapolate with super steps (Collins-Stephenson style)");
+  cmd->add_option("--accelerate", args->accelerate, "Sweep acceleration: plain, superstep (Collins-Stephenson) or anderson")
+      ->check(CLI::IsMember({"plain", "superstep", "anderson"}))->capture_default_str();
   cmd->add_flag("--json", args->json_stdout, "Print the embedding JSON on standard output instead of writing STEM.json");
   cmd->add_flag("--no-picture", args->no_picture, "Do not draw the SVG/PNG picture");
   return [args] { return run_pack(*args); };

@@ -25,7 +25,7 @@ struct TableArgs {
   int max_iterations = 200000;
   std::vector<std::string> files;
   bool json = false;
-  bool accelerate = false;
+  std::string accelerate = "plain";
 };
 
 struct Row {
@@ -58,7 +58,7 @@ Row measure(const core::PlanarGraph& g, core::GraphKind kind, const std::string&
   opt.steps_per_check = a.steps;
   opt.sweep = a.sweep == "gauss-seidel" ? core::Sweep::gauss_seidel : core::Sweep::jacobi;
   opt.max_iterations = a.max_iterations;
-  opt.accelerate = a.accelerate;
+  opt.acceleration = core::parse_acceleration(a.accelerate);
   Row row;
   row.name = name;
   row.kind = kind;
@@ -176,7 +176,8 @@ Action add_thesis_table_command(CLI::App& app) {
   cmd->add_option("--sweep", args->sweep, "jacobi or gauss-seidel")->check(CLI::IsMember({"jacobi", "gauss-seidel"}))->capture_default_str();
   cmd->add_option("--max-iterations", args->max_iterations, "Cap on sweeps per run")->capture_default_str();
   cmd->add_flag("--json", args->json, "Machine-readable output");
-  cmd->add_flag("--accelerate", args->accelerate, "Extrapolate with super steps (Collins-Stephenson style)");
+  cmd->add_option("--accelerate", args->accelerate, "Sweep acceleration: plain, superstep (Collins-Stephenson) or anderson")
+      ->check(CLI::IsMember({"plain", "superstep", "anderson"}))->capture_default_str();
   return [args] { return run_table(*args); };
 }
 

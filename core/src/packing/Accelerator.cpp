@@ -1,16 +1,43 @@
 #include "laguerre/core/packing/Accelerator.hpp"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace laguerre::core {
 
+std::string_view to_string(Acceleration a) {
+  switch (a) {
+    case Acceleration::plain: return "plain";
+    case Acceleration::superstep: return "superstep";
+    case Acceleration::anderson: return "anderson";
+  }
+  return "?";
+}
+
+Acceleration parse_acceleration(std::string_view name) {
+  for (Acceleration a : {Acceleration::plain, Acceleration::superstep, Acceleration::anderson})
+    if (to_string(a) == name) return a;
+  throw std::invalid_argument("Unknown acceleration '" + std::string(name) +
+                              "'; expected one of plain, superstep, anderson.");
+}
+
 bool Accelerator::after_sweep(const PackingComplex& k, const Radii& before, Radii& after) {
+  switch (kind_) {
+    case Acceleration::plain: return false;
+    case Acceleration::superstep: return superstep(k, before, after);
+    case Acceleration::anderson: return anderson(k, before, after);
+  }
+  return false;
+}
+
+bool Accelerator::superstep(const PackingComplex& k, const Radii& before, Radii& after) {
   const std::size_t n = after.size();
   previous_.resize(n, 0.0);
   double dot = 0, norm_now = 0, norm_prev = 0;
-  // Δ_k in y = log X; boundary entries stay 0.
-  std::vector<double>& prev = previous_;
   std::vector<double>& delta = scratch_;
   delta.assign(n, 0.0);
   for (Vertex v = 0; v < n; ++v) {
@@ -18,11 +45,11 @@ bool Accelerator::after_sweep(const PackingComplex& k, const Radii& before, Radi
     const double d = std::log(after[v]) - std::log(before[v]);
     delta[v] = d;
     norm_now += d * d;
-    dot += d * prev[v];
-    norm_prev += prev[v] * prev[v];
+    dot += d * previous_[v];
+    norm_prev += previous_[v] * previous_[v];
   }
   const bool had = has_previous_;
-  prev.swap(delta);
+  previous_.swap(delta);
   has_previous_ = true;
   if (!had || norm_prev == 0 || norm_now == 0) return false;
   const double lambda = std::sqrt(norm_now / norm_prev);
@@ -31,15 +58,88 @@ bool Accelerator::after_sweep(const PackingComplex& k, const Radii& before, Radi
   double factor = std::min(50.0, lambda / (1 - lambda));
   // Keep every hyperbolic radius above half its value: y' = y + f Δ ≤ y / 2 where Δ > 0.
   for (Vertex v = 0; v < n; ++v) {
-    const double d = prev[v];
+    const double d = previous_[v];
     if (d > 0) factor = std::min(factor, (-0.5 * std::log(after[v])) / d);
   }
   if (!(factor > 0)) return false;
   for (Vertex v = 0; v < n; ++v)
-    if (!k.graph.is_boundary(v)) after[v] = std::exp(std::log(after[v]) + factor * prev[v]);
+    if (!k.graph.is_boundary(v)) after[v] = std::exp(std::log(after[v]) + factor * previous_[v]);
   has_previous_ = false;
   ++jumps_;
   return true;
+}
+
+bool Accelerator::anderson(const PackingComplex& k, const Radii& before, Radii& after) {
+  constexpr std::size_t m = 6;
+  if (interior_.empty())
+    for (Vertex v = 0; v < after.size(); ++v)
+      if (!k.graph.is_boundary(v)) interior_.push_back(v);
+  const std::size_t ni = interior_.size();
+  if (ni == 0) return false;
+  // Residual f = F(y) − y and image g = F(y), in y = log X.
+  std::vector<double> f(ni), g(ni);
+  double norm = 0;
+  for (std::size_t i = 0; i < ni; ++i) {
+    const Vertex v = interior_[i];
+    g[i] = std::log(after[v]);
+    f[i] = g[i] - std::log(before[v]);
+    norm += f[i] * f[i];
+  }
+  norm = std::sqrt(norm);
+  const bool restart = last_f_.empty() || !(norm <= 10 * last_norm_);
+  if (restart) {
+    dF_.clear();
+    dG_.clear();
+  } else {
+    std::vector<double> df(ni), dg(ni);
+    for (std::size_t i = 0; i < ni; ++i) {
+      df[i] = f[i] - last_f_[i];
+      dg[i] = g[i] - last_g_[i];
+    }
+    dF_.push_back(std::move(df));
+    dG_.push_back(std::move(dg));
+    if (dF_.size() > m) {
+      dF_.erase(dF_.begin());
+      dG_.erase(dG_.begin());
+    }
+  }
+  last_f_ = f;
+  last_g_ = g;
+  last_norm_ = norm;
+  const std::size_t cols = dF_.size();
+  if (cols == 0) return false;
+  // γ = argmin |f − ΔF γ|: normal equations with a small Tikhonov term for conditioning.
+  Eigen::MatrixXd gram(cols, cols);
+  Eigen::VectorXd rhs(cols);
+  for (std::size_t a = 0; a < cols; ++a) {
+    double r = 0;
+    for (std::size_t i = 0; i < ni; ++i) r += dF_[a][i] * f[i];
+    rhs[static_cast<Eigen::Index>(a)] = r;
+    for (std::size_t b = 0; b <= a; ++b) {
+      double s = 0;
+      for (std::size_t i = 0; i < ni; ++i) s += dF_[a][i] * dF_[b][i];
+      gram(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) = s;
+      gram(static_cast<Eigen::Index>(b), static_cast<Eigen::Index>(a)) = s;
+    }
+  }
+  const double trace = gram.trace();
+  gram.diagonal().array() += 1e-10 * trace / static_cast<double>(cols) + 1e-300;
+  const Eigen::VectorXd gamma = gram.ldlt().solve(rhs);
+  if (!gamma.allFinite()) return false;
+  // y_{k+1} = g − ΔG γ, with every hyperbolic radius kept above half its current value.
+  bool changed = false;
+  for (std::size_t i = 0; i < ni; ++i) {
+    double y = g[i];
+    for (std::size_t a = 0; a < cols; ++a) y -= dG_[a][i] * gamma[static_cast<Eigen::Index>(a)];
+    y = std::min(y, 0.5 * g[i]);
+    if (!std::isfinite(y)) return false;
+    const Vertex v = interior_[i];
+    const double x = std::exp(y);
+    changed |= x != after[v];
+    after[v] = x;
+  }
+  if (changed) ++jumps_;
+  return changed;
 }
 
 }  // namespace laguerre::core

@@ -95,15 +95,16 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   };
 
   int it = 0;
-  Accelerator accelerator;
+  Accelerator accelerator(options.acceleration);
+  const bool accelerate = options.acceleration != Acceleration::plain;
   Radii previous;
   bool done = check(0);
   while (!done && it < options.max_iterations) {
     const int steps = std::min(options.steps_per_check, options.max_iterations - it);
     for (int s = 0; s < steps; ++s) {
-      if (options.accelerate) previous = result.radii;
+      if (accelerate) previous = result.radii;
       thurston_sweep(k, result.radii, options.sweep, options.update, scratch);
-      if (options.accelerate) accelerator.after_sweep(k, previous, result.radii);
+      if (accelerate) accelerator.after_sweep(k, previous, result.radii);
     }
     it += steps;
     done = check(it);

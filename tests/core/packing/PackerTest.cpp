@@ -86,18 +86,22 @@ TEST(Packer, IsDeterministic) {
   }
 }
 
-TEST(Packer, AccelerationReachesTheSamePackingInFewerSweeps) {
+TEST(Packer, AccelerationsReachTheSamePackingInFewerSweeps) {
+  EXPECT_EQ(parse_acceleration("anderson"), Acceleration::anderson);
+  EXPECT_THROW(parse_acceleration("warp"), std::invalid_argument);
   const PlanarGraph g = delaunay(400, 21);
   PackOptions opt;
   opt.stop = StopRule::angle;
   opt.angle_epsilon = 1e-9;
   opt.steps_per_check = 5;
   const PackResult plain = pack(g, opt);
-  opt.accelerate = true;
-  const PackResult fast = pack(g, opt);
   ASSERT_EQ(plain.status, PackStatus::converged);
-  ASSERT_EQ(fast.status, PackStatus::converged);
-  EXPECT_GT(fast.jumps, 0);
-  EXPECT_LT(fast.iterations, plain.iterations / 2);
-  for (std::size_t i = 0; i < plain.radii.size(); ++i) EXPECT_NEAR(fast.radii[i], plain.radii[i], 1e-7);
+  for (Acceleration a : {Acceleration::superstep, Acceleration::anderson}) {
+    opt.acceleration = a;
+    const PackResult fast = pack(g, opt);
+    ASSERT_EQ(fast.status, PackStatus::converged) << to_string(a);
+    EXPECT_GT(fast.jumps, 0);
+    EXPECT_LT(fast.iterations, plain.iterations / 2) << to_string(a);
+    for (std::size_t i = 0; i < plain.radii.size(); ++i) EXPECT_NEAR(fast.radii[i], plain.radii[i], 1e-7) << to_string(a);
+  }
 }

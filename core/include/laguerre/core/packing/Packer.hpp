@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "laguerre/core/geometry/Circle.hpp"
+#include "laguerre/core/packing/Accelerator.hpp"
 #include "laguerre/core/packing/Layout.hpp"
 #include "laguerre/core/packing/Thurston.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
@@ -47,7 +48,7 @@ struct PackOptions {
   double angle_epsilon = 1e-9;                   ///< for StopRule::angle (radians)
   double tangency_tolerance = 0.01;              ///< for StopRule::exact (fraction of smaller radius)
   bool track_all = false;                        ///< evaluate every rule at every check (for tables)
-  bool accelerate = false;                       ///< extrapolate with super steps (see Accelerator)
+  Acceleration acceleration = Acceleration::plain;  ///< sweep acceleration (see Accelerator)
 };
 
 /// Result of a packing run.
@@ -58,7 +59,7 @@ struct PackResult {
   int first_lpd = -1;       ///< first checked iteration with LPD/GLPD everywhere (-1: never seen)
   int first_exact = -1;     ///< first checked iteration with an exact packing (tracked rules only)
   int first_angle = -1;     ///< first checked iteration with angle error ≤ epsilon (tracked only)
-  int jumps = 0;            ///< extrapolations taken (PackOptions::accelerate)
+  int jumps = 0;            ///< accelerated steps taken (PackOptions::acceleration)
   double angle_error = 0;   ///< max |θ − 2π| at the end
   double max_tangency_error = 0;  ///< max tangency error over G's edges at the end
   CircleEmbedding circles;        ///< φ on G's vertices (indexed by Vertex of G)
