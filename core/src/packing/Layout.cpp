@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "laguerre/core/packing/HyperbolicTriangle.hpp"
+#include "laguerre/core/packing/Placement.hpp"
 
 namespace laguerre::core {
 
@@ -66,90 +67,91 @@ Complex tangency_point(const Circle& a, const Circle& b) {
   return ca + (cb - ca) * (a.r / std::abs(cb - ca));
 }
 
-struct Placer {
-  const PackingComplex& k;
-  const Radii& X;
-  Layout& out;
+// Angle at x of the triangle (x, y, z) with edge cosines c_xy, c_xz, c_yz.
+double triangle_angle(double X, double Y, double Z, double cxy, double cxz, double cyz, bool overlap) {
+  if (!overlap) return tangent_angle(X, Y, Z);
+  return overlap_angle(X, Y, Z, cxy, cxz, cyz);
+}
 
-  bool interior(Vertex v) const { return !k.graph.is_boundary(v); }
-  double cos_of(Vertex u, Vertex v) const {
-    return k.has_face_vertices() ? k.cos_angle[k.graph.find_dart(u, v)] : 1.0;
+// Place w in the frame where interior u (value xu, centre zu) is at the origin, at direction `dir`.
+PlacedCircle place_in_frame(double xu, LayoutVertex w, double cos_uw, double dir, Complex zu) {
+  const Complex e = std::polar(1.0, dir);
+  PlacedCircle out;
+  if (w.interior) {
+    const Complex z = from_origin(e * centre_distance(xu, w.x, cos_uw), zu);
+    out.centre = z;
+    out.circle = euclidean_circle(z, origin_radius(w.x));
+  } else {
+    const double rho = horocycle_radius(origin_radius(xu), cos_uw);
+    const Complex zeta = from_origin(e, zu);
+    out.centre = zeta / std::abs(zeta);
+    out.circle = horocycle_through(out.centre, from_origin(e * (1 - 2 * rho), zu));
   }
+  return out;
+}
 
-  // Angle at x of the triangle (x, y, z).
-  double angle(Vertex x, Vertex y, Vertex z) const {
-    if (!k.has_face_vertices()) return tangent_angle(X[x], X[y], X[z]);
-    return overlap_angle(X[x], X[y], X[z], cos_of(x, y), cos_of(x, z), cos_of(y, z));
+// Direction of placed point za seen from interior centre zu moved to the origin.
+double direction(Complex zu, Complex za) { return std::arg(to_origin(za, zu)); }
+
+// a, b horocycles (tangent): build (a, b, w) in a canonical frame and move it onto a, b by the
+// Möbius map that matches their ideal points and their tangency point.
+PlacedCircle place_between_horocycles(LayoutVertex w, LayoutVertex a, const PlacedCircle& pa, LayoutVertex b,
+                                      const PlacedCircle& pb, const FaceCosines& c) {
+  Complex za, zb;  // local ideal points
+  Circle ca, cb;   // local circles
+  Complex zw;      // local centre of w (or ideal point)
+  double rw = 0;   // local Euclidean radius of w
+  if (w.interior) {
+    const double s = origin_radius(w.x);
+    za = 1.0;
+    zb = std::polar(1.0, triangle_angle(w.x, a.x, b.x, c.wa, c.wb, c.ab, c.overlap));
+    const double ra = horocycle_radius(s, c.wa), rb = horocycle_radius(s, c.wb);
+    ca = {(1 - ra) * za.real(), (1 - ra) * za.imag(), ra};
+    cb = {(1 - rb) * zb.real(), (1 - rb) * zb.imag(), rb};
+    zw = 0;
+    rw = s;
+  } else {  // three mutually tangent horocycles, symmetric
+    const double rho = std::sqrt(3.0) / (2 + std::sqrt(3.0));
+    za = 1.0;
+    zb = std::polar(1.0, 2 * std::numbers::pi / 3);
+    zw = std::polar(1.0, 4 * std::numbers::pi / 3);
+    ca = {1 - rho, 0, rho};
+    cb = {(1 - rho) * zb.real(), (1 - rho) * zb.imag(), rho};
+    rw = rho;
   }
-
-  // Place w in the frame where u (interior) is at the origin, at direction `dir`.
-  void place_in_frame(Vertex u, Vertex w, double dir, Complex zu) const {
-    const Complex e = std::polar(1.0, dir);
-    if (interior(w)) {
-      const Complex z = from_origin(e * centre_distance(X[u], X[w], cos_of(u, w)), zu);
-      out.centre[w] = z;
-      out.circles[w] = euclidean_circle(z, origin_radius(X[w]));
-    } else {
-      const double rho = horocycle_radius(origin_radius(X[u]), cos_of(u, w));
-      const Complex zeta = from_origin(e, zu);
-      out.centre[w] = zeta / std::abs(zeta);
-      out.circles[w] = horocycle_through(out.centre[w], from_origin(e * (1 - 2 * rho), zu));
-    }
+  const Mobius3 m{za, zb, tangency_point(ca, cb), pa.centre, pb.centre, tangency_point(pa.circle, pb.circle)};
+  PlacedCircle out;
+  if (w.interior) {
+    const Complex z = m(zw);
+    out.centre = z;
+    out.circle = euclidean_circle(z, rw);
+  } else {
+    const Complex zeta = m(zw);
+    out.centre = zeta / std::abs(zeta);
+    out.circle = horocycle_through(out.centre, m(zw * (1 - 2 * rw)));
   }
-
-  // Direction of placed vertex a seen from interior u moved to the origin.
-  double direction(Vertex u, Vertex a) const { return std::arg(to_origin(out.centre[a], out.centre[u])); }
-
-  // Place w in the inner face (w, a, b) (counter-clockwise), a and b placed.
-  void place(Vertex w, Vertex a, Vertex b) const {
-    if (interior(a)) {  // around a, (a, b, w) is ccw: w follows b
-      place_in_frame(a, w, direction(a, b) + angle(a, b, w), out.centre[a]);
-    } else if (interior(b)) {  // around b, (b, w, a) is ccw: w precedes a
-      place_in_frame(b, w, direction(b, a) - angle(b, w, a), out.centre[b]);
-    } else {
-      place_between_horocycles(w, a, b);
-    }
-  }
-
-  // a, b horocycles (tangent): build (a, b, w) in a canonical frame and move it onto a, b by the
-  // Möbius map that matches their ideal points and their tangency point.
-  void place_between_horocycles(Vertex w, Vertex a, Vertex b) const {
-    Complex za, zb;  // local ideal points
-    Circle ca, cb;   // local circles
-    Complex zw;      // local centre of w (or ideal point)
-    double rw = 0;   // local Euclidean radius of w
-    if (interior(w)) {
-      const double s = origin_radius(X[w]);
-      za = 1.0;
-      zb = std::polar(1.0, angle(w, a, b));
-      const double ra = horocycle_radius(s, cos_of(w, a)), rb = horocycle_radius(s, cos_of(w, b));
-      ca = {(1 - ra) * za.real(), (1 - ra) * za.imag(), ra};
-      cb = {(1 - rb) * zb.real(), (1 - rb) * zb.imag(), rb};
-      zw = 0;
-      rw = s;
-    } else {  // three mutually tangent horocycles, symmetric
-      const double rho = std::sqrt(3.0) / (2 + std::sqrt(3.0));
-      za = 1.0;
-      zb = std::polar(1.0, 2 * std::numbers::pi / 3);
-      zw = std::polar(1.0, 4 * std::numbers::pi / 3);
-      ca = {1 - rho, 0, rho};
-      cb = {(1 - rho) * zb.real(), (1 - rho) * zb.imag(), rho};
-      rw = rho;
-    }
-    const Mobius3 m{za, zb, tangency_point(ca, cb), out.centre[a], out.centre[b],
-                    tangency_point(out.circles[a], out.circles[b])};
-    if (interior(w)) {
-      const Complex z = m(zw);
-      out.centre[w] = z;
-      out.circles[w] = euclidean_circle(z, rw);
-    } else {
-      const Complex zeta = m(zw);
-      out.centre[w] = zeta / std::abs(zeta);
-      out.circles[w] = horocycle_through(out.centre[w], m(zw * (1 - 2 * rw)));
-    }
-  }
-};
+  return out;
+}
 }  // namespace
+
+PlacedCircle place_root(double x_root) { return {0.0, Circle{0, 0, origin_radius(x_root)}}; }
+
+PlacedCircle place_first_neighbour(double x_root, LayoutVertex w, double cos_root_w) {
+  return place_in_frame(x_root, w, cos_root_w, 0.0, 0.0);
+}
+
+PlacedCircle place_in_face(LayoutVertex w, LayoutVertex a, const PlacedCircle& pa, LayoutVertex b,
+                           const PlacedCircle& pb, const FaceCosines& c) {
+  if (a.interior) {  // around a, (a, b, w) is ccw: w follows b
+    const double angle = triangle_angle(a.x, b.x, w.x, c.ab, c.wa, c.wb, c.overlap);
+    return place_in_frame(a.x, w, c.wa, direction(pa.centre, pb.centre) + angle, pa.centre);
+  }
+  if (b.interior) {  // around b, (b, w, a) is ccw: w precedes a
+    const double angle = triangle_angle(b.x, w.x, a.x, c.wb, c.ab, c.wa, c.overlap);
+    return place_in_frame(b.x, w, c.wb, direction(pb.centre, pa.centre) - angle, pb.centre);
+  }
+  return place_between_horocycles(w, a, pa, b, pb, c);
+}
 
 Vertex choose_root(const PackingComplex& k, RootRule rule) {
   const PlanarGraph& g = k.graph;
@@ -193,14 +195,20 @@ Layout lay_out(const PackingComplex& k, const Radii& X, Vertex root) {
   out.wave.assign(n, none);
   out.parent.assign(n, none);
   out.root = root;
-  Placer placer{k, X, out};
+  const bool overlap = k.has_face_vertices();
+  auto interior = [&](Vertex v) { return !g.is_boundary(v); };
+  auto cos_of = [&](Vertex u, Vertex v) { return overlap ? k.cos_angle[g.find_dart(u, v)] : 1.0; };
+  auto vertex = [&](Vertex v) { return LayoutVertex{X[v], interior(v)}; };
+  auto store = [&](Vertex v, const PlacedCircle& p) {
+    out.centre[v] = p.centre;
+    out.circles[v] = p.circle;
+  };
 
   std::vector<Vertex> placed_now;
   if (root != none) {
-    out.centre[root] = 0.0;
-    out.circles[root] = {0, 0, origin_radius(X[root])};
+    store(root, place_root(X[root]));
     const Vertex first = g.neighbours(root)[0];
-    placer.place_in_frame(root, first, 0.0, 0.0);
+    store(first, place_first_neighbour(X[root], vertex(first), cos_of(root, first)));
     out.parent[first] = root;
     placed_now = {root, first};
   } else {  // no interior vertex: three boundary circles of an inner face, symmetric
@@ -239,24 +247,21 @@ Layout lay_out(const PackingComplex& k, const Radii& X, Vertex root) {
       listed[w] = 0;
       const Dart first = g.first_dart(w);
       const std::uint32_t deg = g.degree(w);
-      Vertex pa = none, pb = none;
-      for (std::uint32_t i = 0; i < deg; ++i) {
-        const Dart d = first + i;
-        if (g.face_of(d) == g.outer_face()) continue;  // (w, a, b) must be an inner face
-        const Vertex a = g.head(d), b = g.head(g.next_ccw(d));
-        if (out.wave[a] == none || out.wave[b] == none) continue;
-        if (pa == none) pa = a, pb = b;
-        if (placer.interior(a) || placer.interior(b)) {
-          pa = a, pb = b;
-          break;
-        }
-      }
-      if (pa != none) placements.push_back({w, {pa, pb}});
+      const auto nb = g.neighbours(w);
+      // Wedge i (between neighbours i and i+1) is the face left of dart w→neighbour i.
+      const std::uint32_t i = choose_placement_wedge(
+          deg, [&](std::uint32_t j) { return g.face_of(first + j) != g.outer_face(); },
+          [&](std::uint32_t j) { return out.wave[nb[j]] != none; },
+          [&](std::uint32_t j) { return interior(nb[j]); });
+      if (i != deg) placements.push_back({w, {nb[i], nb[i + 1 == deg ? 0 : i + 1]}});
     }
     placed_now.clear();
     for (const auto& [w, ab] : placements) {
-      placer.place(w, ab.first, ab.second);
-      out.parent[w] = placer.interior(ab.first) || !placer.interior(ab.second) ? ab.first : ab.second;
+      const auto [a, b] = ab;
+      const FaceCosines c{cos_of(w, a), cos_of(w, b), cos_of(a, b), overlap};
+      store(w, place_in_face(vertex(w), vertex(a), {out.centre[a], out.circles[a]}, vertex(b),
+                             {out.centre[b], out.circles[b]}, c));
+      out.parent[w] = parent_is_first_anchor(interior(a), interior(b)) ? a : b;
     }
     for (const auto& [w, ab] : placements) {
       out.wave[w] = round;

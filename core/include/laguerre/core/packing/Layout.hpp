@@ -49,7 +49,10 @@ Vertex choose_root(const PackingComplex& k, RootRule rule);
 /// r ≥ 1 every unplaced vertex w that has two placed neighbours a, b with (w, a, b) an inner face
 /// places itself from the first such pair in its counter-clockwise rotation that contains an interior
 /// vertex (else the first pair), using only positions known at the start of the round. This is
-/// exactly what the distributed layout wave computes, so the protocol can reproduce it bit for bit.
+/// exactly what the distributed layout wave computes, so the protocol can reproduce it bit for bit:
+/// the pair rule is `choose_placement_wedge` and each placement is `place_root`,
+/// `place_first_neighbour` or `place_in_face` (Placement.hpp), with the parent chosen by
+/// `parent_is_first_anchor`.
 /// Before convergence the sweep accumulates inconsistency; that is expected.
 Layout lay_out(const PackingComplex& k, const Radii& X, Vertex root);
 

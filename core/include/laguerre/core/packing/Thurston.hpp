@@ -2,6 +2,7 @@
 /// @file
 /// Thurston's iteration for the maximal packing of a triangulated disc in the hyperbolic plane.
 
+#include <span>
 #include <vector>
 
 #include "laguerre/core/packing/PackingComplex.hpp"
@@ -38,6 +39,31 @@ double angle_error(const PackingComplex& k, const Radii& X);
 
 /// New X for interior vertex v with its neighbours held at `X` (the single-vertex update).
 double updated_radius(const PackingComplex& k, const Radii& X, Vertex v, UpdateRule rule);
+
+/// What one interior vertex v knows for its update, in node-local form: its neighbours' values in
+/// counter-clockwise order and, where v touches an orthogonal edge, the intersection cosines.
+///
+/// This is the form in which the distributed protocol computes, and the centralized functions above
+/// evaluate exactly the same arithmetic in the same order (the sums run around v starting from
+/// `neighbour_x[0]`, which must be the neighbour towards `PlanarGraph::first_dart(v)` for the two to
+/// agree bit for bit).
+struct StarView {
+  std::span<const double> neighbour_x;  ///< X of the neighbours of v, counter-clockwise
+  /// Empty if every triangle around v is a tangency triangle (`PackingComplex::tangent_only`); else
+  /// `cos_spoke[i]` is the cosine on edge v–neighbour i and `cos_rim[i]` the cosine on edge
+  /// neighbour i – neighbour i+1 (indices mod degree).
+  std::span<const double> cos_spoke;
+  std::span<const double> cos_rim;      ///< see `cos_spoke` (same length)
+};
+
+/// Angle sum at an interior vertex of value `xv` with the star `s`: tangent angles summed from
+/// neighbour 0 counter-clockwise when `s.cos_spoke` is empty, overlap angles otherwise.
+double star_angle_sum(double xv, const StarView& s);
+
+/// New X of an interior vertex of value `xv` with the star `s` (the node-local `updated_radius`): the
+/// uniform-neighbour closed form when `rule` asks for it and the star is tangent-only, otherwise the
+/// exact angle-sum solve.
+double star_updated_radius(double xv, const StarView& s, UpdateRule rule);
 
 /// One full sweep over the interior vertices. `scratch` is reused across calls (Jacobi needs a copy).
 void thurston_sweep(const PackingComplex& k, Radii& X, Sweep sweep, UpdateRule rule, Radii& scratch);

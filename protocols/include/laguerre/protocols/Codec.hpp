@@ -1,0 +1,158 @@
+#pragma once
+/// @file
+/// The packing protocol's messages and their byte encoding, identical in every host.
+///
+/// Wire format (all integers little-endian, every field fixed-size, no padding):
+///
+///     byte 0      version (wire_version = 1)
+///     byte 1      MessageType
+///     bytes 2…    the type's fields, in declaration order:
+///                   u8 / u32 / u64  unsigned integers, 1 / 4 / 8 bytes, little-endian
+///                   f64             the IEEE-754 bits of a double as a u64 (bit-exact, NaN payloads
+///                                   and signed zeros included)
+///
+/// A message has exactly `encoded_size(type)` bytes. `decode` checks, in this order: at least two
+/// bytes (else `truncated`), the version, the type, the exact length (`truncated` if short,
+/// `trailing_bytes` if long), then the ranges each message documents (`out_of_range`). Any byte
+/// string is safe to decode; only `DecodeStatus::ok` yields a message.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace laguerre::protocols {
+
+/// Version of the wire format written into byte 0.
+inline constexpr std::uint8_t wire_version = 1;
+
+/// Message types (byte 1 of every message).
+enum class MessageType : std::uint8_t {
+  depth = 1,     ///< DepthMsg: a pulse of the breadth-first search from the boundary
+  election = 2,  ///< ElectionMsg: a token of the echo-with-extinction leader election
+  start = 3,     ///< StartMsg: the elected root starts the wave set-up (flooded)
+  wave = 4,      ///< WaveMsg: a pulse of the combinatorial layout wave (set-up)
+  radius = 5,    ///< RadiusMsg: a Thurston-step radius exchange
+  placed = 6,    ///< PlacedMsg: a node's circle in one round's layout
+  report = 7,    ///< ReportMsg: the AND convergecast of local checks
+  decision = 8,  ///< DecisionMsg: the root's stop / next-round broadcast
+};
+
+/// Name of a message type ("depth", "election", …), "?" for values outside the enum.
+std::string_view to_string(MessageType t);
+
+/// Depth pulse p of the BFS from the boundary: `final` = 1 says "my depth is p" (and covers every
+/// later pulse); 0 says "my depth is greater than p". Fields: u32 pulse, u8 final ∈ {0, 1}.
+struct DepthMsg {
+  std::uint32_t pulse = 0;  ///< pulse number
+  bool final = false;       ///< whether the sender's depth equals `pulse`
+  friend bool operator==(const DepthMsg&, const DepthMsg&) = default;
+};
+
+/// Election token carrying a candidate's key (depth, id). Fields: u32 depth, u64 id.
+struct ElectionMsg {
+  std::uint32_t depth = 0;  ///< candidate's depth from the boundary (0 under RootRule::smallest_id)
+  std::uint64_t id = 0;     ///< candidate's id
+  friend bool operator==(const ElectionMsg&, const ElectionMsg&) = default;
+};
+
+/// The elected root and its first neighbour (placed at wave 0). Fields: u64 root, u64 first;
+/// root ≠ first.
+struct StartMsg {
+  std::uint64_t root = 0;   ///< the root's id
+  std::uint64_t first = 0;  ///< the id of the root's first neighbour
+  friend bool operator==(const StartMsg&, const StartMsg&) = default;
+};
+
+/// Wave pulse p of the layout set-up: `placed` = 1 says "I am placed in wave p, from `parent`" (and
+/// covers every later pulse); 0 says "not placed by wave p" (`parent` then 0). Fields: u32 pulse,
+/// u8 placed ∈ {0, 1}, u64 parent (the root names itself).
+struct WaveMsg {
+  std::uint32_t pulse = 0;   ///< pulse number
+  bool placed = false;       ///< whether the sender is placed in wave `pulse`
+  std::uint64_t parent = 0;  ///< the sender's parent in the layout tree (when placed)
+  friend bool operator==(const WaveMsg&, const WaveMsg&) = default;
+};
+
+/// The sender's X = e^{-2h} at Thurston step `step` (before the step's update). Fields: u32 step,
+/// f64 x ∈ [0, 1].
+struct RadiusMsg {
+  std::uint32_t step = 0;  ///< global step number (= sweeps done so far)
+  double x = 0;            ///< X value
+  friend bool operator==(const RadiusMsg&, const RadiusMsg&) = default;
+};
+
+/// The sender's circle in the layout of round `round`. Fields: u32 round, f64 x ∈ [0, 1], f64 centre
+/// (real, imaginary), f64 circle (x, y, r). Centre and circle are not range-checked: before
+/// convergence a layout may legitimately hold NaNs or infinities, which the checks then reject.
+struct PlacedMsg {
+  std::uint32_t round = 0;  ///< round number (0 = the check before any sweep)
+  double x = 0;             ///< the sender's X in this round
+  double centre_re = 0;     ///< hyperbolic centre or ideal point, real part
+  double centre_im = 0;     ///< hyperbolic centre or ideal point, imaginary part
+  double cx = 0;            ///< Euclidean circle centre abscissa
+  double cy = 0;            ///< Euclidean circle centre ordinate
+  double cr = 0;            ///< Euclidean circle radius
+};
+
+/// Bitwise equality of two PlacedMsg (NaN-safe, so that round trips can be tested).
+bool same_bits(const PlacedMsg& a, const PlacedMsg& b);
+
+/// AND of the local checks in the sender's subtree for round `round`. Fields: u32 round,
+/// u8 ok ∈ {0, 1}.
+struct ReportMsg {
+  std::uint32_t round = 0;  ///< round number
+  bool ok = false;          ///< whether LPD holds everywhere in the sender's subtree
+  friend bool operator==(const ReportMsg&, const ReportMsg&) = default;
+};
+
+/// What the root decided after round `round`.
+enum class Verdict : std::uint8_t {
+  next = 0,       ///< run another round
+  converged = 1,  ///< stop: LPD holds everywhere
+  cap = 2,        ///< stop: the iteration cap is reached
+};
+
+/// The root's decision, sent down the layout tree. Fields: u32 round, u8 verdict ∈ {0, 1, 2}.
+struct DecisionMsg {
+  std::uint32_t round = 0;           ///< round number
+  Verdict verdict = Verdict::next;   ///< what to do
+  friend bool operator==(const DecisionMsg&, const DecisionMsg&) = default;
+};
+
+/// Any message of the packing protocol.
+using Message = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg, DecisionMsg>;
+
+/// The type byte of a message.
+MessageType type_of(const Message& m);
+
+/// Exact encoded size of a message of type `t`, header included; 0 for values outside the enum.
+std::size_t encoded_size(MessageType t);
+
+/// Outcome of decoding a byte string.
+enum class DecodeStatus : std::uint8_t {
+  ok,              ///< a valid message
+  truncated,       ///< fewer bytes than the header or the type needs
+  bad_version,     ///< byte 0 is not wire_version
+  unknown_type,    ///< byte 1 is not a MessageType
+  trailing_bytes,  ///< more bytes than the type needs
+  out_of_range,    ///< a field outside its documented range
+};
+
+/// Number of DecodeStatus values (for per-status counters).
+inline constexpr std::size_t decode_status_count = 6;
+
+/// Name of a decode status ("ok", "truncated", …).
+std::string_view to_string(DecodeStatus s);
+
+/// Encodes `m`, replacing the contents of `out`.
+void encode(const Message& m, std::vector<std::byte>& out);
+/// Encodes `m` into a new buffer.
+std::vector<std::byte> encode(const Message& m);
+
+/// Decodes `bytes`; on `DecodeStatus::ok` stores the message in `out`, otherwise leaves it unchanged.
+DecodeStatus decode(std::span<const std::byte> bytes, Message& out);
+
+}  // namespace laguerre::protocols

@@ -1,0 +1,158 @@
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "laguerre/protocols/Codec.hpp"
+
+using namespace laguerre::protocols;
+
+namespace {
+std::vector<Message> samples() {
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  return {DepthMsg{0, false},
+          DepthMsg{0xfffffffe, true},
+          ElectionMsg{7, 0xfedcba9876543210ull},
+          StartMsg{3, 0xffffffffffffffffull},
+          WaveMsg{0, false, 0},
+          WaveMsg{12, true, 99},
+          RadiusMsg{5, 0.0},
+          RadiusMsg{0x01020304, 0.1353352832366127},
+          RadiusMsg{1, 1.0},
+          PlacedMsg{2, 0.25, -0.0, 1e-300, nan, -inf, 5e-324},
+          PlacedMsg{0, 0.0, 0.5, -0.5, 0.1, 0.2, 0.3},
+          ReportMsg{4, true},
+          ReportMsg{4, false},
+          DecisionMsg{9, Verdict::next},
+          DecisionMsg{9, Verdict::converged},
+          DecisionMsg{0xffffffff, Verdict::cap}};
+}
+
+bool same(const Message& a, const Message& b) {
+  if (a.index() != b.index()) return false;
+  if (const auto* p = std::get_if<PlacedMsg>(&a)) return same_bits(*p, std::get<PlacedMsg>(b));
+  if (const auto* r = std::get_if<RadiusMsg>(&a))
+    return r->step == std::get<RadiusMsg>(b).step &&
+           std::bit_cast<std::uint64_t>(r->x) == std::bit_cast<std::uint64_t>(std::get<RadiusMsg>(b).x);
+  return std::visit(
+      [&](const auto& x) {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, PlacedMsg> || std::is_same_v<T, RadiusMsg>) return false;  // handled above
+        else return x == std::get<T>(b);
+      },
+      a);
+}
+
+// A decoded message must re-encode to the very bytes it came from (the encoding is canonical).
+void expect_canonical(std::span<const std::byte> bytes, const Message& m) {
+  const std::vector<std::byte> again = encode(m);
+  ASSERT_EQ(again.size(), bytes.size());
+  EXPECT_TRUE(std::equal(again.begin(), again.end(), bytes.begin()));
+}
+}  // namespace
+
+TEST(Codec, RoundTripsEveryMessageBitExactly) {
+  for (const Message& m : samples()) {
+    const std::vector<std::byte> bytes = encode(m);
+    EXPECT_EQ(bytes.size(), encoded_size(type_of(m)));
+    EXPECT_EQ(std::to_integer<int>(bytes[0]), wire_version);
+    EXPECT_EQ(std::to_integer<int>(bytes[1]), static_cast<int>(type_of(m)));
+    Message out;
+    ASSERT_EQ(decode(bytes, out), DecodeStatus::ok) << to_string(type_of(m));
+    EXPECT_TRUE(same(m, out)) << to_string(type_of(m));
+  }
+}
+
+TEST(Codec, IsLittleEndian) {
+  const std::vector<std::byte> b = encode(RadiusMsg{0x01020304, 1.0});
+  ASSERT_EQ(b.size(), 14u);
+  EXPECT_EQ(std::to_integer<int>(b[2]), 0x04);
+  EXPECT_EQ(std::to_integer<int>(b[5]), 0x01);
+  // 1.0 = 0x3ff0000000000000: the top byte comes last.
+  EXPECT_EQ(std::to_integer<int>(b[13]), 0x3f);
+  EXPECT_EQ(std::to_integer<int>(b[12]), 0xf0);
+  EXPECT_EQ(std::to_integer<int>(b[6]), 0x00);
+}
+
+TEST(Codec, RejectsHeadersItDoesNotKnow) {
+  Message out = DepthMsg{42, true};
+  std::vector<std::byte> b = encode(ReportMsg{1, true});
+  EXPECT_EQ(decode(std::span<const std::byte>{}, out), DecodeStatus::truncated);
+  EXPECT_EQ(decode(std::span(b).first(1), out), DecodeStatus::truncated);
+  b[0] = std::byte{2};
+  EXPECT_EQ(decode(b, out), DecodeStatus::bad_version);
+  b[0] = std::byte{wire_version};
+  for (int t : {0, 9, 200, 255}) {
+    b[1] = static_cast<std::byte>(t);
+    EXPECT_EQ(decode(b, out), DecodeStatus::unknown_type);
+  }
+  EXPECT_TRUE(same(out, DepthMsg{42, true})) << "a rejected decode must leave the output alone";
+  EXPECT_EQ(encoded_size(static_cast<MessageType>(0)), 0u);
+  EXPECT_EQ(to_string(static_cast<MessageType>(77)), "?");
+}
+
+TEST(Codec, RejectsOutOfRangeFields) {
+  Message out;
+  auto with = [](Message m, std::size_t at, std::uint8_t v) {
+    std::vector<std::byte> b = encode(m);
+    b[at] = std::byte{v};
+    return b;
+  };
+  EXPECT_EQ(decode(with(DepthMsg{1, true}, 6, 2), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(with(WaveMsg{1, true, 3}, 6, 7), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(encode(WaveMsg{1, false, 3}), out), DecodeStatus::out_of_range);  // parent without placement
+  EXPECT_EQ(decode(with(ReportMsg{1, true}, 6, 0xff), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(with(DecisionMsg{1, Verdict::cap}, 6, 3), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(encode(StartMsg{5, 5}), out), DecodeStatus::out_of_range);
+  for (double x : {-0.5, 1.5, std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::infinity()}) {
+    EXPECT_EQ(decode(encode(RadiusMsg{1, x}), out), DecodeStatus::out_of_range) << x;
+    EXPECT_EQ(decode(encode(PlacedMsg{1, x, 0, 0, 0, 0, 0}), out), DecodeStatus::out_of_range) << x;
+  }
+}
+
+TEST(Codec, EveryTruncationAndExtensionIsRejected) {
+  for (const Message& m : samples()) {
+    std::vector<std::byte> b = encode(m);
+    Message out;
+    for (std::size_t len = 0; len < b.size(); ++len)
+      EXPECT_EQ(decode(std::span(b).first(len), out), DecodeStatus::truncated) << to_string(type_of(m)) << " " << len;
+    b.push_back(std::byte{0});
+    EXPECT_EQ(decode(b, out), DecodeStatus::trailing_bytes);
+  }
+}
+
+TEST(Codec, RandomCorruptionIsRejectedOrDecodesToAValidMessage) {
+  std::mt19937_64 rng(12345);
+  std::size_t accepted = 0, rejected = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const auto all = samples();
+    std::vector<std::byte> b = encode(all[rng() % all.size()]);
+    const int flips = 1 + static_cast<int>(rng() % 4);
+    for (int f = 0; f < flips; ++f) b[rng() % b.size()] ^= static_cast<std::byte>(1u << (rng() % 8));
+    if (rng() % 4 == 0) b.resize(rng() % (b.size() + 3), std::byte{0xa5});
+    Message out;
+    const DecodeStatus s = decode(b, out);
+    if (s == DecodeStatus::ok) {
+      ++accepted;
+      expect_canonical(b, out);
+    } else {
+      ++rejected;
+    }
+  }
+  EXPECT_GT(accepted, 0u);
+  EXPECT_GT(rejected, 0u);
+}
+
+TEST(Codec, ArbitraryBytesNeverCrash) {
+  std::mt19937_64 rng(777);
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::vector<std::byte> b(rng() % 64);
+    for (auto& x : b) x = static_cast<std::byte>(rng() & 0xff);
+    if (!b.empty() && rng() % 2) b[0] = std::byte{wire_version};
+    if (b.size() > 1 && rng() % 2) b[1] = static_cast<std::byte>(1 + rng() % 8);
+    Message out;
+    if (decode(b, out) == DecodeStatus::ok) expect_canonical(b, out);
+  }
+}

@@ -1,0 +1,133 @@
+#include <gtest/gtest.h>
+
+#include "../SyncCompare.hpp"
+#include "laguerre/core/graph/GraphKind.hpp"
+#include "laguerre/core/graph/RandomGraphs.hpp"
+
+using namespace laguerre;
+using namespace laguerre::protocols;
+using namespace laguerre::protocols::testing;
+
+namespace {
+core::PlanarGraph delaunay(std::size_t n, std::uint64_t seed) {
+  return core::prepare_for_packing(core::random_delaunay_triangulation(n, seed));
+}
+bool has_interior(const core::PlanarGraph& g) {
+  for (core::Vertex v = 0; v < g.num_vertices(); ++v)
+    if (!g.is_boundary(v)) return true;
+  return false;
+}
+}  // namespace
+
+TEST(LocalKnowledge, MatchesTheGraph) {
+  const core::PlanarGraph g = delaunay(30, 2);
+  for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
+    const LocalKnowledge k = local_knowledge(g, v);
+    EXPECT_EQ(k.id, g.id(v));
+    ASSERT_EQ(k.neighbours.size(), g.degree(v));
+    EXPECT_EQ(k.neighbours[0], g.id(g.neighbours(v)[0]));
+    EXPECT_EQ(k.boundary, g.is_boundary(v));
+    if (g.is_boundary(v)) {
+      // w1 = the neighbour after the outer wedge is where LPD starts listing (lpd_first_dart).
+      ASSERT_LT(k.outer_gap, k.neighbours.size());
+      EXPECT_EQ(k.neighbours[(k.outer_gap + 1) % k.neighbours.size()], g.id(g.head(core::lpd_first_dart(g, v))));
+    } else {
+      EXPECT_EQ(k.outer_gap, LocalKnowledge::no_gap);
+    }
+  }
+}
+
+TEST(PackingNode, RejectsInconsistentKnowledge) {
+  DequeHost::Envelope unused{};
+  (void)unused;
+  struct NullRuntime final : Runtime {
+    NodeId self() const override { return 1; }
+    Time now() const override { return 0; }
+    void send(NodeId, std::span<const std::byte>) override {}
+    void broadcast(std::span<const std::byte>) override {}
+    TimerHandle schedule(Duration, TimerId) override { return 1; }
+    bool cancel(TimerHandle) override { return false; }
+    std::uint64_t random_u64() override { return 4; }
+  } rt;
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {}, false, LocalKnowledge::no_gap, {}}, {}), std::invalid_argument);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 1}, false, LocalKnowledge::no_gap, {}}, {}), std::invalid_argument);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3, 2}, false, LocalKnowledge::no_gap, {}}, {}), std::invalid_argument);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, true, 5, {}}, {}), std::invalid_argument);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, false, 0, {}}, {}), std::invalid_argument);
+  PackingParams bad;
+  bad.steps_per_check = 0;
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, false, LocalKnowledge::no_gap, {}}, bad), std::invalid_argument);
+}
+
+TEST(PackingNode, MalformedAndForeignMessagesAreCountedNotTrusted) {
+  const core::PlanarGraph g = delaunay(12, 3);
+  DequeHost host(g, {});
+  PackingNode& n = host.node(0);
+  n.on_start();
+  const std::byte junk[3] = {std::byte{1}, std::byte{5}, std::byte{0}};
+  n.on_message(g.id(g.neighbours(0)[0]), junk);
+  EXPECT_EQ(n.counters().decode[static_cast<std::size_t>(DecodeStatus::truncated)], 1u);
+  const std::vector<std::byte> ok = encode(DepthMsg{0, false});
+  n.on_message(987654321, ok);
+  EXPECT_EQ(n.counters().not_a_neighbour, 1u);
+  n.on_timer(7);
+  EXPECT_EQ(n.counters().unexpected, 1u);
+}
+
+TEST(SyncPacking, ElectionPicksCoresRoot) {
+  for (core::RootRule rule : {core::RootRule::deepest, core::RootRule::smallest_id})
+    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+      const core::PlanarGraph g = delaunay(20 + 7 * seed, seed);
+      PackingParams p;
+      p.root = rule;
+      p.max_iterations = 0;  // set-up and round 0 only
+      DequeHost host(g, p);
+      host.run(seed);
+      const core::Vertex root = core::choose_root(core::PackingComplex::from_graph(g), rule);
+      std::size_t roots = 0;
+      for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
+        roots += host.node(v).is_root();
+        EXPECT_EQ(host.node(v).is_root(), v == root) << "seed " << seed;
+        EXPECT_EQ(host.node(v).phase(), PackingPhase::finished);
+      }
+      EXPECT_EQ(roots, 1u);
+    }
+}
+
+TEST(SyncPacking, EqualsCoreBitForBitFifo) {
+  for (std::size_t n : {4, 5, 8, 16, 40, 90})
+    for (std::uint64_t seed = 1; seed <= 4; ++seed)
+      for (int steps : {1, 3}) {
+        const core::PlanarGraph g = delaunay(n, seed);
+        if (!has_interior(g)) continue;
+        PackingParams p;
+        p.steps_per_check = steps;
+        expect_sync_equals_core(g, p, 0, "n=" + std::to_string(n) + " seed=" + std::to_string(seed) + " N=" + std::to_string(steps));
+      }
+}
+
+TEST(SyncPacking, EqualsCoreUnderRandomDeliveryOrder) {
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const core::PlanarGraph g = delaunay(30 + 10 * seed, seed + 100);
+    PackingParams p;
+    p.steps_per_check = static_cast<int>(seed % 3) + 1;
+    expect_sync_equals_core(g, p, seed, "shuffled seed=" + std::to_string(seed));
+  }
+}
+
+TEST(SyncPacking, IterationCapAndExactUpdate) {
+  const core::PlanarGraph g = delaunay(60, 9);
+  PackingParams p;
+  p.max_iterations = 3;
+  expect_sync_equals_core(g, p, 0, "cap 3");
+  p.max_iterations = 7;
+  p.steps_per_check = 4;  // the last round is partial (3 steps), as in core::pack
+  expect_sync_equals_core(g, p, 0, "cap 7 N=4");
+  p.max_iterations = 100000;
+  p.steps_per_check = 2;
+  p.update = core::UpdateRule::exact;
+  expect_sync_equals_core(g, p, 0, "exact update");
+  p.update = core::UpdateRule::uniform_neighbour;
+  p.root = core::RootRule::smallest_id;
+  expect_sync_equals_core(g, p, 3, "smallest id root");
+}
