@@ -72,7 +72,7 @@ public:
   Dart next_cw(Dart d) const { return d == offset_[tail_[d]] ? offset_[tail_[d] + 1] - 1 : d - 1; }
   /// Next dart along the face to the left of d.
   Dart next_in_face(Dart d) const { return next_cw(twin_[d]); }
-  /// The dart u→v, or `none` if u and v are not adjacent (logarithmic in nothing: linear in deg u).
+  /// The dart u→v, or `none` if u and v are not adjacent. Linear in deg(u).
   Dart find_dart(Vertex u, Vertex v) const;
 
   /// Face to the left of dart d.
@@ -101,7 +101,7 @@ public:
   std::uint64_t id(Vertex v) const { return ids_[v]; }
   /// All user ids, indexed by vertex.
   const std::vector<std::uint64_t>& ids() const { return ids_; }
-  /// Vertex with user id `id`, if any.
+  /// Vertex with user id `id`, if any. Linear in the number of vertices (for tools and tests).
   std::optional<Vertex> vertex_of_id(std::uint64_t id) const;
 
   /// Whether every face other than the outer one is a triangle.
