@@ -1,6 +1,8 @@
 #include "laguerre/protocols/Codec.hpp"
 
 #include <bit>
+#include <cmath>
+#include <utility>
 #include <type_traits>
 
 namespace laguerre::protocols {
@@ -19,6 +21,7 @@ public:
     for (int i = 0; i < 8; ++i) out_.push_back(static_cast<std::byte>((v >> (8 * i)) & 0xffu));
   }
   void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
+  void bytes(std::span<const std::byte> b) { out_.insert(out_.end(), b.begin(), b.end()); }
 
 private:
   std::vector<std::byte>& out_;
@@ -40,6 +43,7 @@ public:
     return v;
   }
   double f64() { return std::bit_cast<double>(u64()); }
+  std::span<const std::byte> rest() const { return in_.subspan(pos_); }
 
 private:
   std::span<const std::byte> in_;
@@ -69,6 +73,10 @@ std::string_view to_string(MessageType t) {
     case MessageType::placed: return "placed";
     case MessageType::report: return "report";
     case MessageType::decision: return "decision";
+    case MessageType::shape: return "shape";
+    case MessageType::face_circles: return "face_circles";
+    case MessageType::relay: return "relay";
+    case MessageType::data: return "data";
   }
   return "?";
 }
@@ -91,6 +99,15 @@ bool same_bits(const PlacedMsg& a, const PlacedMsg& b) {
          eq(a.cx, b.cx) && eq(a.cy, b.cy) && eq(a.cr, b.cr);
 }
 
+bool same_bits(const FaceCirclesMsg& a, const FaceCirclesMsg& b) {
+  auto eq = [](double u, double v) { return std::bit_cast<std::uint64_t>(u) == std::bit_cast<std::uint64_t>(v); };
+  if (a.round != b.round || a.circles.size() != b.circles.size()) return false;
+  for (std::size_t i = 0; i < a.circles.size(); ++i)
+    if (!eq(a.circles[i].x, b.circles[i].x) || !eq(a.circles[i].y, b.circles[i].y) || !eq(a.circles[i].r, b.circles[i].r))
+      return false;
+  return true;
+}
+
 MessageType type_of(const Message& m) {
   return std::visit(
       [](const auto& msg) -> MessageType {
@@ -102,7 +119,11 @@ MessageType type_of(const Message& m) {
         else if constexpr (std::is_same_v<T, RadiusMsg>) return MessageType::radius;
         else if constexpr (std::is_same_v<T, PlacedMsg>) return MessageType::placed;
         else if constexpr (std::is_same_v<T, ReportMsg>) return MessageType::report;
-        else return MessageType::decision;
+        else if constexpr (std::is_same_v<T, DecisionMsg>) return MessageType::decision;
+        else if constexpr (std::is_same_v<T, ShapeMsg>) return MessageType::shape;
+        else if constexpr (std::is_same_v<T, FaceCirclesMsg>) return MessageType::face_circles;
+        else if constexpr (std::is_same_v<T, RelayMsg>) return MessageType::relay;
+        else return MessageType::data;
       },
       m);
 }
@@ -117,14 +138,25 @@ std::size_t encoded_size(MessageType t) {
     case MessageType::placed: return header + 4 + 6 * 8;
     case MessageType::report: return header + 4 + 1;
     case MessageType::decision: return header + 4 + 1;
+    case MessageType::shape: return header + 1 + 1;
+    case MessageType::face_circles: return header + 4 + 4;  // + 24 per circle
+    case MessageType::relay: return header + 3 * 8 + 1 + 4;  // + 1 per payload byte
+    case MessageType::data: return header + 3 * 8 + 3 * 8 + 4 + 4;
   }
   return 0;
+}
+
+std::size_t encoded_size(const Message& m) {
+  const std::size_t fixed = encoded_size(type_of(m));
+  if (const auto* f = std::get_if<FaceCirclesMsg>(&m)) return fixed + 24 * f->circles.size();
+  if (const auto* r = std::get_if<RelayMsg>(&m)) return fixed + r->payload.size();
+  return fixed;
 }
 
 void encode(const Message& m, std::vector<std::byte>& out) {
   out.clear();
   const MessageType t = type_of(m);
-  out.reserve(encoded_size(t));
+  out.reserve(encoded_size(m));
   Writer w(out);
   w.u8(wire_version);
   w.u8(static_cast<std::uint8_t>(t));
@@ -158,9 +190,36 @@ void encode(const Message& m, std::vector<std::byte>& out) {
         } else if constexpr (std::is_same_v<T, ReportMsg>) {
           w.u32(msg.round);
           w.u8(msg.ok ? 1 : 0);
-        } else {
+        } else if constexpr (std::is_same_v<T, DecisionMsg>) {
           w.u32(msg.round);
           w.u8(static_cast<std::uint8_t>(msg.verdict));
+        } else if constexpr (std::is_same_v<T, ShapeMsg>) {
+          w.u8(msg.down ? 1 : 0);
+          w.u8(msg.polygon ? 1 : 0);
+        } else if constexpr (std::is_same_v<T, FaceCirclesMsg>) {
+          w.u32(msg.round);
+          w.u32(static_cast<std::uint32_t>(msg.circles.size()));
+          for (const FaceCircle& c : msg.circles) {
+            w.f64(c.x);
+            w.f64(c.y);
+            w.f64(c.r);
+          }
+        } else if constexpr (std::is_same_v<T, DataMsg>) {
+          w.u64(msg.packet);
+          w.u64(msg.source);
+          w.u64(msg.target);
+          w.f64(msg.tx);
+          w.f64(msg.ty);
+          w.f64(msg.tr);
+          w.u32(msg.ttl);
+          w.u32(msg.hops);
+        } else {
+          w.u64(msg.face);
+          w.u64(msg.source);
+          w.u64(msg.target);
+          w.u8(msg.backward ? 1 : 0);
+          w.u32(static_cast<std::uint32_t>(msg.payload.size()));
+          w.bytes(msg.payload);
         }
       },
       m);
@@ -176,10 +235,20 @@ DecodeStatus decode(std::span<const std::byte> bytes, Message& out) {
   if (bytes.size() < header) return DecodeStatus::truncated;
   if (std::to_integer<std::uint8_t>(bytes[0]) != wire_version) return DecodeStatus::bad_version;
   const std::uint8_t type_byte = std::to_integer<std::uint8_t>(bytes[1]);
-  if (type_byte < 1 || type_byte > 8) return DecodeStatus::unknown_type;
+  if (type_byte < 1 || type_byte > max_message_type) return DecodeStatus::unknown_type;
   const auto t = static_cast<MessageType>(type_byte);
-  const std::size_t size = encoded_size(t);
+  std::size_t size = encoded_size(t);
   if (bytes.size() < size) return DecodeStatus::truncated;
+  if (t == MessageType::face_circles || t == MessageType::relay) {
+    // The count is the last u32 of the fixed part; check its range before it sizes anything.
+    Reader c(bytes.subspan(size - 4, 4));
+    const std::uint32_t count = c.u32();
+    const bool circles = t == MessageType::face_circles;
+    if (circles ? (count < 3 || count > max_face_circles) : (count < 2 || count > max_relay_payload))
+      return DecodeStatus::out_of_range;
+    size += (circles ? 24 : 1) * std::size_t{count};
+    if (bytes.size() < size) return DecodeStatus::truncated;
+  }
   if (bytes.size() > size) return DecodeStatus::trailing_bytes;
   Reader r(bytes.subspan(header));
   bool ok = true;
@@ -253,9 +322,56 @@ DecodeStatus decode(std::span<const std::byte> bytes, Message& out) {
       m = dm;
       break;
     }
+    case MessageType::shape: {
+      ShapeMsg sm;
+      sm.down = read_bool(r, ok);
+      sm.polygon = read_bool(r, ok);
+      m = sm;
+      break;
+    }
+    case MessageType::face_circles: {
+      FaceCirclesMsg fc;
+      fc.round = r.u32();
+      fc.circles.resize(r.u32());  // range-checked above
+      for (FaceCircle& c : fc.circles) {
+        c.x = r.f64();
+        c.y = r.f64();
+        c.r = r.f64();
+      }
+      m = std::move(fc);
+      break;
+    }
+    case MessageType::relay: {
+      RelayMsg rm;
+      rm.face = r.u64();
+      rm.source = r.u64();
+      rm.target = r.u64();
+      rm.backward = read_bool(r, ok);
+      const std::uint32_t count = r.u32();  // range-checked above
+      const std::span<const std::byte> rest = r.rest();
+      rm.payload.assign(rest.begin(), rest.begin() + count);
+      if (rm.source == rm.target || (rm.face != rm.source && rm.face != rm.target)) ok = false;
+      m = std::move(rm);
+      break;
+    }
+    case MessageType::data: {
+      DataMsg d;
+      d.packet = r.u64();
+      d.source = r.u64();
+      d.target = r.u64();
+      d.tx = r.f64();
+      d.ty = r.f64();
+      d.tr = r.f64();
+      d.ttl = r.u32();
+      d.hops = r.u32();
+      ok = d.hops >= 1 && d.hops <= d.ttl && d.source != d.target && std::isfinite(d.tx) && std::isfinite(d.ty) &&
+           std::isfinite(d.tr) && d.tr >= 0;
+      m = d;
+      break;
+    }
   }
   if (!ok) return DecodeStatus::out_of_range;
-  out = m;
+  out = std::move(m);
   return DecodeStatus::ok;
 }
 

@@ -11,12 +11,13 @@
 #include "SyncHost.hpp"
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/packing/PackingComplex.hpp"
+#include "laguerre/core/power/LocalPowerDiagram.hpp"
 
 namespace laguerre::protocols::testing {
 
 inline std::uint64_t bits(double d) { return std::bit_cast<std::uint64_t>(d); }
 
-// Hop distance from the boundary (core's rule for RootRule::deepest).
+// Hop distance from the boundary (core's rule for RootRule::deepest; on K for 3-connected graphs).
 inline std::vector<std::uint32_t> boundary_depths(const core::PlanarGraph& g) {
   std::vector<std::uint32_t> depth(g.num_vertices(), core::none);
   std::deque<core::Vertex> q;
@@ -31,10 +32,33 @@ inline std::vector<std::uint32_t> boundary_depths(const core::PlanarGraph& g) {
   return depth;
 }
 
-// Compares one protocol run with core::pack (Jacobi, stop = lpd) on g; returns the host for more checks.
-inline void expect_sync_equals_core(const core::PlanarGraph& g, const PackingParams& params, std::uint64_t shuffle_seed,
+// The protocol id of each vertex of K: G's ids, then face_vertex_id(host, successor) per face vertex.
+inline std::vector<NodeId> protocol_ids(const core::PlanarGraph& g, const core::PackingComplex& k) {
+  std::vector<NodeId> ids(g.ids().begin(), g.ids().end());
+  for (core::Face f : k.face_of_vertex) {
+    core::Dart best = core::none;
+    for (core::Dart d : g.face_darts(f))
+      if (best == core::none || g.id(g.tail(d)) < g.id(g.tail(best))) best = d;
+    ids.push_back(face_vertex_id(g.id(g.tail(best)), g.id(g.head(best))));
+  }
+  return ids;
+}
+
+inline void expect_same_circle(const core::PlacedCircle& a, const core::Layout& l, core::Vertex v) {
+  EXPECT_EQ(bits(a.circle.x), bits(l.circles[v].x));
+  EXPECT_EQ(bits(a.circle.y), bits(l.circles[v].y));
+  EXPECT_EQ(bits(a.circle.r), bits(l.circles[v].r));
+  EXPECT_EQ(bits(a.centre.real()), bits(l.centre[v].real()));
+  EXPECT_EQ(bits(a.centre.imag()), bits(l.centre[v].imag()));
+}
+
+// Compares one protocol run with core::pack (Jacobi, stop = lpd) on g, vertex by vertex of K; returns
+// core's iteration count.
+inline int expect_sync_equals_core(const core::PlanarGraph& g, const PackingParams& params, std::uint64_t shuffle_seed,
                                     const std::string& label) {
   SCOPED_TRACE(label);
+  int iterations = -1;
+  [&] {
   core::PackOptions opt;
   opt.stop = core::StopRule::lpd;
   opt.sweep = core::Sweep::jacobi;
@@ -43,10 +67,14 @@ inline void expect_sync_equals_core(const core::PlanarGraph& g, const PackingPar
   opt.steps_per_check = params.steps_per_check;
   opt.max_iterations = params.max_iterations;
   const core::PackResult r = core::pack(g, opt);
+  iterations = r.iterations;
   const core::PackingComplex k = core::PackingComplex::from_graph(g);
   const core::Vertex root = core::choose_root(k, params.root);
   ASSERT_NE(root, core::none) << "test graphs must have an interior vertex";
-  const auto depth = boundary_depths(g);
+  const auto depth = boundary_depths(k.graph);
+  const auto ids = protocol_ids(g, k);
+  for (core::Vertex v = 0; v < g.num_vertices(); ++v)
+    ASSERT_EQ(g.id(v), v) << "face vertices list their neighbours as core does when ids follow indices";
 
   DequeHost host(g, params);
   host.run(shuffle_seed);
@@ -57,18 +85,16 @@ inline void expect_sync_equals_core(const core::PlanarGraph& g, const PackingPar
     EXPECT_EQ(n.depth(), depth[v]);
     EXPECT_EQ(n.is_root(), v == root);
     EXPECT_EQ(n.wave(), r.layout.wave[v]);
-    EXPECT_EQ(n.parent(), v == root ? g.id(v) : g.id(r.layout.parent[v]));
+    EXPECT_EQ(n.parent(), v == root ? g.id(v) : ids[r.layout.parent[v]]);
+    EXPECT_EQ(n.polygon_faces(), k.has_face_vertices());
     EXPECT_EQ(n.steps(), static_cast<std::uint32_t>(r.iterations));
     EXPECT_EQ(bits(n.x()), bits(r.radii[v])) << n.x() << " vs " << r.radii[v];
-    EXPECT_EQ(bits(n.placement().circle.x), bits(r.layout.circles[v].x));
-    EXPECT_EQ(bits(n.placement().circle.y), bits(r.layout.circles[v].y));
-    EXPECT_EQ(bits(n.placement().circle.r), bits(r.layout.circles[v].r));
-    EXPECT_EQ(bits(n.placement().centre.real()), bits(r.layout.centre[v].real()));
-    EXPECT_EQ(bits(n.placement().centre.imag()), bits(r.layout.centre[v].imag()));
-    EXPECT_EQ(n.local_condition(), r.local[v]);
+    expect_same_circle(n.placement(), r.layout, v);
+    EXPECT_EQ(n.local_condition(), r.local[v]) << to_string(n.local_condition()) << " vs " << to_string(r.local[v]);
     const auto& c = n.counters();
     EXPECT_EQ(c.unexpected, 0u);
     EXPECT_EQ(c.not_a_neighbour, 0u);
+    EXPECT_EQ(c.bad_payload, 0u);
     EXPECT_EQ(c.decode[0], c.received);
     if (r.status == core::PackStatus::converged) {
       EXPECT_EQ(n.outcome(), PackingOutcome::converged);
@@ -76,6 +102,32 @@ inline void expect_sync_equals_core(const core::PlanarGraph& g, const PackingPar
       EXPECT_EQ(n.outcome(), PackingOutcome::cap);
     }
   }
+  // Face vertices, at their hosts.
+  std::size_t hosted = 0;
+  for (core::Vertex v = 0; v < g.num_vertices(); ++v) hosted += host.node(v).hosted_faces();
+  ASSERT_EQ(hosted, k.face_of_vertex.size());
+  for (std::size_t i = 0; i < k.face_of_vertex.size(); ++i) {
+    const core::Vertex fv = static_cast<core::Vertex>(g.num_vertices() + i);
+    const NodeId fid = ids[fv];
+    SCOPED_TRACE("face vertex " + std::to_string(i));
+    const PackingNode& h = host.node(static_cast<core::Vertex>((fid >> 31) & max_face_node_id));
+    bool found = false;
+    for (std::size_t j = 0; j < h.hosted_faces(); ++j) {
+      const VertexState st = h.hosted_face_state(j);
+      if (st.id != fid) continue;
+      found = true;
+      EXPECT_EQ(st.phase, PackingPhase::finished);
+      EXPECT_EQ(st.depth, depth[fv]);
+      EXPECT_EQ(st.wave, r.layout.wave[fv]);
+      EXPECT_EQ(st.parent, ids[r.layout.parent[fv]]);
+      EXPECT_EQ(st.steps, static_cast<std::uint32_t>(r.iterations));
+      EXPECT_EQ(bits(st.x), bits(r.radii[fv])) << st.x << " vs " << r.radii[fv];
+      expect_same_circle(st.placement, r.layout, fv);
+    }
+    EXPECT_TRUE(found);
+  }
+  }();
+  return iterations;
 }
 
 }  // namespace laguerre::protocols::testing

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <span>
 #include <stdexcept>
@@ -60,22 +61,37 @@ public:
     std::uint64_t random_state_;
   };
 
-  // One PackingNode per vertex of g, with the knowledge `local_knowledge` gives.
-  DequeHost(const core::PlanarGraph& g, PackingParams params, std::uint64_t seed = 1) {
+  // Builds the node of vertex v (any protocol) on the runtime the host made for it.
+  using Factory = std::function<std::unique_ptr<Node>(Runtime&, core::Vertex)>;
+
+  // One node per vertex of g, made by `make`.
+  DequeHost(const core::PlanarGraph& g, const Factory& make, std::uint64_t seed = 1) {
     for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
-      LocalKnowledge k = local_knowledge(g, v);
+      const LocalKnowledge k = local_knowledge(g, v);
       runtimes_.push_back(std::make_unique<NodeRuntime>(*this, k.id, k.neighbours, seed));
       index_[k.id] = v;
-      nodes_.push_back(std::make_unique<PackingNode>(*runtimes_.back(), std::move(k), params));
+      nodes_.push_back(make(*runtimes_.back(), v));
     }
   }
+
+  // One PackingNode per vertex of g, with the knowledge `local_knowledge` gives.
+  DequeHost(const core::PlanarGraph& g, PackingParams params, std::uint64_t seed = 1)
+      : DequeHost(
+            g, [&](Runtime& rt, core::Vertex v) { return std::make_unique<PackingNode>(rt, local_knowledge(g, v), params); },
+            seed) {}
 
   // Starts every node, then delivers until no message is left or `max_messages` were delivered.
   // With `shuffle_seed` ≠ 0 each delivery picks a uniformly random queued message.
   void run(std::uint64_t shuffle_seed = 0, std::uint64_t max_messages = 200'000'000) {
     for (auto& n : nodes_) n->on_start();
+    deliver(shuffle_seed, max_messages);
+  }
+
+  // Delivers queued messages (as run, without starting the nodes).
+  void deliver(std::uint64_t shuffle_seed = 0, std::uint64_t max_messages = 200'000'000) {
     std::uint64_t rng = shuffle_seed;
-    while (!queue_.empty() && delivered_ < max_messages) {
+    const std::uint64_t limit = delivered_ + max_messages;
+    while (!queue_.empty() && delivered_ < limit) {
       if (shuffle_seed != 0) {
         const std::size_t k = static_cast<std::size_t>(splitmix64(rng) % queue_.size());
         std::swap(queue_[k], queue_.front());
@@ -88,14 +104,18 @@ public:
     }
   }
 
-  PackingNode& node(core::Vertex v) { return *nodes_[v]; }
+  PackingNode& node(core::Vertex v) { return as<PackingNode>(v); }
+  template <class T>
+  T& as(core::Vertex v) {
+    return dynamic_cast<T&>(*nodes_[v]);
+  }
   std::size_t size() const { return nodes_.size(); }
   std::uint64_t delivered() const { return delivered_; }
   std::uint64_t bytes() const { return bytes_; }
 
 private:
   std::vector<std::unique_ptr<NodeRuntime>> runtimes_;
-  std::vector<std::unique_ptr<PackingNode>> nodes_;
+  std::vector<std::unique_ptr<Node>> nodes_;
   std::unordered_map<NodeId, core::Vertex> index_;
   std::deque<Envelope> queue_;
   std::uint64_t delivered_ = 0;

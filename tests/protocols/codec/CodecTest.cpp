@@ -27,19 +27,29 @@ std::vector<Message> samples() {
           ReportMsg{4, false},
           DecisionMsg{9, Verdict::next},
           DecisionMsg{9, Verdict::converged},
-          DecisionMsg{0xffffffff, Verdict::cap}};
+          DecisionMsg{0xffffffff, Verdict::cap},
+          ShapeMsg{false, true},
+          ShapeMsg{true, false},
+          FaceCirclesMsg{3, {{0.1, 0.2, 0.3}, {nan, -inf, 0.0}, {-0.0, 1e300, 5e-324}}},
+          FaceCirclesMsg{0xffffffff, std::vector<FaceCircle>(17, FaceCircle{0.5, -0.5, 0.25})},
+          RelayMsg{0x8000000100000002ull, 0x8000000100000002ull, 9, false, encode(RadiusMsg{4, 0.5})},
+          RelayMsg{77, 5, 77, true, encode(FaceCirclesMsg{1, {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}, {1, 1, 1}}})},
+          DataMsg{1, 2, 3, 0.5, -0.25, 0.0, 10, 1},
+          DataMsg{0xffffffffffffffffull, 0, 9, -0.0, 1e-300, 0.125, 0xffffffff, 0xffffffff}};
 }
 
 bool same(const Message& a, const Message& b) {
   if (a.index() != b.index()) return false;
   if (const auto* p = std::get_if<PlacedMsg>(&a)) return same_bits(*p, std::get<PlacedMsg>(b));
+  if (const auto* f = std::get_if<FaceCirclesMsg>(&a)) return same_bits(*f, std::get<FaceCirclesMsg>(b));
   if (const auto* r = std::get_if<RadiusMsg>(&a))
     return r->step == std::get<RadiusMsg>(b).step &&
            std::bit_cast<std::uint64_t>(r->x) == std::bit_cast<std::uint64_t>(std::get<RadiusMsg>(b).x);
   return std::visit(
       [&](const auto& x) {
         using T = std::decay_t<decltype(x)>;
-        if constexpr (std::is_same_v<T, PlacedMsg> || std::is_same_v<T, RadiusMsg>) return false;  // handled above
+        if constexpr (std::is_same_v<T, PlacedMsg> || std::is_same_v<T, RadiusMsg> || std::is_same_v<T, FaceCirclesMsg>)
+          return false;  // handled above
         else return x == std::get<T>(b);
       },
       a);
@@ -56,7 +66,10 @@ void expect_canonical(std::span<const std::byte> bytes, const Message& m) {
 TEST(Codec, RoundTripsEveryMessageBitExactly) {
   for (const Message& m : samples()) {
     const std::vector<std::byte> bytes = encode(m);
-    EXPECT_EQ(bytes.size(), encoded_size(type_of(m)));
+    EXPECT_EQ(bytes.size(), encoded_size(m));
+    if (!std::holds_alternative<FaceCirclesMsg>(m) && !std::holds_alternative<RelayMsg>(m)) {
+      EXPECT_EQ(bytes.size(), encoded_size(type_of(m)));
+    }
     EXPECT_EQ(std::to_integer<int>(bytes[0]), wire_version);
     EXPECT_EQ(std::to_integer<int>(bytes[1]), static_cast<int>(type_of(m)));
     Message out;
@@ -84,7 +97,7 @@ TEST(Codec, RejectsHeadersItDoesNotKnow) {
   b[0] = std::byte{2};
   EXPECT_EQ(decode(b, out), DecodeStatus::bad_version);
   b[0] = std::byte{wire_version};
-  for (int t : {0, 9, 200, 255}) {
+  for (int t : {0, max_message_type + 1, 200, 255}) {
     b[1] = static_cast<std::byte>(t);
     EXPECT_EQ(decode(b, out), DecodeStatus::unknown_type);
   }
@@ -110,6 +123,29 @@ TEST(Codec, RejectsOutOfRangeFields) {
     EXPECT_EQ(decode(encode(RadiusMsg{1, x}), out), DecodeStatus::out_of_range) << x;
     EXPECT_EQ(decode(encode(PlacedMsg{1, x, 0, 0, 0, 0, 0}), out), DecodeStatus::out_of_range) << x;
   }
+  EXPECT_EQ(decode(with(ShapeMsg{true, true}, 2, 2), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(with(ShapeMsg{true, true}, 3, 9), out), DecodeStatus::out_of_range);
+  // Variable sizes: the count is range-checked before it sizes the message.
+  const FaceCirclesMsg three{1, {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}};
+  EXPECT_EQ(decode(encode(FaceCirclesMsg{1, {{0, 0, 1}, {1, 0, 1}}}), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(with(three, 9, 0x7f), out), DecodeStatus::out_of_range);  // count ≥ 2^30
+  EXPECT_EQ(decode(with(three, 6, 4), out), DecodeStatus::truncated);      // count 4, three circles
+  EXPECT_EQ(decode(with(three, 6, 2), out), DecodeStatus::out_of_range);   // count 2 < 3
+  const std::vector<std::byte> payload = encode(ReportMsg{1, true});
+  EXPECT_EQ(decode(encode(RelayMsg{7, 7, 3, false, payload}), out), DecodeStatus::ok);
+  EXPECT_EQ(decode(encode(RelayMsg{7, 3, 3, false, payload}), out), DecodeStatus::out_of_range);  // source = target
+  EXPECT_EQ(decode(encode(RelayMsg{7, 3, 4, false, payload}), out), DecodeStatus::out_of_range);  // face not an end
+  EXPECT_EQ(decode(with(RelayMsg{7, 7, 3, false, payload}, 26, 2), out), DecodeStatus::out_of_range);  // backward
+  EXPECT_EQ(decode(encode(RelayMsg{7, 7, 3, false, {std::byte{1}}}), out), DecodeStatus::out_of_range);  // 1 byte
+  EXPECT_EQ(decode(with(RelayMsg{7, 7, 3, false, payload}, 30, 0xff), out), DecodeStatus::out_of_range);  // huge count
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(decode(encode(DataMsg{1, 2, 3, 0, 0, 0, 5, 5}), out), DecodeStatus::ok);
+  EXPECT_EQ(decode(encode(DataMsg{1, 2, 3, 0, 0, 0, 5, 6}), out), DecodeStatus::out_of_range);  // hops > ttl
+  EXPECT_EQ(decode(encode(DataMsg{1, 2, 3, 0, 0, 0, 5, 0}), out), DecodeStatus::out_of_range);  // no hop yet
+  EXPECT_EQ(decode(encode(DataMsg{1, 2, 2, 0, 0, 0, 5, 1}), out), DecodeStatus::out_of_range);  // to itself
+  EXPECT_EQ(decode(encode(DataMsg{1, 2, 3, nan, 0, 0, 5, 1}), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(encode(DataMsg{1, 2, 3, 0, inf, 0, 5, 1}), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(encode(DataMsg{1, 2, 3, 0, 0, -1, 5, 1}), out), DecodeStatus::out_of_range);
 }
 
 TEST(Codec, EveryTruncationAndExtensionIsRejected) {
@@ -151,7 +187,7 @@ TEST(Codec, ArbitraryBytesNeverCrash) {
     std::vector<std::byte> b(rng() % 64);
     for (auto& x : b) x = static_cast<std::byte>(rng() & 0xff);
     if (!b.empty() && rng() % 2) b[0] = std::byte{wire_version};
-    if (b.size() > 1 && rng() % 2) b[1] = static_cast<std::byte>(1 + rng() % 8);
+    if (b.size() > 1 && rng() % 2) b[1] = static_cast<std::byte>(1 + rng() % max_message_type);
     Message out;
     if (decode(b, out) == DecodeStatus::ok) expect_canonical(b, out);
   }

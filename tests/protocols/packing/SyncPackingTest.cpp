@@ -49,19 +49,19 @@ TEST(PackingNode, RejectsInconsistentKnowledge) {
     bool cancel(TimerHandle) override { return false; }
     std::uint64_t random_u64() override { return 4; }
   } rt;
-  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {}, false, LocalKnowledge::no_gap, {}}, {}), std::invalid_argument);
-  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 1}, false, LocalKnowledge::no_gap, {}}, {}), std::invalid_argument);
-  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3, 2}, false, LocalKnowledge::no_gap, {}}, {}), std::invalid_argument);
-  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, true, 5, {}}, {}), std::invalid_argument);
-  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, false, 0, {}}, {}), std::invalid_argument);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {}, false, LocalKnowledge::no_gap, {}, {}}, {}), std::invalid_argument);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 1}, false, LocalKnowledge::no_gap, {}, {}}, {}), std::invalid_argument);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3, 2}, false, LocalKnowledge::no_gap, {}, {}}, {}), std::invalid_argument);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, true, 5, {}, {}}, {}), std::invalid_argument);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, false, 0, {}, {}}, {}), std::invalid_argument);
   PackingParams bad;
   bad.steps_per_check = 0;
-  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, false, LocalKnowledge::no_gap, {}}, bad), std::invalid_argument);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, false, LocalKnowledge::no_gap, {}, {}}, bad), std::invalid_argument);
 }
 
 TEST(PackingNode, MalformedAndForeignMessagesAreCountedNotTrusted) {
   const core::PlanarGraph g = delaunay(12, 3);
-  DequeHost host(g, {});
+  DequeHost host(g, PackingParams{});
   PackingNode& n = host.node(0);
   n.on_start();
   const std::byte junk[3] = {std::byte{1}, std::byte{5}, std::byte{0}};

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// The packing protocol's messages and their byte encoding, identical in every host.
+/// The messages of the packing protocol and of packet forwarding, and their byte encoding, identical in
+/// every host. Types 9–12 were added without changing the encoding of types 1–8 (same wire_version).
 ///
 /// Wire format (all integers little-endian, every field fixed-size, no padding):
 ///
@@ -11,10 +12,19 @@
 ///                   f64             the IEEE-754 bits of a double as a u64 (bit-exact, NaN payloads
 ///                                   and signed zeros included)
 ///
-/// A message has exactly `encoded_size(type)` bytes. `decode` checks, in this order: at least two
-/// bytes (else `truncated`), the version, the type, the exact length (`truncated` if short,
-/// `trailing_bytes` if long), then the ranges each message documents (`out_of_range`). Any byte
-/// string is safe to decode; only `DecodeStatus::ok` yields a message.
+/// A fixed-size message has exactly `encoded_size(type)` bytes. The two variable-size messages
+/// (FaceCirclesMsg, RelayMsg) have a fixed part of `encoded_size(type)` bytes that ends with a u32
+/// count, followed by exactly that many items; the count is range-checked before it is used, so a
+/// length never depends on unchecked data. `decode` checks, in this order: at least two bytes (else
+/// `truncated`), the version, the type, the exact length (`truncated` if short, `trailing_bytes` if
+/// long; for a variable-size message first the fixed part, then `out_of_range` if the count exceeds its
+/// maximum, then the total), then the ranges each message documents (`out_of_range`). Any byte string
+/// is safe to decode; only `DecodeStatus::ok` yields a message.
+///
+/// 3-connected graphs (PackingNode.hpp, "Face vertices") add three types: ShapeMsg (whether the
+/// graph has a non-triangle inner face, convergecast and broadcast once), FaceCirclesMsg (a face
+/// vertex tells the vertices of its face all their circles) and RelayMsg (an envelope carrying a
+/// message between a face vertex's host and a vertex of that face along the face's boundary).
 
 #include <cstddef>
 #include <cstdint>
@@ -38,7 +48,14 @@ enum class MessageType : std::uint8_t {
   placed = 6,    ///< PlacedMsg: a node's circle in one round's layout
   report = 7,    ///< ReportMsg: the AND convergecast of local checks
   decision = 8,  ///< DecisionMsg: the root's stop / next-round broadcast
+  shape = 9,     ///< ShapeMsg: whether some inner face is not a triangle (set-up convergecast / broadcast)
+  face_circles = 10,  ///< FaceCirclesMsg: a face vertex sends every circle of its face (one round)
+  relay = 11,    ///< RelayMsg: an envelope relayed along a face between a face vertex and a face member
+  data = 12,     ///< DataMsg: a data packet forwarded greedily (Forwarding.hpp)
 };
+
+/// Largest MessageType value (types 1 … max_message_type exist).
+inline constexpr std::uint8_t max_message_type = 12;
 
 /// Name of a message type ("depth", "election", …), "?" for values outside the enum.
 std::string_view to_string(MessageType t);
@@ -122,14 +139,84 @@ struct DecisionMsg {
   friend bool operator==(const DecisionMsg&, const DecisionMsg&) = default;
 };
 
-/// Any message of the packing protocol.
-using Message = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg, DecisionMsg>;
+/// Set-up, after the layout wave: whether some inner face of G is not a triangle (the graph is then
+/// packed as G′, with overlap angles everywhere, and checked with GLPD). `down` = 0: the OR of the
+/// sender's subtree, sent to its parent; 1: the root's answer, sent to the children. Fields:
+/// u8 down ∈ {0, 1}, u8 polygon ∈ {0, 1}.
+struct ShapeMsg {
+  bool down = false;     ///< direction: up the layout tree (false) or down (true)
+  bool polygon = false;  ///< whether some inner face (of the subtree, or of G) has more than 3 vertices
+  friend bool operator==(const ShapeMsg&, const ShapeMsg&) = default;
+};
+
+/// Largest number of circles in a FaceCirclesMsg (the size of a face).
+inline constexpr std::uint32_t max_face_circles = 4096;
+
+/// One circle of a face, as carried by FaceCirclesMsg.
+struct FaceCircle {
+  double x = 0;  ///< centre abscissa
+  double y = 0;  ///< centre ordinate
+  double r = 0;  ///< radius
+};
+
+/// From a face vertex to the vertices of its face: their circles in the layout of round `round`, in
+/// the face's counter-clockwise walk starting at the face's host (its smallest id). Not range-checked
+/// (as PlacedMsg). Fields: u32 round, u32 count ∈ [3, max_face_circles], count × (f64 x, f64 y, f64 r).
+struct FaceCirclesMsg {
+  std::uint32_t round = 0;          ///< round number
+  std::vector<FaceCircle> circles;  ///< the circles, walk order from the host
+};
+
+/// Bitwise equality of two FaceCirclesMsg (NaN-safe).
+bool same_bits(const FaceCirclesMsg& a, const FaceCirclesMsg& b);
+
+/// Largest payload of a RelayMsg (an encoded message of another type).
+inline constexpr std::uint32_t max_relay_payload = 2 + 8 + 24 * max_face_circles;
+
+/// An envelope for a message between a face vertex (emulated by its host) and a vertex of its face,
+/// walked along the face's boundary. `face` names the face vertex (see PackingNode.hpp), `source` and
+/// `target` are the ids of the sending and receiving protocol vertices (one of them is `face`), and
+/// `backward` says which way round the face it travels: 0 = in the face's counter-clockwise walk
+/// direction, 1 = against it. The payload is not decoded by relays. Fields: u64 face, u64 source,
+/// u64 target, u8 backward ∈ {0, 1}, u32 count ∈ [2, max_relay_payload], count payload bytes;
+/// source ≠ target and face ∈ {source, target}.
+struct RelayMsg {
+  std::uint64_t face = 0;           ///< the face vertex's id
+  std::uint64_t source = 0;         ///< sending protocol vertex
+  std::uint64_t target = 0;         ///< receiving protocol vertex
+  bool backward = false;            ///< direction round the face
+  std::vector<std::byte> payload;   ///< the carried message, encoded
+  friend bool operator==(const RelayMsg&, const RelayMsg&) = default;
+};
+
+/// A data packet in flight (greedy power forwarding, Forwarding.hpp), as it leaves a node: `hops`
+/// counts the hops taken including this one. Fields: u64 packet, u64 source, u64 target, f64 target
+/// circle (x, y, r), u32 ttl, u32 hops; 1 ≤ hops ≤ ttl, source ≠ target, the circle finite with r ≥ 0.
+struct DataMsg {
+  std::uint64_t packet = 0;  ///< packet id (chosen by the source's host)
+  std::uint64_t source = 0;  ///< source node id
+  std::uint64_t target = 0;  ///< target node id
+  double tx = 0;             ///< target circle centre abscissa
+  double ty = 0;             ///< target circle centre ordinate
+  double tr = 0;             ///< target circle radius
+  std::uint32_t ttl = 0;     ///< hop limit
+  std::uint32_t hops = 0;    ///< hops taken, this one included
+  friend bool operator==(const DataMsg&, const DataMsg&) = default;
+};
+
+/// Any message of the packing protocol and of packet forwarding.
+using Message = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg, DecisionMsg,
+                             ShapeMsg, FaceCirclesMsg, RelayMsg, DataMsg>;
 
 /// The type byte of a message.
 MessageType type_of(const Message& m);
 
-/// Exact encoded size of a message of type `t`, header included; 0 for values outside the enum.
+/// Encoded size of a message of type `t`, header included: exact for fixed-size types, the fixed
+/// part (up to and including the count) for FaceCirclesMsg and RelayMsg; 0 for values outside the enum.
 std::size_t encoded_size(MessageType t);
+
+/// Exact encoded size of `m`, header included.
+std::size_t encoded_size(const Message& m);
 
 /// Outcome of decoding a byte string.
 enum class DecodeStatus : std::uint8_t {

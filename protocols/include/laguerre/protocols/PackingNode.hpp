@@ -1,7 +1,33 @@
 #pragma once
 /// @file
-/// The distributed circle-packing protocol of thesis §5.3, synchronous mode, for triangulated discs:
-/// one `PackingNode` per network node, hosted through `Runtime`.
+/// The distributed circle-packing protocol of thesis §5.3, synchronous mode, for triangulated discs
+/// and 3-connected plane graphs: one `PackingNode` per network node, hosted through `Runtime`.
+///
+/// ## Design note: tolerating loss and duplication (planned, not implemented)
+///
+/// The synchronous mode assumes reliable links. The plan keeps its results bit for bit under loss,
+/// duplication and delay, because every value a node computes is keyed by its position in the run,
+/// never by when or how often a message arrives:
+///  - *Idempotent state messages.* Each message already names its slot: (pulse) for Depth/Wave,
+///    (step) for Radius, (round) for Placed/FaceCircles/Report/Decision, (direction) for Shape. A
+///    receiver stores at most one value per (neighbour, type, key) and ignores a repeat with the same
+///    key and value as a *duplicate* (its own counter, not `unexpected`); the handlers that today count
+///    a second copy (final depth, placed wave, echo tokens, child reports) move to per-neighbour flags.
+///    Two slots per neighbour still suffice: neighbours stay at most one step/round apart.
+///  - *Retransmission timers.* Every node keeps, per neighbour, the last message of each type it sent
+///    for the current key and re-sends it when a timer (`Runtime::schedule`, period from
+///    `PackingParams`) fires, until receipt is proven. Most proofs are implicit: a neighbour's message
+///    with a later key (Radius step t + 1, a Report for round r, the next pulse) shows it holds ours.
+///    Report and Decision, which nothing later acknowledges before the next round, get an explicit
+///    Ack(type, round). A finished node keeps answering with its final Decision, so a lost "stop"
+///    cannot strand a subtree.
+///  - *Relayed face traffic* is retransmitted end to end (face host ↔ member, keyed as above); relays
+///    stay stateless.
+///  - *Crashes.* A neighbour that proves nothing for a bounded number of periods is declared
+///    unreachable; the node reports that status up the tree (or to its neighbours during set-up) and
+///    the run ends with it instead of hanging.
+///  - Set-up (BFS, echo election, wave) uses the same rules; the election's echo counts per-neighbour
+///    flags, so a duplicated token cannot complete a wave early.
 ///
 /// ## Phases and messages
 ///
@@ -43,12 +69,40 @@
 /// hold every early message. A message that does not fit the current state is counted as unexpected
 /// and dropped; a malformed one is counted per DecodeStatus and dropped.
 ///
+/// ## Face vertices (3-connected graphs, thesis §5.3.2)
+///
+/// core::pack packs the complex K = G′: one face vertex per inner face with more than 3 vertices,
+/// joined to the face's vertices at angle π/2. The protocol runs on K itself: every vertex of K is a
+/// *protocol vertex* (an agent with the state machine above), and the node with the smallest id on
+/// a face, its *host*, also runs that face's vertex. Everything above — depth BFS, election, layout
+/// wave, Thurston steps with intersection cosines, layout, convergecast — then holds on K verbatim,
+/// which is why it reproduces core::pack on K (whose depth, root, wave and tree are those of K). A
+/// link of K between a face vertex and a face member w is emulated G-face-locally: the host delivers
+/// locally when w is itself, else wraps the message in a RelayMsg that walks the face's boundary the
+/// shorter way round (every member knows the face's walk, so each relay knows its next hop).
+///
+/// A face vertex's id is `face_vertex_id(host, successor)`: the host's id and the id that follows it
+/// in the face's walk determine the face, and every member can compute it. A face vertex lists its
+/// neighbours from its host, counter-clockwise; core lists them from the face vertex of smallest
+/// *index*, so the two agree bit for bit when ids increase with vertex indices (as in every graph
+/// laguerre generates or reads). Node ids must then be below 2^31.
+///
+/// Added messages: *Shape* (ShapeMsg), once after the wave set-up: the OR of "some incident inner
+/// face has more than 3 vertices" up the layout tree and the root's answer down; every node then uses
+/// core's global choices (overlap angles in the layout, GLPD instead of LPD in the check), as
+/// core::pack does for the whole graph. *Face circles* (FaceCirclesMsg): in each round, a face vertex
+/// that has heard every member's circle sends all of them to every member, who then has the circles
+/// of every vertex of its incident faces and decides GLPD with `check_glpd_local` (LocalChecks.hpp),
+/// exactly as core::check_glpd. A face vertex's own check is trivially true (core checks G only).
+///
 /// Limits (the synchronous mode's assumptions): reliable links (any delay, any order); a triangulated
-/// disc with at least one interior vertex.
+/// disc or a 3-connected plane graph with at least one interior vertex.
 
 #include <array>
-#include <complex>
 #include <cstdint>
+#include <deque>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include "laguerre/core/geometry/Circle.hpp"
@@ -63,8 +117,16 @@
 namespace laguerre::protocols {
 
 /// The static knowledge of vertex v of g, with neighbours listed from `g.neighbours(v)[0]` (the order
-/// that makes the node's sums agree with core's bit for bit) and the outer-face wedge located.
+/// that makes the node's sums agree with core's bit for bit), the outer-face wedge located and, when
+/// some inner face of g is not a triangle, the walks of v's non-triangle inner faces.
 LocalKnowledge local_knowledge(const core::PlanarGraph& g, core::Vertex v);
+
+/// Largest node id the 3-connected mode supports (face vertex ids pack two node ids).
+inline constexpr NodeId max_face_node_id = (NodeId{1} << 31) - 1;
+
+/// The id of the face vertex of the face whose walk has `successor` right after its host `host`
+/// (both ≤ max_face_node_id): 2^63 + host·2^31 + successor, never a node id.
+constexpr NodeId face_vertex_id(NodeId host, NodeId successor) { return (NodeId{1} << 63) | (host << 31) | successor; }
 
 /// Parameters shared by all nodes of a run (the same values core::PackOptions would hold).
 struct PackingParams {
@@ -79,7 +141,7 @@ enum class PackingPhase : std::uint8_t {
   idle,      ///< on_start not yet called
   depth,     ///< BFS from the boundary
   election,  ///< leader election
-  wave,      ///< combinatorial layout wave
+  wave,      ///< combinatorial layout wave (and the shape convergecast)
   rounds,    ///< Thurston steps, layout, check, convergecast
   finished,  ///< the root's decision to stop reached this node
 };
@@ -87,11 +149,11 @@ enum class PackingPhase : std::uint8_t {
 /// How a node's run ended.
 enum class PackingOutcome : std::uint8_t {
   running,    ///< not finished
-  converged,  ///< LPD holds everywhere
+  converged,  ///< LPD/GLPD holds everywhere
   cap,        ///< the iteration cap was reached first
 };
 
-/// Per-node message statistics.
+/// Per-node message statistics (physical messages: a relayed envelope counts at every hop).
 struct PackingCounters {
   std::uint64_t sent = 0;                                     ///< messages handed to the runtime (a broadcast counts once per neighbour)
   std::uint64_t bytes_sent = 0;                               ///< their bytes
@@ -99,147 +161,128 @@ struct PackingCounters {
   std::array<std::uint64_t, decode_status_count> decode{};    ///< received messages per DecodeStatus
   std::uint64_t not_a_neighbour = 0;                          ///< from an id that is not a neighbour
   std::uint64_t unexpected = 0;                               ///< well-formed but not fitting the state
+  std::uint64_t relayed = 0;                                  ///< RelayMsg envelopes forwarded for others
+  std::uint64_t bad_payload = 0;                              ///< relayed payloads that did not decode
 };
 
-/// One node of the packing protocol (synchronous mode, triangulated discs).
+/// The state of one protocol vertex (the node's own vertex or a hosted face vertex).
+struct VertexState {
+  NodeId id = 0;                    ///< protocol id (node id, or face_vertex_id for a face vertex)
+  std::uint32_t depth = 0;          ///< depth from the boundary in K
+  bool is_root = false;             ///< whether it is the elected root
+  std::uint32_t wave = 0;           ///< layout wave in which it is placed
+  NodeId parent = 0;                ///< parent in the layout tree (its own id for the root)
+  std::uint32_t steps = 0;          ///< Thurston steps done
+  std::uint32_t round = 0;          ///< current round
+  double x = 0;                     ///< current X = e^{-2h}
+  core::PlacedCircle placement;     ///< placement in the latest layout
+  core::LocalCondition local = core::LocalCondition::unrepresentable;  ///< latest local check
+  PackingPhase phase = PackingPhase::idle;  ///< phase
+};
+
+namespace detail {
+class PackingAgent;
+class AgentHost;
+}  // namespace detail
+
+/// One node of the packing protocol (synchronous mode): its own protocol vertex plus the face
+/// vertices it hosts.
 class PackingNode final : public Node {
 public:
   /// A node with its static knowledge; `runtime` must outlive it. Throws std::invalid_argument if the
   /// knowledge is inconsistent (no neighbours, repeated neighbours, itself as neighbour, a boundary
-  /// node without an outer wedge or an interior node with one) or the parameters are out of range.
+  /// node without an outer wedge or an interior node with one, face walks that do not match the
+  /// neighbours, ids too large for face vertices) or the parameters are out of range.
   PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingParams params);
+  /// Destroys the node and its hosted vertices.
+  ~PackingNode() override;
+  /// Not copyable (its agents refer to it).
+  PackingNode(const PackingNode&) = delete;
+  /// Not copyable.
+  PackingNode& operator=(const PackingNode&) = delete;
 
+  /// Starts the node's own vertex and the face vertices it hosts.
   void on_start() override;
+  /// Decodes a message: an envelope is relayed or delivered to a hosted vertex, anything else goes to
+  /// the node's own vertex.
   void on_message(NodeId from, std::span<const std::byte> bytes) override;
+  /// The synchronous mode sets no timers: counted as unexpected.
   void on_timer(TimerId timer) override;
 
   /// The current phase.
-  PackingPhase phase() const { return phase_; }
+  PackingPhase phase() const;
   /// How the run ended (running until the stop decision arrives).
-  PackingOutcome outcome() const { return outcome_; }
+  PackingOutcome outcome() const;
   /// This node's id.
   NodeId id() const { return know_.id; }
-  /// Depth from the boundary (set-up result; meaningful once past the depth phase).
-  std::uint32_t depth() const { return depth_; }
+  /// Depth from the boundary in K (set-up result; meaningful once past the depth phase).
+  std::uint32_t depth() const;
   /// Whether this node is the elected root.
-  bool is_root() const { return is_root_; }
+  bool is_root() const;
   /// Layout wave in which this node is placed (set-up result).
-  std::uint32_t wave() const { return wave_; }
-  /// Parent in the layout tree (its own id for the root).
-  NodeId parent() const { return parent_; }
+  std::uint32_t wave() const;
+  /// Parent in the layout tree (its own id for the root; a face vertex id when placed from one).
+  NodeId parent() const;
   /// Number of children in the layout tree.
   std::size_t children() const;
   /// Thurston steps done (the iteration count, equal at every node).
-  std::uint32_t steps() const { return step_; }
+  std::uint32_t steps() const;
   /// Current round (the number of the last or current layout).
-  std::uint32_t round() const { return round_; }
+  std::uint32_t round() const;
   /// Current X = e^{-2h}.
-  double x() const { return x_; }
+  double x() const;
   /// This node's placement in the latest layout.
-  const core::PlacedCircle& placement() const { return placed_; }
-  /// The local LPD outcome in the latest layout.
-  core::LocalCondition local_condition() const { return local_; }
+  const core::PlacedCircle& placement() const;
+  /// The local LPD/GLPD outcome in the latest layout.
+  core::LocalCondition local_condition() const;
+  /// Whether the run packs G′ (some inner face is not a triangle; known after the set-up).
+  bool polygon_faces() const;
   /// Message statistics.
   const PackingCounters& counters() const { return counters_; }
+  /// Number of face vertices this node hosts.
+  std::size_t hosted_faces() const { return agents_.size() - 1; }
+  /// The walk (ids, from this node) of hosted face k < hosted_faces().
+  const std::vector<NodeId>& hosted_face_walk(std::size_t k) const;
+  /// The state of hosted face vertex k < hosted_faces().
+  VertexState hosted_face_state(std::size_t k) const;
+  /// The state of this node's own vertex.
+  VertexState state() const;
+  /// The circles of the neighbours (in `LocalKnowledge::neighbours` order) in the latest layout this
+  /// node has checked: after convergence, what ForwardingNode needs (Forwarding.hpp).
+  std::vector<core::Circle> neighbour_circles() const;
 
 private:
-  static constexpr std::uint32_t unknown = 0xffffffffu;
-
-  struct Slot {  // one buffered value tagged with its step or round
-    std::uint32_t tag = unknown;
-    double x = 0;
+  friend class detail::AgentHost;
+  struct Wedge {        // a non-triangle inner face at this node
+    std::vector<NodeId> walk;   // from this node, counter-clockwise
+    NodeId face_id = 0;         // face_vertex_id of the face
+    NodeId host = 0;            // smallest id on the face
+    std::size_t agent = 0;      // index in agents_ if hosted here, else 0
   };
-  struct PlacedSlot {
-    std::uint32_t tag = unknown;
-    double x = 0;
-    core::PlacedCircle at;
+  struct Local {        // a message between two agents of this node, delivered after the callback
+    std::size_t agent;
+    std::size_t from_index;
+    std::vector<std::byte> bytes;
   };
 
-  void send(std::size_t i, const Message& m);
-  void send_encoded(std::size_t i);  // sends buffer_ as it is
-  void broadcast(const Message& m);
   std::size_t index_of(NodeId id) const;
-  bool interior_nbr(std::size_t i) const { return nbr_depth_[i] != 0; }
-
-  void handle(std::size_t i, const DepthMsg& m);
-  void handle(std::size_t i, const ElectionMsg& m);
-  void handle(std::size_t i, const StartMsg& m);
-  void handle(std::size_t i, const WaveMsg& m);
-  void handle(std::size_t i, const RadiusMsg& m);
-  void handle(std::size_t i, const PlacedMsg& m);
-  void handle(std::size_t i, const ReportMsg& m);
-  void handle(std::size_t i, const DecisionMsg& m);
-
-  void advance_depth();
-  void maybe_candidate();
-  void begin_wave(std::size_t from, NodeId root, NodeId first);
-  void advance_wave();
-  void maybe_finish_setup();
-  void begin_round();
-  void advance_steps();
-  void advance_layout();
-  void advance_convergecast();
-  void apply_decision(Verdict v);
-  bool better(std::uint32_t d1, NodeId id1, std::uint32_t d2, NodeId id2) const;
+  const Wedge* wedge_of_face(NodeId face_id) const;
+  void agent_send(std::size_t agent, std::size_t k_index, std::span<const std::byte> bytes);
+  void send_relay(const Wedge& w, NodeId source, NodeId target, std::span<const std::byte> payload);
+  void handle_relay(std::size_t from, RelayMsg& m);
+  void deliver_payload(std::size_t agent, std::size_t from_index, std::span<const std::byte> bytes);
+  void drain();
 
   Runtime& rt_;
   LocalKnowledge know_;
-  PackingParams params_;
   std::size_t deg_ = 0;
   std::vector<std::pair<NodeId, std::uint32_t>> sorted_ids_;  // (id, index) for lookup
-  std::vector<std::byte> buffer_;
+  std::vector<Wedge> wedges_;                                 // polygon faces at this node
+  std::vector<std::unique_ptr<detail::PackingAgent>> agents_; // [0]: own vertex; then hosted faces
+  std::unique_ptr<detail::AgentHost> host_;
+  std::deque<Local> local_;
+  std::vector<std::byte> relay_buffer_;
   PackingCounters counters_;
-  PackingPhase phase_ = PackingPhase::idle;
-  PackingOutcome outcome_ = PackingOutcome::running;
-
-  // Depth phase.
-  std::uint32_t depth_ = unknown;
-  std::uint32_t depth_pulse_ = 0;
-  std::vector<std::uint32_t> nbr_depth_;         // final depth or unknown
-  std::vector<std::uint32_t> nbr_depth_seen_;    // highest "still unknown" pulse + 1 (0: none)
-  std::size_t nbr_depths_known_ = 0;
-
-  // Election.
-  bool candidate_checked_ = false;
-  bool in_wave_ = false;                  // joined some election wave
-  std::uint32_t best_depth_ = 0;
-  NodeId best_id_ = 0;
-  std::size_t echo_parent_ = 0;           // index, or deg_ for the initiator
-  std::size_t echo_count_ = 0;
-
-  // Wave set-up.
-  bool wave_started_ = false;
-  bool is_root_ = false;
-  bool is_first_ = false;
-  NodeId root_id_ = 0;
-  std::uint32_t wave_ = unknown;
-  std::uint32_t wave_pulse_ = 0;
-  NodeId parent_ = 0;
-  std::size_t parent_index_ = 0;          // index of the parent (unused for the root)
-  std::size_t anchor_a_ = 0, anchor_b_ = 0;
-  std::vector<std::uint32_t> nbr_wave_;       // final wave or unknown
-  std::vector<std::uint32_t> nbr_wave_seen_;  // highest "not placed" pulse + 1 (0: none)
-  std::vector<std::uint8_t> child_;
-  std::size_t nbr_waves_known_ = 0;
-  bool setup_done_ = false;
-
-  // Rounds.
-  std::uint32_t round_ = 0;
-  std::uint32_t step_ = 0;               // steps done
-  std::uint32_t round_end_step_ = 0;     // step_ at which this round's sweeps end
-  bool sent_step_ = false;               // whether X(step_) was sent
-  double x_ = 0;
-  std::vector<std::array<Slot, 2>> radius_;
-  std::vector<double> star_x_;           // scratch: neighbour X in ccw order
-  std::vector<std::array<PlacedSlot, 2>> placed_in_;
-  bool placed_this_round_ = false;
-  bool checked_this_round_ = false;
-  bool reported_ = false;
-  core::PlacedCircle placed_;
-  core::LocalCondition local_ = core::LocalCondition::unrepresentable;
-  std::size_t reports_ = 0;
-  bool reports_ok_ = true;
-  std::vector<core::Circle> check_circles_;  // scratch
 };
 
 }  // namespace laguerre::protocols

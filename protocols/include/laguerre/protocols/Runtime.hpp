@@ -58,6 +58,13 @@ struct LocalKnowledge {
   bool boundary = false;               ///< whether the node lies on the outer face
   std::uint32_t outer_gap = no_gap;    ///< boundary nodes: index i of the outer-face wedge (see above)
   std::optional<Position> position;    ///< the node's position, when the deployment knows it
+  /// Faces, for 3-connected graphs: empty when every inner wedge is a triangle; otherwise one entry
+  /// per neighbour i: the ids of the inner face between `neighbours[i]` and `neighbours[i + 1]`
+  /// (counter-clockwise), as its counter-clockwise walk starting at this node (so entry[1] =
+  /// neighbours[i] and entry.back() = neighbours[i + 1]) when it has more than 3 vertices, and empty
+  /// for triangles and the outer face. G-face-local knowledge (thesis §5.3.2): a face discovery phase
+  /// (a token walking each face) would compute it from the rotations alone.
+  std::vector<std::vector<NodeId>> faces;
 };
 
 /// What a host provides to the node it runs (one Runtime object per node).

@@ -1,0 +1,537 @@
+#include "PackingAgent.hpp"
+
+#include <algorithm>
+
+#include "laguerre/core/packing/HyperbolicTriangle.hpp"
+#include "laguerre/protocols/LocalChecks.hpp"
+
+namespace laguerre::protocols::detail {
+
+PackingAgent::PackingAgent(AgentHost& host, std::size_t index, AgentSpec spec, PackingParams params)
+    : host_(host), index_(index), know_(std::move(spec)), params_(params), deg_(know_.neighbours.size()) {
+  nbr_depth_.assign(deg_, unknown);
+  nbr_depth_seen_.assign(deg_, 0);
+  nbr_wave_.assign(deg_, unknown);
+  nbr_wave_seen_.assign(deg_, 0);
+  child_.assign(deg_, 0);
+  shape_up_.assign(deg_, 0);
+  radius_.assign(deg_, {});
+  placed_in_.assign(deg_, {});
+  face_in_.assign(deg_, {});
+  star_x_.assign(deg_, 0.0);
+  check_circles_.assign(deg_, core::Circle{});
+  // Intersection cosines of the star, as PackingComplex stores them: an edge of K is orthogonal iff
+  // it touches a face vertex. Empty for a tangent-only star (the closed-form update applies).
+  if (know_.polygon_here) {
+    for (std::size_t i = 0; i < deg_; ++i) {
+      spoke_.push_back(cos_spoke(i));
+      rim_.push_back(cos_rim(i));
+    }
+  }
+  x_ = know_.boundary ? 0.0 : core::x_of_radius(1.0);  // core::initial_radii
+}
+
+std::size_t PackingAgent::children() const {
+  return static_cast<std::size_t>(std::count(child_.begin(), child_.end(), std::uint8_t{1}));
+}
+
+VertexState PackingAgent::state() const {
+  VertexState s;
+  s.id = know_.id;
+  s.depth = depth_;
+  s.is_root = is_root_;
+  s.wave = wave_;
+  s.parent = parent_;
+  s.steps = step_;
+  s.round = round_;
+  s.x = x_;
+  s.placement = placed_;
+  s.local = local_;
+  s.phase = phase_;
+  return s;
+}
+
+void PackingAgent::send(std::size_t i, const Message& m) {
+  encode(m, buffer_);
+  send_encoded(i);
+}
+
+void PackingAgent::send_encoded(std::size_t i) { host_.send(index_, i, buffer_); }
+
+void PackingAgent::broadcast(const Message& m) {
+  encode(m, buffer_);
+  for (std::size_t i = 0; i < deg_; ++i) send_encoded(i);
+}
+
+bool PackingAgent::better(std::uint32_t d1, NodeId id1, std::uint32_t d2, NodeId id2) const {
+  return d1 > d2 || (d1 == d2 && id1 < id2);
+}
+
+void PackingAgent::start() {
+  if (phase_ != PackingPhase::idle) return;
+  phase_ = PackingPhase::depth;
+  if (know_.boundary) depth_ = 0;
+  broadcast(DepthMsg{0, know_.boundary});
+  advance_depth();
+  maybe_candidate();
+}
+
+void PackingAgent::receive(std::size_t i, const Message& m) {
+  if (phase_ == PackingPhase::idle || phase_ == PackingPhase::finished) {
+    ++host_.counters().unexpected;
+    return;
+  }
+  std::visit([&](const auto& msg) { handle(i, msg); }, m);
+}
+
+void PackingAgent::handle(std::size_t, const RelayMsg&) { ++host_.counters().unexpected; }  // envelopes never nest
+void PackingAgent::handle(std::size_t, const DataMsg&) { ++host_.counters().unexpected; }   // ForwardingNode's
+
+// ---- Depth: pulse-synchronized BFS from the boundary (over K) -----------------------------------
+
+void PackingAgent::handle(std::size_t i, const DepthMsg& m) {
+  if (m.final) {
+    if (nbr_depth_[i] != unknown) {
+      ++host_.counters().unexpected;
+      return;
+    }
+    nbr_depth_[i] = m.pulse;
+    ++nbr_depths_known_;
+  } else {
+    nbr_depth_seen_[i] = std::max(nbr_depth_seen_[i], m.pulse + 1);
+  }
+  advance_depth();
+  maybe_candidate();
+  if (nbr_depths_known_ == deg_) {
+    advance_wave();
+    maybe_finish_setup();
+  }
+}
+
+void PackingAgent::advance_depth() {
+  // Status of neighbour i at pulse p is known if its final depth is known or it said "unknown" at
+  // some pulse ≥ p. In a synchronous BFS the first pulse at which a neighbour's depth is known is that
+  // depth, so v's depth is 1 + the first pulse p at which some neighbour has depth ≤ p.
+  while (depth_ == unknown) {
+    const std::uint32_t p = depth_pulse_;
+    bool found = false;
+    for (std::size_t i = 0; i < deg_; ++i) {
+      if (nbr_depth_[i] == unknown && nbr_depth_seen_[i] <= p) return;
+      found = found || nbr_depth_[i] <= p;
+    }
+    ++depth_pulse_;
+    if (found) depth_ = depth_pulse_;
+    broadcast(DepthMsg{depth_pulse_, found});
+  }
+}
+
+// ---- Election: echo with extinction over (depth, id), original vertices only -----------------------
+
+void PackingAgent::maybe_candidate() {
+  if (candidate_checked_ || wave_started_ || depth_ == unknown || nbr_depths_known_ < deg_) return;
+  candidate_checked_ = true;
+  if (phase_ == PackingPhase::depth) phase_ = PackingPhase::election;
+  // core::choose_root ranges over the vertices of G: face vertices only relay the election.
+  if (know_.boundary || know_.is_face) return;
+  const bool deepest = params_.root == core::RootRule::deepest;
+  const std::uint32_t key = deepest ? depth_ : 0;
+  // Only local maxima among interior G-neighbours start a wave: the global maximum is one.
+  for (std::size_t i = 0; i < deg_; ++i)
+    if (interior_nbr(i) && !know_.face_nbr[i] && !better(key, know_.id, deepest ? nbr_depth_[i] : 0, know_.neighbours[i]))
+      return;
+  if (in_wave_ && !better(key, know_.id, best_depth_, best_id_)) return;
+  in_wave_ = true;
+  best_depth_ = key;
+  best_id_ = know_.id;
+  echo_parent_ = deg_;
+  echo_count_ = 0;
+  broadcast(ElectionMsg{key, know_.id});
+}
+
+void PackingAgent::handle(std::size_t i, const ElectionMsg& m) {
+  if (wave_started_) return;  // a late token of an extinguished wave
+  if (!in_wave_ || better(m.depth, m.id, best_depth_, best_id_)) {
+    in_wave_ = true;
+    best_depth_ = m.depth;
+    best_id_ = m.id;
+    echo_parent_ = i;
+    echo_count_ = 1;
+    encode(m, buffer_);
+    for (std::size_t j = 0; j < deg_; ++j)
+      if (j != i) send_encoded(j);
+  } else if (m.depth == best_depth_ && m.id == best_id_) {
+    ++echo_count_;
+  } else {
+    return;  // weaker wave: extinguished here
+  }
+  if (echo_count_ > deg_) {
+    ++host_.counters().unexpected;
+    return;
+  }
+  if (echo_count_ < deg_) return;
+  if (echo_parent_ == deg_) begin_wave(deg_, know_.id, know_.neighbours[0]);
+  else send(echo_parent_, ElectionMsg{best_depth_, best_id_});
+}
+
+// ---- Wave set-up: the combinatorial layout wave on K ------------------------------------------------
+
+void PackingAgent::handle(std::size_t i, const StartMsg& m) {
+  if (wave_started_) {
+    if (m.root != root_id_) ++host_.counters().unexpected;
+    return;
+  }
+  begin_wave(i, m.root, m.first);
+}
+
+void PackingAgent::begin_wave(std::size_t from, NodeId root, NodeId first) {
+  wave_started_ = true;
+  phase_ = PackingPhase::wave;
+  root_id_ = root;
+  is_root_ = root == know_.id;
+  is_first_ = first == know_.id;
+  encode(StartMsg{root, first}, buffer_);
+  for (std::size_t j = 0; j < deg_; ++j)
+    if (j != from) send_encoded(j);
+  const auto root_index = static_cast<std::size_t>(
+      std::find(know_.neighbours.begin(), know_.neighbours.end(), root) - know_.neighbours.begin());
+  if (is_root_) {
+    wave_ = 0;
+    parent_ = know_.id;
+    parent_index_ = deg_;
+    broadcast(WaveMsg{0, true, parent_});
+  } else if (is_first_ && root_index != deg_) {
+    wave_ = 0;
+    parent_ = root;
+    parent_index_ = root_index;
+    broadcast(WaveMsg{0, true, parent_});
+  } else {
+    broadcast(WaveMsg{0, false, 0});
+  }
+  advance_wave();
+  maybe_finish_setup();
+}
+
+void PackingAgent::handle(std::size_t i, const WaveMsg& m) {
+  if (m.placed) {
+    if (nbr_wave_[i] != unknown) {
+      ++host_.counters().unexpected;
+      return;
+    }
+    nbr_wave_[i] = m.pulse;
+    child_[i] = m.parent == know_.id ? 1 : 0;
+    ++nbr_waves_known_;
+  } else {
+    nbr_wave_seen_[i] = std::max(nbr_wave_seen_[i], m.pulse + 1);
+  }
+  advance_wave();
+  maybe_finish_setup();
+}
+
+void PackingAgent::advance_wave() {
+  // Pulse p decides whether v is placed in wave p + 1 (core::lay_out's round p + 1): it needs every
+  // K-neighbour's status at p and which neighbours are interior. Face vertices take part exactly as
+  // lay_out treats them: as vertices of K, placed and anchoring by the same rule.
+  if (!wave_started_ || nbr_depths_known_ < deg_) return;
+  while (wave_ == unknown) {
+    const std::uint32_t p = wave_pulse_;
+    for (std::size_t i = 0; i < deg_; ++i)
+      if (nbr_wave_[i] == unknown && nbr_wave_seen_[i] <= p) return;
+    const auto d = static_cast<std::uint32_t>(deg_);
+    const std::uint32_t w = core::choose_placement_wedge(
+        d, [&](std::uint32_t j) { return j != know_.outer_gap; },
+        [&](std::uint32_t j) { return nbr_wave_[j] <= p; }, [&](std::uint32_t j) { return interior_nbr(j); });
+    ++wave_pulse_;
+    if (w == d) {
+      broadcast(WaveMsg{wave_pulse_, false, 0});
+      continue;
+    }
+    wave_ = wave_pulse_;
+    anchor_a_ = w;
+    anchor_b_ = w + 1 == d ? 0 : w + 1;
+    parent_index_ = core::parent_is_first_anchor(interior_nbr(anchor_a_), interior_nbr(anchor_b_)) ? anchor_a_ : anchor_b_;
+    parent_ = know_.neighbours[parent_index_];
+    broadcast(WaveMsg{wave_pulse_, true, parent_});
+  }
+}
+
+void PackingAgent::maybe_finish_setup() {
+  if (setup_done_ || wave_ == unknown || nbr_waves_known_ < deg_ || nbr_depths_known_ < deg_) return;
+  setup_done_ = true;
+  advance_shape();
+}
+
+// ---- Shape: OR of "touches a face vertex" up the layout tree, then down -----------------------------
+
+void PackingAgent::handle(std::size_t i, const ShapeMsg& m) {
+  if (!m.down) {
+    // From a child (checked once the tree is known, in advance_shape); may precede our set-up's end.
+    if (shape_up_[i] != 0) {
+      ++host_.counters().unexpected;
+      return;
+    }
+    shape_up_[i] = m.polygon ? 2 : 1;
+    advance_shape();
+    return;
+  }
+  if (!setup_done_ || shape_known_ || is_root_ || i != parent_index_) {
+    ++host_.counters().unexpected;
+    return;
+  }
+  shape_known_ = true;
+  polygon_ = m.polygon;
+  encode(ShapeMsg{true, polygon_}, buffer_);
+  for (std::size_t j = 0; j < deg_; ++j)
+    if (child_[j]) send_encoded(j);
+  phase_ = PackingPhase::rounds;
+  round_ = 0;
+  begin_round();
+}
+
+void PackingAgent::advance_shape() {
+  if (!setup_done_ || shape_sent_) return;
+  bool any = know_.polygon_here;
+  for (std::size_t i = 0; i < deg_; ++i) {
+    if (shape_up_[i] != 0 && !child_[i]) {
+      ++host_.counters().unexpected;
+      shape_up_[i] = 0;
+    }
+    if (!child_[i]) continue;
+    if (shape_up_[i] == 0) return;
+    any = any || shape_up_[i] == 2;
+  }
+  shape_sent_ = true;
+  if (!is_root_) {
+    send(parent_index_, ShapeMsg{false, any});
+    return;
+  }
+  // The root knows the answer for the whole of K (the tree spans it): tell everyone, start round 0.
+  shape_known_ = true;
+  polygon_ = any;
+  encode(ShapeMsg{true, polygon_}, buffer_);
+  for (std::size_t j = 0; j < deg_; ++j)
+    if (child_[j]) send_encoded(j);
+  phase_ = PackingPhase::rounds;
+  round_ = 0;
+  begin_round();
+}
+
+// ---- Rounds -------------------------------------------------------------------------------------------
+
+void PackingAgent::begin_round() {
+  placed_this_round_ = false;
+  checked_this_round_ = false;
+  reported_ = false;
+  reports_ = 0;
+  reports_ok_ = true;
+  const auto cap = static_cast<std::uint32_t>(params_.max_iterations);
+  const auto n = static_cast<std::uint32_t>(params_.steps_per_check);
+  round_end_step_ = round_ == 0 ? step_ : step_ + std::min(n, cap - std::min(cap, step_));
+  sent_step_ = false;
+  advance_steps();
+}
+
+void PackingAgent::handle(std::size_t i, const RadiusMsg& m) {
+  if (phase_ != PackingPhase::rounds || know_.boundary || !interior_nbr(i) || m.step < step_ || m.step > step_ + 1) {
+    ++host_.counters().unexpected;
+    return;
+  }
+  radius_[i][m.step & 1] = Slot{m.step, m.x};
+  advance_steps();
+}
+
+void PackingAgent::advance_steps() {
+  if (know_.boundary) step_ = round_end_step_;  // horocycles never change
+  while (step_ < round_end_step_) {
+    if (!sent_step_) {
+      sent_step_ = true;
+      encode(RadiusMsg{step_, x_}, buffer_);
+      for (std::size_t i = 0; i < deg_; ++i)
+        if (interior_nbr(i)) send_encoded(i);
+    }
+    const std::size_t slot = step_ & 1;
+    for (std::size_t i = 0; i < deg_; ++i) {
+      if (!interior_nbr(i)) {
+        star_x_[i] = 0.0;
+        continue;
+      }
+      if (radius_[i][slot].tag != step_) return;
+      star_x_[i] = radius_[i][slot].x;
+    }
+    // The Jacobi update on K: every neighbour value is from step t, the cosines are those of
+    // PackingComplex (spoke_/rim_ empty iff tangent_only), as in core::thurston_sweep.
+    x_ = core::star_updated_radius(x_, core::StarView{star_x_, spoke_, rim_}, params_.update);
+    ++step_;
+    sent_step_ = false;
+  }
+  advance_layout();
+}
+
+void PackingAgent::handle(std::size_t i, const PlacedMsg& m) {
+  if (m.round != round_ && m.round != round_ + 1) {
+    ++host_.counters().unexpected;
+    return;
+  }
+  placed_in_[i][m.round & 1] = PlacedSlot{m.round, m.x, {{m.centre_re, m.centre_im}, {m.cx, m.cy, m.cr}}};
+  if (phase_ == PackingPhase::rounds) advance_layout();
+}
+
+void PackingAgent::handle(std::size_t i, const FaceCirclesMsg& m) {
+  // Only from a face vertex, with one circle per member of its face (its degree is not known here:
+  // the size is checked against the walk when used), at most one round ahead.
+  if (!know_.face_nbr[i] || know_.is_face || (m.round != round_ && m.round != round_ + 1)) {
+    ++host_.counters().unexpected;
+    return;
+  }
+  FaceSlot& s = face_in_[i][m.round & 1];
+  s.tag = m.round;
+  s.circles.clear();
+  for (const FaceCircle& c : m.circles) s.circles.push_back({c.x, c.y, c.r});
+  if (phase_ == PackingPhase::rounds) advance_layout();
+}
+
+void PackingAgent::advance_layout() {
+  if (step_ < round_end_step_ || phase_ != PackingPhase::rounds) return;
+  const std::size_t slot = round_ & 1;
+  auto heard = [&](std::size_t i) { return placed_in_[i][slot].tag == round_; };
+  if (!placed_this_round_) {
+    const core::LayoutVertex me{x_, !know_.boundary};
+    if (is_root_) {
+      placed_ = core::place_root(x_);
+    } else if (is_first_) {
+      if (!heard(parent_index_)) return;
+      placed_ = core::place_first_neighbour(placed_in_[parent_index_][slot].x, me, polygon_ ? cos_spoke(parent_index_) : 1.0);
+    } else {
+      if (!heard(anchor_a_) || !heard(anchor_b_)) return;
+      const PlacedSlot& a = placed_in_[anchor_a_][slot];
+      const PlacedSlot& b = placed_in_[anchor_b_][slot];
+      // lay_out's cosines: 1 everywhere for a triangulation, else those of K, with the overlap formula.
+      const core::FaceCosines c = polygon_ ? core::FaceCosines{cos_spoke(anchor_a_), cos_spoke(anchor_b_), cos_rim(anchor_a_), true}
+                                           : core::FaceCosines{};
+      placed_ = core::place_in_face(me, {a.x, interior_nbr(anchor_a_)}, a.at, {b.x, interior_nbr(anchor_b_)}, b.at, c);
+    }
+    placed_this_round_ = true;
+    broadcast(PlacedMsg{round_, x_, placed_.centre.real(), placed_.centre.imag(), placed_.circle.x,
+                        placed_.circle.y, placed_.circle.r});
+  }
+  if (!checked_this_round_) {
+    for (std::size_t i = 0; i < deg_; ++i)
+      if (!heard(i)) return;
+    if (!check()) return;
+    checked_this_round_ = true;
+  }
+  advance_convergecast();
+}
+
+bool PackingAgent::check() {
+  const std::size_t slot = round_ & 1;
+  if (know_.is_face) {
+    // core checks G only: a face vertex's part is to hand its members the circles of the face.
+    FaceCirclesMsg fc;
+    fc.round = round_;
+    for (std::size_t i = 0; i < deg_; ++i) {
+      const core::Circle& c = placed_in_[i][slot].at.circle;
+      fc.circles.push_back({c.x, c.y, c.r});
+    }
+    broadcast(fc);
+    local_ = core::LocalCondition::holds;
+    return true;
+  }
+  if (!polygon_) {
+    // LPD lists a boundary vertex's neighbours from w1, just after the outer wedge (lpd_first_dart).
+    const std::size_t start = know_.boundary ? (know_.outer_gap + 1) % deg_ : 0;
+    for (std::size_t j = 0; j < deg_; ++j) check_circles_[j] = placed_in_[(start + j) % deg_][slot].at.circle;
+    local_ = core::check_lpd_at(placed_.circle, check_circles_, know_.boundary);
+    return true;
+  }
+  // GLPD (core::check_all's choice when some inner face is not a triangle), from the circles of the
+  // G-neighbours and, per polygon face, the face vertex's FaceCirclesMsg of this round.
+  const std::size_t gdeg = know_.g_k.size();
+  for (std::size_t i = 0; i < gdeg; ++i)
+    if (know_.g_face[i] != nullptr) {
+      const FaceSlot& s = face_in_[know_.g_k[i] + 1][slot];
+      if (s.tag != round_) return false;
+      if (s.circles.size() != know_.g_face[i]->size()) {
+        ++host_.counters().unexpected;
+        return false;  // a malformed face message: never decide on it
+      }
+    }
+  std::vector<core::Circle> nb(gdeg);
+  std::vector<std::uint64_t> nid(gdeg);
+  for (std::size_t i = 0; i < gdeg; ++i) {
+    nb[i] = placed_in_[know_.g_k[i]][slot].at.circle;
+    nid[i] = know_.neighbours[know_.g_k[i]];
+  }
+  std::vector<std::vector<core::Circle>> fc(gdeg);
+  std::vector<std::vector<std::uint64_t>> fid(gdeg);
+  std::vector<GlpdWedge> wedges(gdeg);
+  for (std::size_t i = 0; i < gdeg; ++i) {
+    const std::size_t j = i + 1 == gdeg ? 0 : i + 1;
+    if (know_.boundary && i == know_.g_outer_gap) {
+      wedges[i].outer = true;
+      continue;
+    }
+    if (const std::vector<NodeId>* walk = know_.g_face[i]) {
+      // Rotate the host-ordered circles to start at this vertex: walk[p] is the host.
+      const std::size_t m = walk->size();
+      const std::size_t p = static_cast<std::size_t>(std::min_element(walk->begin(), walk->end()) - walk->begin());
+      const FaceSlot& s = face_in_[know_.g_k[i] + 1][slot];
+      for (std::size_t k = 0; k < m; ++k) {
+        fc[i].push_back(s.circles[(k + m - p) % m]);
+        fid[i].push_back((*walk)[k]);
+      }
+    } else {
+      fc[i] = {placed_.circle, nb[i], nb[j]};
+      fid[i] = {know_.id, nid[i], nid[j]};
+    }
+    wedges[i].circles = fc[i];
+    wedges[i].ids = fid[i];
+  }
+  local_ = check_glpd_local(placed_.circle, know_.id, nb, nid, know_.boundary, know_.g_outer_gap, wedges);
+  return true;
+}
+
+void PackingAgent::handle(std::size_t i, const ReportMsg& m) {
+  if (phase_ != PackingPhase::rounds || !child_[i] || m.round != round_) {
+    ++host_.counters().unexpected;
+    return;
+  }
+  ++reports_;
+  reports_ok_ = reports_ok_ && m.ok;
+  advance_convergecast();
+}
+
+void PackingAgent::advance_convergecast() {
+  if (!checked_this_round_ || reported_ || reports_ < children()) return;
+  reported_ = true;
+  const bool ok = reports_ok_ && local_ == core::LocalCondition::holds;
+  if (!is_root_) {
+    send(parent_index_, ReportMsg{round_, ok});
+    return;
+  }
+  const Verdict v = ok ? Verdict::converged
+                       : (step_ >= static_cast<std::uint32_t>(params_.max_iterations) ? Verdict::cap : Verdict::next);
+  apply_decision(v);
+}
+
+void PackingAgent::handle(std::size_t i, const DecisionMsg& m) {
+  if (phase_ != PackingPhase::rounds || is_root_ || i != parent_index_ || m.round != round_ || !reported_) {
+    ++host_.counters().unexpected;
+    return;
+  }
+  apply_decision(m.verdict);
+}
+
+void PackingAgent::apply_decision(Verdict v) {
+  encode(DecisionMsg{round_, v}, buffer_);
+  for (std::size_t i = 0; i < deg_; ++i)
+    if (child_[i]) send_encoded(i);
+  if (v == Verdict::next) {
+    ++round_;
+    begin_round();
+    return;
+  }
+  phase_ = PackingPhase::finished;
+  outcome_ = v == Verdict::converged ? PackingOutcome::converged : PackingOutcome::cap;
+}
+
+}  // namespace laguerre::protocols::detail
