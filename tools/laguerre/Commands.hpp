@@ -15,6 +15,8 @@ using Action = std::function<int()>;
 Action add_pack_command(CLI::App& app);
 /// `laguerre route GRAPH-or-EMBEDDING …`: routing table over pairs.
 Action add_route_command(CLI::App& app);
+/// `laguerre simulate …`: the distributed protocol in the discrete-event simulator.
+Action add_simulate_command(CLI::App& app);
 /// `laguerre generate …`: random graphs of the documented families.
 Action add_generate_command(CLI::App& app);
 /// `laguerre thesis-table …`: the experiment of thesis §5.4.1.

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   Action route = add_route_command(app);
   Action table = add_thesis_table_command(app);
   Action generate = add_generate_command(app);
+  Action simulate = add_simulate_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("route")) return route();
     if (app.got_subcommand("thesis-table")) return table();
     if (app.got_subcommand("generate")) return generate();
+    if (app.got_subcommand("simulate")) return simulate();
   } catch (const laguerre::core::GraphInputError& e) {
     std::cerr << "laguerre: " << e.what() << '\n';
     return 2;

@@ -54,7 +54,7 @@ const std::string example3 = std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/grap
 }  // namespace
 
 TEST_F(Cli, HelpForEveryCommand) {
-  for (const char* c : {"", "pack", "route", "thesis-table", "generate"}) {
+  for (const char* c : {"", "pack", "route", "thesis-table", "generate", "simulate"}) {
     const Outcome r = run(std::string(c) + " --help");
     EXPECT_EQ(r.status, 0) << c;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << c;
@@ -159,4 +159,35 @@ TEST_F(Cli, PlanarCodeFilesWithSeveralGraphs) {
   ASSERT_EQ(routed.status, 0) << routed.out;
   const auto doc = nlohmann::json::parse(routed.out);
   EXPECT_EQ(doc["schemes"][0]["delivered"], doc["schemes"][0]["pairs"]);
+}
+
+TEST_F(Cli, SimulateRunsTheProtocolAndMatchesTheCore) {
+  for (const auto& g : {example, example3}) {
+    const Outcome r = run("simulate " + g + " --verify --latency uniform:1ms:4ms -N 2 --pairs 300 --json");
+    ASSERT_EQ(r.status, 0) << r.out;
+    const auto doc = nlohmann::json::parse(r.out);
+    EXPECT_EQ(doc["converged_nodes"], 60);
+    EXPECT_EQ(doc["local_condition_holds"], 60);
+    EXPECT_EQ(doc["verify"], "identical to core::pack, bit for bit");
+    EXPECT_EQ(doc["packets"], 300);
+    EXPECT_EQ(doc["delivered"], 300);
+    EXPECT_GT(doc["events_per_second"].get<double>(), 0.0);
+  }
+  // Same seed, same run; the simulated time depends on the seed through the random latencies.
+  const Outcome a = run("simulate " + example + " --latency uniform:1ms:4ms --seed 3 --json --pairs 10");
+  const Outcome b = run("simulate " + example + " --latency uniform:1ms:4ms --seed 3 --json --pairs 10");
+  const Outcome c = run("simulate " + example + " --latency uniform:1ms:4ms --seed 4 --json --pairs 10");
+  const auto ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out), jc = nlohmann::json::parse(c.out);
+  EXPECT_EQ(ja["simulated_seconds"], jb["simulated_seconds"]);
+  EXPECT_EQ(ja["messages"], jb["messages"]);
+  EXPECT_NE(ja["simulated_seconds"], jc["simulated_seconds"]);
+}
+
+TEST_F(Cli, SimulateRejectsWhatItCannotDoYet) {
+  Outcome r = run("simulate " + example + " --loss 0.2");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("reliable links"), std::string::npos) << r.out;
+  r = run("simulate " + example + " --latency sometimes");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("--latency"), std::string::npos) << r.out;
 }

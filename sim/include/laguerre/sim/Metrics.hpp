@@ -1,0 +1,79 @@
+#pragma once
+/// @file
+/// Traffic counters per node and per protocol phase, and the report of one run.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "laguerre/sim/Kernel.hpp"
+#include "laguerre/sim/Time.hpp"
+
+namespace laguerre::sim {
+
+/// A protocol phase: a small tag the sender attaches to a message (e.g. its codec's message type).
+using Phase = std::uint16_t;
+
+/// Message and byte counts. "lost" is the channel's doing (loss probability); "dropped" is a crash's
+/// (a send by a crashed node, counted at the sender; a delivery to a crashed node, counted at the
+/// receiver).
+struct TrafficCounters {
+  std::uint64_t messages_sent = 0;        ///< messages handed to the network by the node
+  std::uint64_t bytes_sent = 0;           ///< their bytes
+  std::uint64_t messages_received = 0;    ///< copies delivered to the node's handler
+  std::uint64_t bytes_received = 0;       ///< their bytes
+  std::uint64_t messages_lost = 0;        ///< copies sent by the node and lost by the channel
+  std::uint64_t bytes_lost = 0;           ///< their bytes
+  std::uint64_t messages_dropped = 0;     ///< copies dropped because an endpoint had crashed
+  std::uint64_t bytes_dropped = 0;        ///< their bytes
+  std::uint64_t messages_duplicated = 0;  ///< extra copies the channel made of the node's messages
+
+  /// Adds `other` field by field.
+  TrafficCounters& operator+=(const TrafficCounters& other);
+  /// Field-by-field equality.
+  friend bool operator==(const TrafficCounters&, const TrafficCounters&) = default;
+};
+
+/// Counters indexed by (phase, node); phases appear as they are used.
+class TrafficMetrics {
+public:
+  /// Counters for `node_count` nodes, no phase yet.
+  explicit TrafficMetrics(std::size_t node_count = 0) : node_count_(node_count) {}
+  /// The counters of (`node`, `phase`), created on first use.
+  TrafficCounters& at(std::uint32_t node, Phase phase) {
+    if (phase >= by_phase_.size()) grow(phase);
+    return by_phase_[phase][node];
+  }
+  /// Number of phases seen so far (the largest tag + 1).
+  std::size_t phase_count() const { return by_phase_.size(); }
+  /// Number of nodes.
+  std::size_t node_count() const { return node_count_; }
+  /// The counters of (`node`, `phase`), zero if the phase never occurred.
+  TrafficCounters get(std::uint32_t node, Phase phase) const;
+  /// Sum over phases for one node.
+  TrafficCounters node_total(std::uint32_t node) const;
+  /// Sum over nodes for one phase.
+  TrafficCounters phase_total(Phase phase) const;
+  /// Sum over everything.
+  TrafficCounters total() const;
+
+private:
+  void grow(Phase phase);
+  std::size_t node_count_;
+  std::vector<std::vector<TrafficCounters>> by_phase_;
+};
+
+/// What one call of Simulator::run did.
+struct RunReport {
+  StopReason reason = StopReason::queue_empty;  ///< why it returned
+  Time simulated_time = 0;                       ///< the clock when it returned
+  double wall_seconds = 0;                       ///< wall-clock duration of the call
+  std::uint64_t events_processed = 0;            ///< events dispatched during the call
+  double events_per_second = 0;                  ///< events_processed / wall_seconds
+  std::uint64_t peak_memory_bytes = 0;           ///< the process's peak resident set size so far
+};
+
+/// The process's peak resident set size in bytes (getrusage; 0 if unavailable).
+std::uint64_t peak_memory_bytes();
+
+}  // namespace laguerre::sim

@@ -1,0 +1,69 @@
+#pragma once
+/// @file
+/// The host adapter: runs protocols::Node objects on the Simulator, one protocols::Runtime per node.
+///
+/// The mapping is thin: Runtime::send/broadcast → Simulator::send/broadcast (protocol node ids are
+/// the network's user ids), schedule/cancel → kernel timers (the TimerHandle is the kernel handle's
+/// value, never 0), random_u64 → the node's counter-based stream keyed by (seed, node id), now → the
+/// simulated clock. Messages are tagged with a phase by an optional classifier over their bytes
+/// (e.g. the codec's message-type byte), since the runtime interface itself carries no phase.
+///
+/// protocols::Node has no recovery callback: a node that recovers from a crash keeps its state and
+/// silently resumes (timers that fired during the outage are lost).
+
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "laguerre/protocols/Runtime.hpp"
+#include "laguerre/sim/Simulator.hpp"
+
+namespace laguerre::sim {
+
+/// Hosts one protocols::Node per network node on a Simulator.
+class SimHost final : private NodeHandler {
+public:
+  /// Builds the node for index `v`, given the runtime it must use (which outlives it).
+  using NodeFactory = std::function<std::unique_ptr<protocols::Node>(protocols::Runtime&, NodeIndex)>;
+  /// Maps a message's bytes to the phase its traffic is counted under.
+  using PhaseOf = std::function<Phase(std::span<const std::byte>)>;
+
+  /// A host of `network` whose nodes `factory` builds (all of them, in index order, right away).
+  /// Without `phase_of`, every message counts under phase 0. Throws std::invalid_argument if the
+  /// factory returns a null node.
+  SimHost(Network network, SimConfig config, const NodeFactory& factory, PhaseOf phase_of = {});
+  SimHost(const SimHost&) = delete;
+  SimHost& operator=(const SimHost&) = delete;
+  ~SimHost() override;
+
+  /// Runs the simulation (see Simulator::run).
+  RunReport run(const RunLimits& limits = {}) { return simulator_.run(limits); }
+  /// The simulator (metrics, trace, clock, network).
+  Simulator& simulator() { return simulator_; }
+  /// The simulator, read-only.
+  const Simulator& simulator() const { return simulator_; }
+  /// The node at index `v`.
+  protocols::Node& node(NodeIndex v) { return *nodes_[v]; }
+  /// The runtime serving the node at index `v`.
+  protocols::Runtime& runtime(NodeIndex v);
+  /// Runtime calls rejected because they named an unknown node or a non-neighbour (they also throw).
+  std::uint64_t bad_destinations() const { return bad_destinations_; }
+
+private:
+  class NodeRuntime;
+
+  Phase phase(std::span<const std::byte> bytes) const;
+  void on_start(Simulator& sim, NodeIndex v) override;
+  void on_message(Simulator& sim, NodeIndex v, NodeIndex from, Phase phase,
+                  std::span<const std::byte> bytes) override;
+  void on_timer(Simulator& sim, NodeIndex v, std::uint64_t timer) override;
+
+  Simulator simulator_;
+  PhaseOf phase_of_;
+  std::vector<std::unique_ptr<NodeRuntime>> runtimes_;
+  std::vector<std::unique_ptr<protocols::Node>> nodes_;
+  std::uint64_t bad_destinations_ = 0;
+};
+
+}  // namespace laguerre::sim

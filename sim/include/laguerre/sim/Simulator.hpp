@@ -1,0 +1,148 @@
+#pragma once
+/// @file
+/// The simulator: delivers byte messages between node handlers over a Network, with timers, link
+/// models, crashes, per-node random streams, traffic metrics and an optional trace.
+///
+/// Semantics (all times in simulated nanoseconds):
+///  - Every node is started at time 0, in index order (NodeHandler::on_start).
+///  - `send` draws the message's fate from a stream keyed by (seed, link, index of the message on
+///    that link): loss, latency, duplication. A delivered copy reaches the receiver's handler at
+///    now + latency. Messages only travel on links; sending to a non-neighbour throws.
+///  - Crashes come from the Network's schedule. While a node is down, its sends, the copies that
+///    reach it, and its timers that fire are dropped and counted. Copies already in flight when their
+///    sender crashes are still delivered (they are on the air). A node down at time 0 is started when
+///    it first recovers; a node that recovers after having started gets NodeHandler::on_recover (its
+///    state survives the outage; timers that fell inside it are lost).
+///  - Failure events are scheduled when the first run starts, before the node starts and before
+///    anything a handler schedules, so at equal times a crash or recovery precedes every start,
+///    message and timer due at that instant (a crash at time 0 means the node never starts before
+///    it recovers).
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "laguerre/sim/Kernel.hpp"
+#include "laguerre/sim/Metrics.hpp"
+#include "laguerre/sim/Network.hpp"
+#include "laguerre/sim/Random.hpp"
+#include "laguerre/sim/Trace.hpp"
+
+namespace laguerre::sim {
+
+class Simulator;
+
+/// Identifies a pending timer (a kernel event handle); value 0 is never a live timer.
+using TimerHandle = EventHandle;
+
+/// The callbacks a simulator invokes for the nodes it runs (one object serves every node).
+class NodeHandler {
+public:
+  virtual ~NodeHandler() = default;
+  /// Node `v` starts (once, before any other callback for `v`).
+  virtual void on_start(Simulator& sim, NodeIndex v) = 0;
+  /// A copy of a message from neighbour `from` reached `v`; `bytes` is valid during the call only.
+  virtual void on_message(Simulator& sim, NodeIndex v, NodeIndex from, Phase phase,
+                          std::span<const std::byte> bytes) = 0;
+  /// A timer that `v` scheduled fired.
+  virtual void on_timer(Simulator& sim, NodeIndex v, std::uint64_t timer) = 0;
+  /// Node `v` came back after a crash (only if it had started before).
+  virtual void on_recover(Simulator& /*sim*/, NodeIndex /*v*/) {}
+};
+
+/// Run-wide settings.
+struct SimConfig {
+  std::uint64_t seed = 1;              ///< the root of every random stream
+  TraceMode trace = TraceMode::off;    ///< what to keep of delivered messages
+};
+
+/// A discrete-event simulation of one network. Not copyable (the kernel's handlers point at it).
+class Simulator {
+public:
+  /// A simulator of `network` whose nodes are served by `handler` (which must outlive it).
+  /// Throws std::invalid_argument if the network is inconsistent (Network::validate).
+  Simulator(Network network, SimConfig config, NodeHandler& handler);
+  Simulator(const Simulator&) = delete;
+  Simulator& operator=(const Simulator&) = delete;
+
+  /// Runs until the limits (see Kernel::run); the first call starts the nodes and the failure
+  /// schedule. May be called again to continue.
+  RunReport run(const RunLimits& limits = {});
+  /// Asks run() to return after the current event.
+  void request_stop() { kernel_.request_stop(); }
+
+  /// Current simulated time.
+  Time now() const { return kernel_.now(); }
+  /// Sends `bytes` from `from` to its neighbour `to`, tagged with `phase`. Throws
+  /// std::invalid_argument if `to` is not a neighbour of `from`.
+  void send(NodeIndex from, NodeIndex to, std::span<const std::byte> bytes, Phase phase = 0);
+  /// Sends `bytes` from `from` to each of its neighbours (one copy of the bytes is stored).
+  void broadcast(NodeIndex from, std::span<const std::byte> bytes, Phase phase = 0);
+  /// Schedules NodeHandler::on_timer(v, timer) after `after` ≥ 0 ns. Throws std::invalid_argument
+  /// for a negative delay.
+  TimerHandle schedule_timer(NodeIndex v, Duration after, std::uint64_t timer);
+  /// Cancels a pending timer; false if it already fired, was cancelled, or is unknown.
+  bool cancel_timer(TimerHandle handle) {
+    return kernel_.cancel(handle) == CancelResult::cancelled;
+  }
+  /// The random stream of node `v`, keyed by (seed, node, id(v)).
+  RandomStream& node_stream(NodeIndex v) { return node_streams_[v]; }
+  /// Whether `v` is up (not crashed) now.
+  bool is_up(NodeIndex v) const { return down_[v] == 0; }
+
+  /// The network.
+  const Network& network() const { return network_; }
+  /// The settings.
+  const SimConfig& config() const { return config_; }
+  /// Traffic counters per node and phase.
+  const TrafficMetrics& traffic() const { return traffic_; }
+  /// The trace of delivered messages.
+  const Trace& trace() const { return trace_; }
+  /// Timers dropped because their node was down when they fired.
+  std::uint64_t timers_dropped() const { return timers_dropped_; }
+  /// The underlying kernel (to schedule extra model events with handlers of one's own).
+  Kernel& kernel() { return kernel_; }
+  /// The underlying kernel, read-only.
+  const Kernel& kernel() const { return kernel_; }
+
+private:
+  /// One stored message, shared by every copy in flight (reference-counted, recycled).
+  struct Message {
+    std::vector<std::byte> bytes;
+    NodeIndex from = 0;
+    Phase phase = 0;
+    std::uint32_t refs = 0;
+    std::uint64_t digest = 0;
+  };
+
+  void on_start_event(Kernel& kernel, const Event& event);
+  void on_deliver_event(Kernel& kernel, const Event& event);
+  void on_timer_event(Kernel& kernel, const Event& event);
+  void on_crash_event(Kernel& kernel, const Event& event);
+  void on_recover_event(Kernel& kernel, const Event& event);
+  std::uint32_t store(NodeIndex from, std::span<const std::byte> bytes, Phase phase);
+  void release(std::uint32_t message);
+  /// Puts one message on link `link` (the message is already stored; adds its references).
+  void transmit(LinkIndex link, std::uint32_t message, std::uint32_t size);
+
+  Network network_;
+  SimConfig config_;
+  NodeHandler* handler_;
+  Kernel kernel_;
+  HandlerId start_id_, deliver_id_, timer_id_, crash_id_, recover_id_;
+  std::vector<RandomStream> node_streams_;
+  std::vector<std::uint64_t> link_keys_;      // stream key of each directed link
+  std::vector<std::uint64_t> link_messages_;  // messages sent so far on each link
+  std::vector<double> link_lengths_;
+  std::vector<std::uint32_t> down_;  // outages in progress per node
+  std::vector<std::uint8_t> started_;
+  std::vector<Message> messages_;
+  std::vector<std::uint32_t> free_messages_;
+  TrafficMetrics traffic_;
+  Trace trace_;
+  std::uint64_t timers_dropped_ = 0;
+  bool launched_ = false;
+};
+
+}  // namespace laguerre::sim

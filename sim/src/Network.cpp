@@ -1,0 +1,140 @@
+#include "laguerre/sim/Network.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace laguerre::sim {
+
+Network::Network(std::size_t node_count, std::span<const Edge> edges) {
+  if (node_count >= 0xffffffffu) {
+    throw std::length_error("A network holds at most 2^32 - 2 nodes, got " +
+                            std::to_string(node_count) + ".");
+  }
+  std::vector<std::pair<NodeIndex, NodeIndex>> arcs;
+  arcs.reserve(2 * edges.size());
+  for (const auto& [u, v] : edges) {
+    if (u >= node_count || v >= node_count) {
+      throw std::invalid_argument("Edge (" + std::to_string(u) + ", " + std::to_string(v) +
+                                  ") names a node outside 0.." + std::to_string(node_count) + " - 1.");
+    }
+    if (u == v) {
+      throw std::invalid_argument("Edge (" + std::to_string(u) + ", " + std::to_string(v) +
+                                  ") is a self-loop; a node cannot be its own neighbour.");
+    }
+    arcs.emplace_back(u, v);
+    arcs.emplace_back(v, u);
+  }
+  std::sort(arcs.begin(), arcs.end());
+  arcs.erase(std::unique(arcs.begin(), arcs.end()), arcs.end());
+  if (arcs.size() >= 0xffffffffu) throw std::length_error("Too many links (2^32 - 1 at most).");
+  offsets_.assign(node_count + 1, 0);
+  for (const auto& a : arcs) ++offsets_[a.first + 1];
+  for (std::size_t v = 0; v < node_count; ++v) offsets_[v + 1] += offsets_[v];
+  targets_.reserve(arcs.size());
+  sources_.reserve(arcs.size());
+  for (const auto& a : arcs) {  // sorted by (source, target): CSR order directly
+    sources_.push_back(a.first);
+    targets_.push_back(a.second);
+  }
+  model_of_link_.assign(arcs.size(), 0);
+}
+
+std::optional<LinkIndex> Network::find_link(NodeIndex u, NodeIndex v) const {
+  if (u >= node_count()) return std::nullopt;
+  const auto row = neighbours(u);
+  const auto it = std::lower_bound(row.begin(), row.end(), v);
+  if (it == row.end() || *it != v) return std::nullopt;
+  return static_cast<LinkIndex>(offsets_[u] + static_cast<std::size_t>(it - row.begin()));
+}
+
+void Network::set_ids(std::vector<std::uint64_t> ids) {
+  if (ids.size() != node_count()) {
+    throw std::invalid_argument("Expected " + std::to_string(node_count()) + " node ids, got " +
+                                std::to_string(ids.size()) + ".");
+  }
+  std::unordered_map<std::uint64_t, NodeIndex> index;
+  index.reserve(ids.size());
+  for (std::size_t v = 0; v < ids.size(); ++v) {
+    if (!index.emplace(ids[v], static_cast<NodeIndex>(v)).second) {
+      throw std::invalid_argument("Node id " + std::to_string(ids[v]) + " is given to two nodes.");
+    }
+  }
+  ids_ = std::move(ids);
+  index_of_id_ = std::move(index);
+}
+
+std::optional<NodeIndex> Network::index_of(std::uint64_t id) const {
+  if (ids_.empty()) {
+    if (id < node_count()) return static_cast<NodeIndex>(id);
+    return std::nullopt;
+  }
+  const auto it = index_of_id_.find(id);
+  if (it == index_of_id_.end()) return std::nullopt;
+  return it->second;
+}
+
+void Network::set_positions(std::vector<Position> positions) {
+  if (positions.size() != node_count()) {
+    throw std::invalid_argument("Expected " + std::to_string(node_count()) + " positions, got " +
+                                std::to_string(positions.size()) + ".");
+  }
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    if (!std::isfinite(positions[v].x) || !std::isfinite(positions[v].y)) {
+      throw std::invalid_argument("The position of node " + std::to_string(v) + " is not finite.");
+    }
+  }
+  positions_ = std::move(positions);
+}
+
+double Network::link_length(LinkIndex l) const {
+  if (positions_.empty()) return 0;
+  const Position& a = positions_[sources_[l]];
+  const Position& b = positions_[targets_[l]];
+  return std::hypot(a.x - b.x, a.y - b.y);
+}
+
+void Network::set_link_model(const LinkModel& model) {
+  model.validate();
+  models_.assign(1, model);
+  std::fill(model_of_link_.begin(), model_of_link_.end(), 0);
+}
+
+void Network::set_link_model(NodeIndex u, NodeIndex v, const LinkModel& model) {
+  model.validate();
+  const auto link = find_link(u, v);
+  if (!link) {
+    throw std::invalid_argument("There is no link from node " + std::to_string(u) + " to node " +
+                                std::to_string(v) + ".");
+  }
+  if (models_.size() >= 0xffffffffu) throw std::length_error("Too many distinct link models.");
+  models_.push_back(model);
+  model_of_link_[*link] = static_cast<std::uint32_t>(models_.size() - 1);
+}
+
+void Network::add_crash(NodeIndex node, Time at, std::optional<Time> recover_at) {
+  if (node >= node_count()) {
+    throw std::invalid_argument("Cannot crash node " + std::to_string(node) + ": the network has " +
+                                std::to_string(node_count()) + " nodes.");
+  }
+  if (at < 0) throw std::invalid_argument("A crash time cannot be negative.");
+  if (recover_at && *recover_at <= at) {
+    throw std::invalid_argument("Node " + std::to_string(node) + " must recover after it crashes (at " +
+                                std::to_string(at) + " ns), not at " + std::to_string(*recover_at) +
+                                " ns.");
+  }
+  crashes_.push_back(Crash{node, at, recover_at});
+}
+
+void Network::validate() const {
+  if (!positions_.empty()) return;
+  for (const LinkModel& m : models_) {
+    if (m.latency.kind == LatencyKind::distance) {
+      throw std::invalid_argument("A distance-based latency needs node positions; call "
+                                  "Network::set_positions first.");
+    }
+  }
+}
+
+}  // namespace laguerre::sim

@@ -1,0 +1,205 @@
+#include "laguerre/sim/Simulator.hpp"
+
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+namespace laguerre::sim {
+
+Simulator::Simulator(Network network, SimConfig config, NodeHandler& handler)
+    : network_(std::move(network)),
+      config_(config),
+      handler_(&handler),
+      traffic_(network_.node_count()),
+      trace_(config.trace) {
+  network_.validate();
+  start_id_ = kernel_.add_handler<&Simulator::on_start_event>("start", *this);
+  deliver_id_ = kernel_.add_handler<&Simulator::on_deliver_event>("deliver", *this);
+  timer_id_ = kernel_.add_handler<&Simulator::on_timer_event>("timer", *this);
+  crash_id_ = kernel_.add_handler<&Simulator::on_crash_event>("crash", *this);
+  recover_id_ = kernel_.add_handler<&Simulator::on_recover_event>("recover", *this);
+  const std::size_t n = network_.node_count();
+  node_streams_.reserve(n);
+  for (NodeIndex v = 0; v < n; ++v) {
+    node_streams_.push_back(RandomStream::of(config_.seed, StreamKind::node, network_.id(v)));
+  }
+  const std::size_t links = network_.link_count();
+  link_keys_.resize(links);
+  link_lengths_.resize(links);
+  link_messages_.assign(links, 0);
+  for (LinkIndex l = 0; l < links; ++l) {
+    link_keys_[l] = stream_key(config_.seed, StreamKind::link, network_.id(network_.link_source(l)),
+                               network_.id(network_.link_target(l)));
+    link_lengths_[l] = network_.link_length(l);
+  }
+  down_.assign(n, 0);
+  started_.assign(n, 0);
+}
+
+RunReport Simulator::run(const RunLimits& limits) {
+  if (!launched_) {
+    launched_ = true;
+    // Failures first, then starts: see the file comment of Simulator.hpp for the resulting order.
+    for (const Crash& c : network_.crashes()) {
+      kernel_.schedule_at(c.at, crash_id_, c.node);
+      if (c.recover_at) kernel_.schedule_at(*c.recover_at, recover_id_, c.node);
+    }
+    for (NodeIndex v = 0; v < network_.node_count(); ++v) kernel_.schedule_at(0, start_id_, v);
+  }
+  const std::uint64_t before = kernel_.events_processed();
+  const auto start = std::chrono::steady_clock::now();
+  RunReport report;
+  report.reason = kernel_.run(limits);
+  report.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.simulated_time = kernel_.now();
+  report.events_processed = kernel_.events_processed() - before;
+  report.events_per_second = report.wall_seconds > 0
+                                 ? static_cast<double>(report.events_processed) / report.wall_seconds
+                                 : 0;
+  report.peak_memory_bytes = peak_memory_bytes();
+  return report;
+}
+
+std::uint32_t Simulator::store(NodeIndex from, std::span<const std::byte> bytes, Phase phase) {
+  std::uint32_t index;
+  if (!free_messages_.empty()) {
+    index = free_messages_.back();
+    free_messages_.pop_back();
+  } else {
+    index = static_cast<std::uint32_t>(messages_.size());
+    messages_.emplace_back();
+  }
+  Message& m = messages_[index];
+  m.bytes.assign(bytes.begin(), bytes.end());  // reuses the slot's capacity: no allocation at steady state
+  m.from = from;
+  m.phase = phase;
+  m.refs = 0;
+  m.digest = trace_.mode() == TraceMode::off ? 0 : fnv1a(bytes);
+  return index;
+}
+
+void Simulator::release(std::uint32_t message) {
+  if (--messages_[message].refs == 0) free_messages_.push_back(message);
+}
+
+void Simulator::transmit(LinkIndex link, std::uint32_t message, std::uint32_t size) {
+  const NodeIndex from = network_.link_source(link);
+  const NodeIndex to = network_.link_target(link);
+  const Phase phase = messages_[message].phase;
+  TrafficCounters& counters = traffic_.at(from, phase);
+  ++counters.messages_sent;
+  counters.bytes_sent += size;
+  // The message's own stream: a pure function of (seed, link, position of the message on the link).
+  RandomStream rng(stream_key(config_.seed, StreamKind::message, link_keys_[link],
+                              link_messages_[link]++));
+  const LinkDecision fate = decide(network_.link_model(link), link_lengths_[link], rng);
+  const auto deliver = [&](bool lost, Duration latency) {
+    if (lost) {
+      ++counters.messages_lost;
+      counters.bytes_lost += size;
+      return;
+    }
+    ++messages_[message].refs;
+    kernel_.schedule_after(latency, deliver_id_, to, message);
+  };
+  deliver(fate.lost, fate.latency);
+  if (fate.duplicated) {
+    ++counters.messages_duplicated;
+    deliver(fate.duplicate_lost, fate.duplicate_latency);
+  }
+}
+
+void Simulator::send(NodeIndex from, NodeIndex to, std::span<const std::byte> bytes, Phase phase) {
+  const auto link = network_.find_link(from, to);
+  if (!link) {
+    throw std::invalid_argument("Node " + std::to_string(network_.id(from)) +
+                                " cannot send to node " + std::to_string(network_.id(to)) +
+                                ": they are not neighbours.");
+  }
+  const auto size = static_cast<std::uint32_t>(bytes.size());
+  if (down_[from]) {
+    TrafficCounters& c = traffic_.at(from, phase);
+    ++c.messages_dropped;
+    c.bytes_dropped += size;
+    return;
+  }
+  const std::uint32_t message = store(from, bytes, phase);
+  transmit(*link, message, size);
+  if (messages_[message].refs == 0) free_messages_.push_back(message);  // every copy was lost
+}
+
+void Simulator::broadcast(NodeIndex from, std::span<const std::byte> bytes, Phase phase) {
+  const auto neighbours = network_.neighbours(from);
+  const auto size = static_cast<std::uint32_t>(bytes.size());
+  if (down_[from]) {
+    TrafficCounters& c = traffic_.at(from, phase);
+    c.messages_dropped += neighbours.size();
+    c.bytes_dropped += std::uint64_t{size} * neighbours.size();
+    return;
+  }
+  if (neighbours.empty()) return;
+  const std::uint32_t message = store(from, bytes, phase);
+  for (std::size_t i = 0; i < neighbours.size(); ++i) transmit(network_.link_at(from, i), message, size);
+  if (messages_[message].refs == 0) free_messages_.push_back(message);
+}
+
+TimerHandle Simulator::schedule_timer(NodeIndex v, Duration after, std::uint64_t timer) {
+  return kernel_.schedule_cancellable_after(after, timer_id_, v, timer);
+}
+
+void Simulator::on_start_event(Kernel&, const Event& event) {
+  const NodeIndex v = event.target;
+  if (down_[v]) return;  // started when it first recovers
+  started_[v] = 1;
+  handler_->on_start(*this, v);
+}
+
+void Simulator::on_deliver_event(Kernel& kernel, const Event& event) {
+  const NodeIndex to = event.target;
+  const auto index = static_cast<std::uint32_t>(event.payload);
+  const Message& m = messages_[index];
+  const auto size = static_cast<std::uint32_t>(m.bytes.size());
+  const NodeIndex from = m.from;
+  const Phase phase = m.phase;
+  TrafficCounters& counters = traffic_.at(to, phase);
+  if (down_[to]) {
+    ++counters.messages_dropped;
+    counters.bytes_dropped += size;
+    release(index);
+    return;
+  }
+  ++counters.messages_received;
+  counters.bytes_received += size;
+  trace_.add(TraceRecord{kernel.now(), network_.id(from), network_.id(to), m.digest, size, phase});
+  // The span stays valid during the callback even if the handler sends (messages_ may reallocate,
+  // which moves the vector objects but not their heap buffers), and the slot cannot be recycled
+  // before release() below because this copy still holds a reference.
+  const std::span<const std::byte> bytes(m.bytes.data(), m.bytes.size());
+  handler_->on_message(*this, to, from, phase, bytes);
+  release(index);
+}
+
+void Simulator::on_timer_event(Kernel&, const Event& event) {
+  if (down_[event.target]) {
+    ++timers_dropped_;
+    return;
+  }
+  handler_->on_timer(*this, event.target, event.payload);
+}
+
+// Outages may overlap (two crash/recover pairs of one node); the node is up only when every outage
+// that began has ended, hence a counter rather than a flag.
+void Simulator::on_crash_event(Kernel&, const Event& event) { ++down_[event.target]; }
+
+void Simulator::on_recover_event(Kernel&, const Event& event) {
+  const NodeIndex v = event.target;
+  if (--down_[v] != 0) return;  // another outage is still in progress
+  if (!started_[v]) {
+    started_[v] = 1;
+    handler_->on_start(*this, v);
+  } else {
+    handler_->on_recover(*this, v);
+  }
+}
+
+}  // namespace laguerre::sim
