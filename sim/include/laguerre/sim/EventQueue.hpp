@@ -8,18 +8,19 @@
 /// events are ever "tied", so any correct priority queue pops the same sequence.
 ///
 /// Queue choice, by measurement (tools/bench/phold_queues.cpp: the PHOLD hold model run directly on
-/// each candidate with 32-byte records, 5·10^6 events, best of 3 on the shared 2-core machine):
+/// each candidate with 32-byte records, 5·10^6 events, best of 3 on the shared, busy 2-core machine;
+/// rates include the two random draws per event):
 ///
 ///     pending events     std::priority_queue   binary heap   4-ary heap   8-ary heap   ladder (below)
-///     10^4                     9.3 M/s            9.6 M/s       9.9 M/s      9.2 M/s      12.2 M/s
-///     10^5                     4.8 M/s            4.9 M/s       5.2 M/s      5.0 M/s       6.9 M/s
-///     10^6                     2.1 M/s            2.1 M/s       2.5 M/s      2.7 M/s       3.3 M/s
+///     10^4                    11.0 M/s           11.0 M/s      11.3 M/s     10.6 M/s      17.4 M/s
+///     10^5                     6.2 M/s            5.7 M/s       6.0 M/s      5.5 M/s       7.8 M/s
+///     10^6                     2.2 M/s            2.2 M/s       2.6 M/s      2.7 M/s       4.6 M/s
 ///
-/// (rates include the two random draws per event). The kernel therefore uses `LadderEventQueue`, a
-/// one-rung ladder queue (Tang, Goh & Thng, ACM TOMACS 2005, simplified): expected O(1) per event on
-/// the smooth time distributions of network simulations, and never worse than a binary heap, to
-/// which it degrades when many events share one bucket (e.g. a synchronous round with constant
-/// latency). `DaryEventHeap` stays as the reference implementation the tests compare it against.
+/// The kernel therefore uses `LadderEventQueue`, a one-rung ladder queue (after Tang, Goh & Thng,
+/// ACM TOMACS 2005, simplified): expected O(1) per event on the smooth time distributions of network
+/// simulations; when many events share one bucket (e.g. a synchronous round with constant latency)
+/// its bottom tier becomes a binary heap, so it degrades to about a binary heap, never to a list.
+/// `DaryEventHeap` stays as the reference implementation the tests compare it against.
 ///
 #include <algorithm>
 #include <cstddef>
