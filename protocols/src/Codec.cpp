@@ -77,6 +77,9 @@ std::string_view to_string(MessageType t) {
     case MessageType::face_circles: return "face_circles";
     case MessageType::relay: return "relay";
     case MessageType::data: return "data";
+    case MessageType::frame: return "frame";
+    case MessageType::ack: return "ack";
+    case MessageType::failure: return "failure";
   }
   return "?";
 }
@@ -123,7 +126,10 @@ MessageType type_of(const Message& m) {
         else if constexpr (std::is_same_v<T, ShapeMsg>) return MessageType::shape;
         else if constexpr (std::is_same_v<T, FaceCirclesMsg>) return MessageType::face_circles;
         else if constexpr (std::is_same_v<T, RelayMsg>) return MessageType::relay;
-        else return MessageType::data;
+        else if constexpr (std::is_same_v<T, DataMsg>) return MessageType::data;
+        else if constexpr (std::is_same_v<T, FrameMsg>) return MessageType::frame;
+        else if constexpr (std::is_same_v<T, AckMsg>) return MessageType::ack;
+        else return MessageType::failure;
       },
       m);
 }
@@ -142,6 +148,9 @@ std::size_t encoded_size(MessageType t) {
     case MessageType::face_circles: return header + 4 + 4;  // + 24 per circle
     case MessageType::relay: return header + 3 * 8 + 1 + 4;  // + 1 per payload byte
     case MessageType::data: return header + 3 * 8 + 3 * 8 + 4 + 4;
+    case MessageType::frame: return header + 4 + 4 + 8 + 4;  // + 1 per payload byte
+    case MessageType::ack: return header + 4 + 8;
+    case MessageType::failure: return header + 8;
   }
   return 0;
 }
@@ -150,6 +159,7 @@ std::size_t encoded_size(const Message& m) {
   const std::size_t fixed = encoded_size(type_of(m));
   if (const auto* f = std::get_if<FaceCirclesMsg>(&m)) return fixed + 24 * f->circles.size();
   if (const auto* r = std::get_if<RelayMsg>(&m)) return fixed + r->payload.size();
+  if (const auto* f = std::get_if<FrameMsg>(&m)) return fixed + f->payload.size();
   return fixed;
 }
 
@@ -213,6 +223,17 @@ void encode(const Message& m, std::vector<std::byte>& out) {
           w.f64(msg.tr);
           w.u32(msg.ttl);
           w.u32(msg.hops);
+        } else if constexpr (std::is_same_v<T, FrameMsg>) {
+          w.u32(msg.seq);
+          w.u32(msg.ack.next);
+          w.u64(msg.ack.bits);
+          w.u32(static_cast<std::uint32_t>(msg.payload.size()));
+          w.bytes(msg.payload);
+        } else if constexpr (std::is_same_v<T, AckMsg>) {
+          w.u32(msg.ack.next);
+          w.u64(msg.ack.bits);
+        } else if constexpr (std::is_same_v<T, FailureMsg>) {
+          w.u64(msg.suspect);
         } else {
           w.u64(msg.face);
           w.u64(msg.source);
@@ -239,13 +260,15 @@ DecodeStatus decode(std::span<const std::byte> bytes, Message& out) {
   const auto t = static_cast<MessageType>(type_byte);
   std::size_t size = encoded_size(t);
   if (bytes.size() < size) return DecodeStatus::truncated;
-  if (t == MessageType::face_circles || t == MessageType::relay) {
+  if (t == MessageType::face_circles || t == MessageType::relay || t == MessageType::frame) {
     // The count is the last u32 of the fixed part; check its range before it sizes anything.
     Reader c(bytes.subspan(size - 4, 4));
     const std::uint32_t count = c.u32();
     const bool circles = t == MessageType::face_circles;
-    if (circles ? (count < 3 || count > max_face_circles) : (count < 2 || count > max_relay_payload))
-      return DecodeStatus::out_of_range;
+    const bool in_range = circles                      ? count >= 3 && count <= max_face_circles
+                          : t == MessageType::relay    ? count >= 2 && count <= max_relay_payload
+                                                       : count <= max_frame_payload;
+    if (!in_range) return DecodeStatus::out_of_range;
     size += (circles ? 24 : 1) * std::size_t{count};
     if (bytes.size() < size) return DecodeStatus::truncated;
   }
@@ -367,6 +390,28 @@ DecodeStatus decode(std::span<const std::byte> bytes, Message& out) {
       ok = d.hops >= 1 && d.hops <= d.ttl && d.source != d.target && std::isfinite(d.tx) && std::isfinite(d.ty) &&
            std::isfinite(d.tr) && d.tr >= 0;
       m = d;
+      break;
+    }
+    case MessageType::frame: {
+      FrameMsg f;
+      f.seq = r.u32();
+      f.ack.next = r.u32();
+      f.ack.bits = r.u64();
+      const std::uint32_t count = r.u32();  // range-checked above
+      const std::span<const std::byte> rest = r.rest();
+      f.payload.assign(rest.begin(), rest.begin() + count);
+      m = std::move(f);
+      break;
+    }
+    case MessageType::ack: {
+      AckMsg a;
+      a.ack.next = r.u32();
+      a.ack.bits = r.u64();
+      m = a;
+      break;
+    }
+    case MessageType::failure: {
+      m = FailureMsg{r.u64()};
       break;
     }
   }

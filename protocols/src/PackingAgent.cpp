@@ -29,6 +29,10 @@ PackingAgent::PackingAgent(AgentHost& host, std::size_t index, AgentSpec spec, P
     }
   }
   x_ = know_.boundary ? 0.0 : core::x_of_radius(1.0);  // core::initial_radii
+  // Asynchronous mode: every interior vertex starts from the same X (version 0); boundary
+  // neighbours' entries are never read.
+  latest_x_.assign(deg_, core::x_of_radius(1.0));
+  latest_step_.assign(deg_, 0);
 }
 
 std::size_t PackingAgent::children() const {
@@ -86,6 +90,10 @@ void PackingAgent::receive(std::size_t i, const Message& m) {
 
 void PackingAgent::handle(std::size_t, const RelayMsg&) { ++host_.counters().unexpected; }  // envelopes never nest
 void PackingAgent::handle(std::size_t, const DataMsg&) { ++host_.counters().unexpected; }   // ForwardingNode's
+// The reliability layer's messages are PackingNode's; an agent never sees them from a correct peer.
+void PackingAgent::handle(std::size_t, const FrameMsg&) { ++host_.counters().unexpected; }
+void PackingAgent::handle(std::size_t, const AckMsg&) { ++host_.counters().unexpected; }
+void PackingAgent::handle(std::size_t, const FailureMsg&) { ++host_.counters().unexpected; }
 
 // ---- Depth: pulse-synchronized BFS from the boundary (over K) -----------------------------------
 
@@ -131,6 +139,11 @@ void PackingAgent::maybe_candidate() {
   if (candidate_checked_ || wave_started_ || depth_ == unknown || nbr_depths_known_ < deg_) return;
   candidate_checked_ = true;
   if (phase_ == PackingPhase::depth) phase_ = PackingPhase::election;
+  start_own_wave();
+  maybe_echo();  // an echo held back until this decision (see maybe_echo) may go now
+}
+
+void PackingAgent::start_own_wave() {
   // core::choose_root ranges over the vertices of G: face vertices only relay the election.
   if (know_.boundary || know_.is_face) return;
   const bool deepest = params_.root == core::RootRule::deepest;
@@ -145,6 +158,7 @@ void PackingAgent::maybe_candidate() {
   best_id_ = know_.id;
   echo_parent_ = deg_;
   echo_count_ = 0;
+  echoed_ = false;
   broadcast(ElectionMsg{key, know_.id});
 }
 
@@ -156,6 +170,7 @@ void PackingAgent::handle(std::size_t i, const ElectionMsg& m) {
     best_id_ = m.id;
     echo_parent_ = i;
     echo_count_ = 1;
+    echoed_ = false;
     encode(m, buffer_);
     for (std::size_t j = 0; j < deg_; ++j)
       if (j != i) send_encoded(j);
@@ -168,7 +183,18 @@ void PackingAgent::handle(std::size_t i, const ElectionMsg& m) {
     ++host_.counters().unexpected;
     return;
   }
-  if (echo_count_ < deg_) return;
+  maybe_echo();
+}
+
+void PackingAgent::maybe_echo() {
+  // A vertex echoes a wave (or, as its initiator, wins) once every neighbour's token is in — and only
+  // once it has decided whether it is a candidate itself. Without that wait, a vertex whose depth is
+  // known late (long delays, retransmissions) could echo a weaker wave, let it complete and elect the
+  // wrong root before starting its own stronger wave. With it, no wave completes without the
+  // strongest candidate's echo, which that candidate never gives to a weaker wave: only the strongest
+  // wave completes, whatever the delays.
+  if (!candidate_checked_ || !in_wave_ || echoed_ || echo_count_ < deg_) return;
+  echoed_ = true;
   if (echo_parent_ == deg_) begin_wave(deg_, know_.id, know_.neighbours[0]);
   else send(echo_parent_, ElectionMsg{best_depth_, best_id_});
 }
@@ -326,11 +352,62 @@ void PackingAgent::begin_round() {
   const auto cap = static_cast<std::uint32_t>(params_.max_iterations);
   const auto n = static_cast<std::uint32_t>(params_.steps_per_check);
   round_end_step_ = round_ == 0 ? step_ : step_ + std::min(n, cap - std::min(cap, step_));
+  round_start_step_ = step_;
   sent_step_ = false;
+  // Asynchronous mode: the counter of round r + 1 (that of round r − 1, done) starts afresh; no
+  // neighbour can be in round r + 1 before this node has reported round r.
+  arrivals_[(round_ + 1) & 1] = 0;
   advance_steps();
 }
 
+std::uint32_t PackingAgent::round_of_step(std::uint32_t s) const {
+  // Every node runs the same schedule: round r ≥ 1 does steps ((r − 1)·N, min(r·N, cap)].
+  const auto n = static_cast<std::uint32_t>(params_.steps_per_check);
+  return (s + n - 1) / n;
+}
+
+void PackingAgent::handle_async_radius(std::size_t i, const RadiusMsg& m) {
+  // m.step = the sender's update count after the update that produced m.x (its version). Neighbours
+  // are at most one round ahead; a message of an earlier round may still arrive late (reordering) and
+  // only refreshes the value if newer. Keep the newest value.
+  const std::uint32_t r = m.step == 0 ? 0 : round_of_step(m.step);
+  if (phase_ != PackingPhase::rounds || know_.boundary || !interior_nbr(i) || m.step == 0 ||
+      m.step > static_cast<std::uint32_t>(params_.max_iterations) || r > round_ + 1) {
+    ++host_.counters().unexpected;
+    return;
+  }
+  if (m.step > latest_step_[i]) {
+    latest_step_[i] = m.step;
+    latest_x_[i] = m.x;
+  }
+  if (r >= round_) ++arrivals_[r & 1];
+  advance_steps();
+}
+
+void PackingAgent::advance_async_steps() {
+  // Chaotic relaxation: update k ≥ 2 of a round waits for k − 1 radius messages of this round (from
+  // any neighbours), update 1 for none. Deadlock-free: if every interior vertex makes j updates of
+  // round r, each has sent j messages to every interior neighbour, so each vertex with an interior
+  // neighbour has received ≥ j and can make update j + 1; a vertex without one never waits.
+  bool any_interior = false;
+  for (std::size_t i = 0; i < deg_; ++i) any_interior = any_interior || interior_nbr(i);
+  while (step_ < round_end_step_) {
+    const std::uint32_t k = step_ - round_start_step_ + 1;
+    if (k >= 2 && any_interior && arrivals_[round_ & 1] < k - 1) return;
+    for (std::size_t i = 0; i < deg_; ++i) star_x_[i] = interior_nbr(i) ? latest_x_[i] : 0.0;
+    x_ = core::star_updated_radius(x_, core::StarView{star_x_, spoke_, rim_}, params_.update);
+    ++step_;
+    encode(RadiusMsg{step_, x_}, buffer_);
+    for (std::size_t i = 0; i < deg_; ++i)
+      if (interior_nbr(i)) send_encoded(i);
+  }
+}
+
 void PackingAgent::handle(std::size_t i, const RadiusMsg& m) {
+  if (params_.asynchronous) {
+    handle_async_radius(i, m);
+    return;
+  }
   if (phase_ != PackingPhase::rounds || know_.boundary || !interior_nbr(i) || m.step < step_ || m.step > step_ + 1) {
     ++host_.counters().unexpected;
     return;
@@ -341,6 +418,11 @@ void PackingAgent::handle(std::size_t i, const RadiusMsg& m) {
 
 void PackingAgent::advance_steps() {
   if (know_.boundary) step_ = round_end_step_;  // horocycles never change
+  if (params_.asynchronous) {
+    advance_async_steps();
+    if (step_ == round_end_step_) advance_layout();
+    return;
+  }
   while (step_ < round_end_step_) {
     if (!sent_step_) {
       sent_step_ = true;
@@ -372,6 +454,16 @@ void PackingAgent::handle(std::size_t i, const PlacedMsg& m) {
     return;
   }
   placed_in_[i][m.round & 1] = PlacedSlot{m.round, m.x, {{m.centre_re, m.centre_im}, {m.cx, m.cy, m.cr}}};
+  if (params_.asynchronous && interior_nbr(i)) {
+    // The sender's X after its last update of round m.round: version min(round·N, cap).
+    const auto version = static_cast<std::uint32_t>(std::min<std::uint64_t>(
+        std::uint64_t{m.round} * static_cast<std::uint64_t>(params_.steps_per_check),
+        static_cast<std::uint64_t>(params_.max_iterations)));
+    if (version > latest_step_[i]) {
+      latest_step_[i] = version;
+      latest_x_[i] = m.x;
+    }
+  }
   if (phase_ == PackingPhase::rounds) advance_layout();
 }
 

@@ -96,15 +96,23 @@ private:
   void handle(std::size_t i, const FaceCirclesMsg& m);
   void handle(std::size_t i, const RelayMsg& m);
   void handle(std::size_t i, const DataMsg& m);
+  void handle(std::size_t i, const FrameMsg& m);
+  void handle(std::size_t i, const AckMsg& m);
+  void handle(std::size_t i, const FailureMsg& m);
 
   void advance_depth();
   void maybe_candidate();
+  void start_own_wave();
+  void maybe_echo();
   void begin_wave(std::size_t from, NodeId root, NodeId first);
   void advance_wave();
   void maybe_finish_setup();
   void advance_shape();
   void begin_round();
   void advance_steps();
+  void advance_async_steps();
+  void handle_async_radius(std::size_t i, const RadiusMsg& m);
+  std::uint32_t round_of_step(std::uint32_t s) const;
   void advance_layout();
   bool check();  // false while waiting for data
   void advance_convergecast();
@@ -134,6 +142,7 @@ private:
   NodeId best_id_ = 0;
   std::size_t echo_parent_ = 0;
   std::size_t echo_count_ = 0;
+  bool echoed_ = false;  // the current wave's echo (or win) is done
 
   // Wave set-up.
   bool wave_started_ = false;
@@ -161,6 +170,12 @@ private:
   std::uint32_t round_ = 0;
   std::uint32_t step_ = 0;
   std::uint32_t round_end_step_ = 0;
+  std::uint32_t round_start_step_ = 0;
+  // Asynchronous mode: newest known X of each neighbour and its version (update count), and the
+  // number of radius messages received per round (by parity).
+  std::vector<double> latest_x_;
+  std::vector<std::uint32_t> latest_step_;
+  std::array<std::uint32_t, 2> arrivals_{};
   bool sent_step_ = false;
   double x_ = 0;
   std::vector<std::array<Slot, 2>> radius_;

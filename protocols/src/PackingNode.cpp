@@ -39,8 +39,22 @@ LocalKnowledge local_knowledge(const core::PlanarGraph& g, core::Vertex v) {
   return k;
 }
 
+void enable_lossy_links(PackingParams& params, Duration max_latency) {
+  const Duration l = std::max<Duration>(max_latency, 1);
+  params.ack_delay = l / 2;
+  params.retransmit_after = 3 * l;
+}
+
+namespace {
+// Timer ids: kind in the top byte, G-neighbour index below.
+constexpr TimerId timer_retransmit = TimerId{1} << 56;
+constexpr TimerId timer_ack = TimerId{2} << 56;
+constexpr TimerId timer_probe = TimerId{3} << 56;
+constexpr TimerId timer_kind = TimerId{0xff} << 56;
+}  // namespace
+
 PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingParams params)
-    : rt_(runtime), know_(std::move(knowledge)), deg_(know_.neighbours.size()) {
+    : rt_(runtime), params_(params), know_(std::move(knowledge)), deg_(know_.neighbours.size()) {
   const std::string who = "Node " + std::to_string(know_.id);
   if (deg_ == 0) throw std::invalid_argument(who + " has no neighbours.");
   if (deg_ >= 0xffffffffu) throw std::invalid_argument(who + " has too many neighbours.");
@@ -58,6 +72,15 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
     throw std::invalid_argument(who + " is interior but has an outer-face wedge.");
   if (params.steps_per_check < 1) throw std::invalid_argument("steps_per_check must be at least 1.");
   if (params.max_iterations < 0) throw std::invalid_argument("max_iterations must not be negative.");
+  if (params.retransmit_after < 0 || params.ack_delay < 0 || params.probe_after < 0)
+    throw std::invalid_argument("retransmit_after, ack_delay and probe_after must not be negative.");
+  if (params.backoff_cap < 1 || params.max_retransmissions < 1)
+    throw std::invalid_argument("backoff_cap and max_retransmissions must be at least 1.");
+  if (lossy()) {
+    if (params_.probe_after == 0) params_.probe_after = 32 * params_.retransmit_after;
+    links_.assign(deg_, Link{});
+    for (Link& l : links_) l.period = params_.retransmit_after;
+  }
   if (!know_.faces.empty() && know_.faces.size() != deg_)
     throw std::invalid_argument(who + " lists faces for some but not all of its wedges.");
 
@@ -130,9 +153,7 @@ void PackingNode::agent_send(std::size_t agent, std::size_t k_index, std::span<c
   const detail::AgentSpec& s = agents_[agent]->spec();
   const NodeId to = s.neighbours[k_index];
   if (agent == 0 && !s.face_nbr[k_index]) {  // an edge of G: a plain message
-    rt_.send(to, bytes);
-    ++counters_.sent;
-    counters_.bytes_sent += bytes.size();
+    transmit(index_of(to), bytes);
     return;
   }
   const NodeId face = agent == 0 ? to : s.id;
@@ -157,9 +178,7 @@ void PackingNode::send_relay(const Wedge& w, NodeId source, NodeId target, std::
   const bool backward = p > m - p;
   RelayMsg r{w.face_id, source, target, backward, {payload.begin(), payload.end()}};
   encode(r, relay_buffer_);
-  rt_.send(backward ? w.walk.back() : w.walk[1], relay_buffer_);
-  ++counters_.sent;
-  counters_.bytes_sent += relay_buffer_.size();
+  transmit(index_of(backward ? w.walk.back() : w.walk[1]), relay_buffer_);
 }
 
 void PackingNode::handle_relay(std::size_t from, RelayMsg& m) {
@@ -177,9 +196,7 @@ void PackingNode::handle_relay(std::size_t from, RelayMsg& m) {
   if (node != know_.id) {
     ++counters_.relayed;
     encode(m, relay_buffer_);
-    rt_.send(m.backward ? w->walk.back() : w->walk[1], relay_buffer_);
-    ++counters_.sent;
-    counters_.bytes_sent += relay_buffer_.size();
+    transmit(index_of(m.backward ? w->walk.back() : w->walk[1]), relay_buffer_);
     return;
   }
   const std::size_t agent = m.target == m.face ? w->agent : 0;
@@ -207,7 +224,8 @@ void PackingNode::deliver_payload(std::size_t agent, std::size_t from_index, std
 
 void PackingNode::drain() {
   // Local deliveries between this node's agents, after the callback that produced them (never
-  // re-entrant); they may produce more, delivered in turn.
+  // re-entrant); they may produce more, delivered in turn. An abandoned run delivers nothing more.
+  if (failed_) local_.clear();
   while (!local_.empty()) {
     Local l = std::move(local_.front());
     local_.pop_front();
@@ -220,15 +238,243 @@ void PackingNode::drain() {
 void PackingNode::on_start() {
   for (auto& a : agents_) a->start();
   drain();
+  if (lossy()) probe_timer_ = rt_.schedule(params_.probe_after, timer_probe);
 }
 
-void PackingNode::on_timer(TimerId) { ++counters_.unexpected; }  // the synchronous mode sets no timers
+void PackingNode::on_timer(TimerId timer) {
+  const std::size_t i = static_cast<std::size_t>(timer & ~timer_kind);
+  const TimerId kind = timer & timer_kind;
+  if (!lossy() || (kind != timer_probe && i >= deg_)) {
+    ++counters_.unexpected;
+    return;
+  }
+  if (kind == timer_retransmit) {
+    links_[i].retransmit_timer = 0;
+    on_retransmit(i);
+  } else if (kind == timer_ack) {
+    links_[i].ack_timer = 0;
+    if (links_[i].ack_pending && !links_[i].dead) {
+      links_[i].ack_pending = false;
+      encode(AckMsg{links_[i].received}, frame_buffer_);
+      raw_send(know_.neighbours[i], frame_buffer_);
+      ++counters_.acks;
+    }
+  } else if (kind == timer_probe) {
+    probe_timer_ = 0;
+    on_probe();
+  } else {
+    ++counters_.unexpected;
+  }
+  drain();
+}
+
+// ---- The reliability layer (lossy mode; see "Loss, duplication and crashes" in the header) ---------
+
+void PackingNode::raw_send(NodeId to, std::span<const std::byte> bytes) {
+  rt_.send(to, bytes);
+  ++counters_.sent;
+  counters_.bytes_sent += bytes.size();
+}
+
+void PackingNode::transmit(std::size_t i, std::span<const std::byte> bytes) {
+  if (!lossy()) {
+    raw_send(know_.neighbours[i], bytes);
+    return;
+  }
+  send_frame(i, bytes);
+}
+
+void PackingNode::send_frame(std::size_t i, std::span<const std::byte> payload) {
+  Link& l = links_[i];
+  if (l.dead) return;  // its neighbour is suspected: the run is ending anyway
+  const std::uint32_t seq = l.next_seq++;
+  l.unacked.emplace_back(seq, std::vector<std::byte>(payload.begin(), payload.end()));
+  ++counters_.frames;
+  put_frame(i, seq, payload);
+  if (l.retransmit_timer == 0) arm_retransmit(i);
+}
+
+void PackingNode::put_frame(std::size_t i, std::uint32_t seq, std::span<const std::byte> payload) {
+  Link& l = links_[i];
+  // The frame carries our acknowledgement of the reverse link: no standalone ack is owed any more.
+  FrameMsg f{seq, l.received, {payload.begin(), payload.end()}};
+  encode(f, frame_buffer_);
+  raw_send(know_.neighbours[i], frame_buffer_);
+  l.ack_pending = false;
+  if (l.ack_timer != 0) {
+    rt_.cancel(l.ack_timer);
+    l.ack_timer = 0;
+  }
+}
+
+void PackingNode::arm_retransmit(std::size_t i) {
+  Link& l = links_[i];
+  if (l.retransmit_timer != 0) rt_.cancel(l.retransmit_timer);
+  l.retransmit_timer = rt_.schedule(l.period, timer_retransmit | i);
+}
+
+void PackingNode::on_retransmit(std::size_t i) {
+  Link& l = links_[i];
+  if (l.dead || l.unacked.empty()) return;
+  if (l.attempts >= params_.max_retransmissions) {
+    give_up(i);
+    return;
+  }
+  ++l.attempts;
+  for (const auto& [seq, payload] : l.unacked) {
+    put_frame(i, seq, payload);
+    ++counters_.retransmissions;
+  }
+  l.period = std::min(2 * l.period, params_.backoff_cap * params_.retransmit_after);
+  arm_retransmit(i);
+}
+
+void PackingNode::handle_ack(std::size_t i, const AckInfo& a) {
+  // Drop every frame the neighbour proves it has: below a.next, or flagged in the bitmap above it.
+  Link& l = links_[i];
+  const std::size_t before = l.unacked.size();
+  std::erase_if(l.unacked, [&](const auto& e) {
+    const std::uint32_t seq = e.first;
+    if (seq < a.next) return true;
+    const std::uint32_t k = seq - a.next;
+    return k >= 1 && k <= 64 && ((a.bits >> (k - 1)) & 1u) != 0;
+  });
+  if (l.unacked.size() == before) return;
+  // Progress: the link is alive; start the backoff again (or stop the timer if nothing is left).
+  l.attempts = 0;
+  l.period = params_.retransmit_after;
+  if (l.unacked.empty()) {
+    if (l.retransmit_timer != 0) rt_.cancel(l.retransmit_timer);
+    l.retransmit_timer = 0;
+  } else {
+    arm_retransmit(i);
+  }
+}
+
+void PackingNode::handle_frame(std::size_t i, FrameMsg& f) {
+  Link& l = links_[i];
+  handle_ack(i, f.ack);
+  // Every copy re-arms our ack: if the copy is a retransmission, our earlier ack was lost.
+  if (!l.ack_pending) {
+    l.ack_pending = true;
+    ack_owed_.push_back(i);
+  }
+  AckInfo& r = l.received;
+  bool fresh = false;
+  if (f.seq == r.next) {
+    // Advance past every sequence number already held (bit k ↔ r.next + 1 + k).
+    fresh = true;
+    for (;;) {
+      ++r.next;
+      const bool have = (r.bits & 1u) != 0;
+      r.bits >>= 1;
+      if (!have) break;
+    }
+  } else if (f.seq > r.next) {
+    const std::uint32_t k = f.seq - r.next - 1;
+    if (k >= 64) {
+      ++counters_.out_of_window;
+      return;
+    }
+    fresh = ((r.bits >> k) & 1u) == 0;
+    r.bits |= std::uint64_t{1} << k;
+  }
+  if (!fresh) {
+    ++counters_.duplicates;
+    return;
+  }
+  deliver_frame_payload(i, f.payload);
+}
+
+void PackingNode::deliver_frame_payload(std::size_t i, std::span<const std::byte> payload) {
+  if (payload.empty()) return;  // a probe: its only purpose was the ack
+  Message m;
+  if (decode(payload, m) != DecodeStatus::ok) {
+    ++counters_.bad_payload;
+    return;
+  }
+  if (const auto* fail = std::get_if<FailureMsg>(&m)) {
+    declare_failure(fail->suspect, i);
+    return;
+  }
+  if (failed_) return;  // the run is abandoned: the protocol no longer runs
+  if (auto* r = std::get_if<RelayMsg>(&m)) handle_relay(i, *r);
+  else if (std::holds_alternative<FrameMsg>(m) || std::holds_alternative<AckMsg>(m)) ++counters_.unexpected;  // frames never nest
+  else agents_[0]->receive(agents_[0]->spec().g_k[i], m);
+}
+
+void PackingNode::flush_acks() {
+  // After a callback: acks still owed (no frame to that neighbour carried them) go alone, at once or
+  // after ack_delay in case a frame leaves first.
+  for (std::size_t i : ack_owed_) {
+    Link& l = links_[i];
+    if (!l.ack_pending || l.dead) continue;
+    if (params_.ack_delay == 0) {
+      l.ack_pending = false;
+      encode(AckMsg{l.received}, frame_buffer_);
+      raw_send(know_.neighbours[i], frame_buffer_);
+      ++counters_.acks;
+    } else if (l.ack_timer == 0) {
+      l.ack_timer = rt_.schedule(params_.ack_delay, timer_ack | i);
+    }
+  }
+  ack_owed_.clear();
+}
+
+void PackingNode::on_probe() {
+  if (is_final()) return;  // a finished node no longer probes: the queue may drain
+  const Time now = rt_.now();
+  for (std::size_t i = 0; i < deg_; ++i) {
+    Link& l = links_[i];
+    if (l.dead || !l.unacked.empty() || now - l.last_heard < params_.probe_after) continue;
+    ++counters_.probes;
+    send_frame(i, {});
+  }
+  probe_timer_ = rt_.schedule(params_.probe_after, timer_probe);
+}
+
+void PackingNode::give_up(std::size_t i) {
+  Link& l = links_[i];
+  l.dead = true;
+  l.unacked.clear();
+  l.ack_pending = false;
+  if (l.ack_timer != 0) rt_.cancel(l.ack_timer);
+  l.ack_timer = 0;
+  ++counters_.links_failed;
+  declare_failure(know_.neighbours[i], deg_);
+}
+
+void PackingNode::declare_failure(NodeId suspect, std::size_t except) {
+  if (failed_) return;  // the notice already went out from here: the flood stops
+  failed_ = true;
+  suspect_ = suspect;
+  if (probe_timer_ != 0) rt_.cancel(probe_timer_);
+  probe_timer_ = 0;
+  const std::vector<std::byte> notice = encode(FailureMsg{suspect});
+  for (std::size_t j = 0; j < deg_; ++j)
+    if (j != except) send_frame(j, notice);
+}
+
+bool PackingNode::is_final() const { return failed_ || agents_[0]->phase() == PackingPhase::finished; }
 
 void PackingNode::on_message(NodeId from, std::span<const std::byte> bytes) {
   ++counters_.received;
   const std::size_t i = index_of(from);
   if (i == deg_) {
     ++counters_.not_a_neighbour;
+    return;
+  }
+  if (lossy()) {
+    Message m;
+    const DecodeStatus s = decode(bytes, m);
+    ++counters_.decode[static_cast<std::size_t>(s)];
+    if (s != DecodeStatus::ok) return;
+    links_[i].last_heard = rt_.now();
+    if (auto* f = std::get_if<FrameMsg>(&m)) handle_frame(i, *f);
+    else if (const auto* a = std::get_if<AckMsg>(&m)) handle_ack(i, a->ack);
+    else ++counters_.unexpected;  // on lossy links everything travels in frames
+    drain();
+    flush_acks();
     return;
   }
   // A plain message comes from G-neighbour i, which is K-neighbour g_k[i] of this node's own vertex;
@@ -245,7 +491,9 @@ void PackingNode::on_message(NodeId from, std::span<const std::byte> bytes) {
 }
 
 PackingPhase PackingNode::phase() const { return agents_[0]->phase(); }
-PackingOutcome PackingNode::outcome() const { return agents_[0]->outcome(); }
+PackingOutcome PackingNode::outcome() const {
+  return failed_ ? PackingOutcome::neighbour_failed : agents_[0]->outcome();
+}
 std::uint32_t PackingNode::depth() const { return agents_[0]->state().depth; }
 bool PackingNode::is_root() const { return agents_[0]->state().is_root; }
 std::uint32_t PackingNode::wave() const { return agents_[0]->state().wave; }

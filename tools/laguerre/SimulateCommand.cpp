@@ -5,12 +5,16 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "Commands.hpp"
 #include "Common.hpp"
 #include "laguerre/core/packing/Packer.hpp"
+#include "laguerre/core/power/LocalPowerDiagram.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/protocols/Codec.hpp"
 #include "laguerre/protocols/Forwarding.hpp"
@@ -33,6 +37,8 @@ struct SimulateArgs {
   int max_iterations = 100000;
   std::string root = "deepest";
   std::string pairs = "all";
+  std::vector<std::string> crashes;
+  std::string retransmit_after;
   bool verify = false;
   bool json = false;
 };
@@ -101,6 +107,30 @@ sim::Network make_network(const core::PlanarGraph& g, const std::vector<core::Po
   return net;
 }
 
+// ID@TIME (TIME a duration from the start, as for --latency) → (node index, time).
+std::pair<sim::NodeIndex, sim::Time> parse_crash(const std::string& spec, const sim::Network& net) {
+  const std::size_t at = spec.find('@');
+  std::uint64_t id = 0;
+  std::size_t used = 0;
+  try {
+    id = std::stoull(spec.substr(0, at), &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (at == std::string::npos || used == 0 || used != at)
+    throw std::invalid_argument("--crash: expected ID@TIME such as 17@40ms, found '" + spec + "'.");
+  const auto v = net.index_of(id);
+  if (!v) throw std::invalid_argument("--crash " + spec + ": the graph has no node with id " + std::to_string(id) + ".");
+  return {*v, parse_duration(spec.substr(at + 1))};
+}
+
+// The longest one-way latency the link model can produce on this network.
+sim::Duration max_latency(const sim::Network& net, const sim::LinkModel& link) {
+  sim::Duration m = link.latency.max_latency(0);
+  for (sim::LinkIndex l = 0; l < net.link_count(); ++l) m = std::max(m, link.latency.max_latency(net.link_length(l)));
+  return m;
+}
+
 class Collector : public protocols::PacketSink {
 public:
   void on_packet_end(const protocols::PacketReport& r) override { reports.push_back(r); }
@@ -108,13 +138,8 @@ public:
 };
 
 int run_simulate(const SimulateArgs& a) {
-  if (a.mode != "sync")
-    throw std::invalid_argument("--mode " + a.mode +
-                                " is not available yet: only the synchronous protocol is implemented.");
-  if (a.loss > 0 || a.dup > 0)
-    throw std::invalid_argument(
-        "--loss and --dup need the fault-tolerant protocol, which is not implemented yet: the synchronous "
-        "protocol assumes reliable links (any latency and reordering is fine).");
+  if (a.mode != "sync" && a.mode != "async")
+    throw std::invalid_argument("--mode: expected sync or async, found '" + a.mode + "'.");
   const LoadedGraph loaded = load_graph(a.graph, a.format, a.index);
   const core::PlanarGraph& g = loaded.input.graph;
   const std::size_t n = g.num_vertices();
@@ -131,13 +156,32 @@ int run_simulate(const SimulateArgs& a) {
   params.steps_per_check = a.steps;
   params.max_iterations = a.max_iterations;
   params.root = a.root == "smallest-id" ? core::RootRule::smallest_id : core::RootRule::deepest;
+  params.asynchronous = a.mode == "async";
+  sim::Network network = make_network(g, loaded.input.positions, link);
+  std::vector<std::pair<sim::NodeIndex, sim::Time>> crashes;
+  for (const std::string& c : a.crashes) {
+    crashes.push_back(parse_crash(c, network));
+    network.add_crash(crashes.back().first, crashes.back().second);
+  }
+  // Loss, duplication and crashes need the reliability layer (PackingNode.hpp, "Loss, duplication and
+  // crashes"); on reliable links it stays off and the wire traffic is the synchronous protocol's.
+  const bool lossy = a.loss > 0 || a.dup > 0 || !crashes.empty() || !a.retransmit_after.empty();
+  if (lossy) {
+    protocols::enable_lossy_links(params, max_latency(network, link));
+    if (!a.retransmit_after.empty()) params.retransmit_after = std::max<sim::Duration>(1, parse_duration(a.retransmit_after));
+  }
   sim::SimConfig config;
   config.seed = a.seed;
+  // Traffic is counted under the message type; a frame of the reliability layer under the type of the
+  // message it carries (retransmissions included), a probe (empty frame) and an ack under their own.
   auto phase_of = [](std::span<const std::byte> bytes) -> sim::Phase {
+    const std::size_t frame_header = protocols::encoded_size(protocols::MessageType::frame);
+    if (bytes.size() > frame_header + 1 && bytes[1] == static_cast<std::byte>(protocols::MessageType::frame))
+      return static_cast<sim::Phase>(bytes[frame_header + 1]);
     return bytes.size() >= 2 ? static_cast<sim::Phase>(bytes[1]) : 0;
   };
   sim::SimHost host(
-      make_network(g, loaded.input.positions, link), config,
+      std::move(network), config,
       [&](protocols::Runtime& rt, sim::NodeIndex v) -> std::unique_ptr<protocols::Node> {
         return std::make_unique<protocols::PackingNode>(rt, protocols::local_knowledge(g, v), params);
       },
@@ -146,8 +190,10 @@ int run_simulate(const SimulateArgs& a) {
 
   // Gather the outcome and the embedding the nodes hold.
   core::CircleEmbedding phi(n);
-  std::size_t converged = 0, holds = 0;
+  std::size_t converged = 0, holds = 0, failed = 0, survivors = 0;
   std::uint32_t steps = 0, rounds = 0;
+  protocols::PackingCounters rel;  // reliability-layer totals
+  std::map<protocols::NodeId, std::size_t> suspects;
   for (core::Vertex v = 0; v < n; ++v) {
     const auto& node = static_cast<const protocols::PackingNode&>(host.node(v));
     phi[v] = node.placement().circle;
@@ -155,7 +201,24 @@ int run_simulate(const SimulateArgs& a) {
     holds += node.local_condition() == core::LocalCondition::holds;
     steps = std::max(steps, node.steps());
     rounds = std::max(rounds, node.round());
+    const auto& c = node.counters();
+    rel.frames += c.frames;
+    rel.retransmissions += c.retransmissions;
+    rel.acks += c.acks;
+    rel.duplicates += c.duplicates;
+    rel.probes += c.probes;
+    rel.links_failed += c.links_failed;
+    const bool crashed = std::any_of(crashes.begin(), crashes.end(), [&](const auto& cr) { return cr.first == v; });
+    if (crashed) continue;
+    ++survivors;
+    if (node.outcome() == protocols::PackingOutcome::neighbour_failed) {
+      ++failed;
+      ++suspects[node.suspect()];
+    }
   }
+  std::string suspect_list;
+  for (const auto& [id, count] : suspects)
+    suspect_list += (suspect_list.empty() ? "" : ", ") + std::to_string(id) + " (" + std::to_string(count) + " nodes)";
   const auto& traffic = host.simulator().traffic();
   const sim::TrafficCounters total = traffic.total();
   std::uint64_t max_msgs = 0, max_bytes = 0;
@@ -165,7 +228,16 @@ int run_simulate(const SimulateArgs& a) {
     max_bytes = std::max(max_bytes, t.bytes_sent);
   }
   std::string verify;
-  if (a.verify) {
+  if (a.verify && failed > 0) {
+    verify = "not applicable: the run was abandoned after a node failure";
+  } else if (a.verify && params.asynchronous) {
+    // The asynchronous iterates depend on timing: check the nodes' embedding with core's own checks.
+    const auto checks = core::check_all(g, phi);
+    const auto ok = static_cast<std::size_t>(std::count(checks.begin(), checks.end(), core::LocalCondition::holds));
+    verify = "asynchronous mode (not bit for bit by design): core's " +
+             std::string(loaded.kind == core::GraphKind::triangulated_disc ? "LPD" : "GLPD") + " check holds at " +
+             std::to_string(ok) + "/" + std::to_string(n) + " nodes";
+  } else if (a.verify) {
     core::PackOptions opt;
     opt.steps_per_check = a.steps;
     opt.max_iterations = a.max_iterations;
@@ -186,10 +258,14 @@ int run_simulate(const SimulateArgs& a) {
       throw std::invalid_argument("--pairs expects 'all' or a positive number, found '" + a.pairs + "'.");
     }
   }
-  const auto pairs = core::select_pairs(n, selection);
+  const auto pairs = failed > 0 ? std::vector<std::pair<core::Vertex, core::Vertex>>{} : core::select_pairs(n, selection);
   Collector sink;
+  // Forwarding has no retransmission: packets travel over the same latencies without loss/duplication.
+  sim::LinkModel fwd_link = link;
+  fwd_link.loss = 0;
+  fwd_link.duplication = 0;
   sim::SimHost fwd(
-      make_network(g, loaded.input.positions, link), config,
+      make_network(g, loaded.input.positions, fwd_link), config,
       [&](protocols::Runtime& rt, sim::NodeIndex v) -> std::unique_ptr<protocols::Node> {
         std::vector<protocols::NodeId> nb;
         std::vector<core::Circle> circles;
@@ -231,6 +307,7 @@ int run_simulate(const SimulateArgs& a) {
                           {"converged_nodes", converged},
                           {"local_condition_holds", holds},
                           {"iterations", steps},
+                          {"mode", a.mode},
                           {"rounds", rounds},
                           {"messages", total.messages_sent},
                           {"bytes", total.bytes_sent},
@@ -249,13 +326,38 @@ int run_simulate(const SimulateArgs& a) {
                           {"hops_mean", delivered ? hops / static_cast<double>(delivered) : 0.0},
                           {"forwarding_simulated_seconds", static_cast<double>(fwd_report.simulated_time) * 1e-9}};
     if (a.verify) doc["verify"] = verify;
+    if (lossy) {
+      doc["reliability"] = {{"frames", rel.frames},
+                            {"retransmissions", rel.retransmissions},
+                            {"acks", rel.acks},
+                            {"duplicates", rel.duplicates},
+                            {"probes", rel.probes},
+                            {"links_given_up", rel.links_failed},
+                            {"retransmit_after_seconds", static_cast<double>(params.retransmit_after) * 1e-9}};
+      doc["failed_nodes"] = failed;
+      doc["survivors"] = survivors;
+      nlohmann::json sus = nlohmann::json::object();
+      for (const auto& [id, count] : suspects) sus[std::to_string(id)] = count;
+      doc["suspects"] = sus;
+    }
     std::cout << doc.dump(1) << '\n';
   } else {
     std::printf("graph        %s: %zu nodes, %zu edges, %s\n", loaded.input.name.c_str(), n, g.num_edges(),
                 std::string(core::to_string(loaded.kind)).c_str());
-    std::printf("protocol     %s after %u iterations in %u rounds (N = %d); %zu/%zu nodes report %s\n",
-                converged == n ? "converged" : "did not converge", steps, rounds, a.steps, holds, n,
+    std::printf("protocol     %s after %u %s in %u rounds (N = %d); %zu/%zu nodes report %s\n",
+                converged == n ? "converged" : "did not converge", steps,
+                params.asynchronous ? "iteration-equivalents (asynchronous)" : "iterations", rounds, a.steps, holds, n,
                 loaded.kind == core::GraphKind::triangulated_disc ? "LPD" : "GLPD");
+    if (failed > 0)
+      std::printf("failure      %zu/%zu surviving nodes ended with neighbour_failed; suspected: %s\n", failed, survivors,
+                  suspect_list.c_str());
+    if (lossy)
+      std::printf("reliability  %llu frames, %llu retransmissions, %llu acks, %llu duplicates detected, %llu probes, "
+                  "%llu links given up (retransmit after %.3f ms)\n",
+                  static_cast<unsigned long long>(rel.frames), static_cast<unsigned long long>(rel.retransmissions),
+                  static_cast<unsigned long long>(rel.acks), static_cast<unsigned long long>(rel.duplicates),
+                  static_cast<unsigned long long>(rel.probes), static_cast<unsigned long long>(rel.links_failed),
+                  static_cast<double>(params.retransmit_after) * 1e-6);
     std::printf("messages     %llu (%.1f per node, max %llu); bytes %llu (%.0f per node, max %llu)\n",
                 static_cast<unsigned long long>(total.messages_sent), msgs_mean,
                 static_cast<unsigned long long>(max_msgs), static_cast<unsigned long long>(total.bytes_sent),
@@ -272,8 +374,11 @@ int run_simulate(const SimulateArgs& a) {
                 static_cast<unsigned long long>(report.events_processed), report.events_per_second,
                 static_cast<double>(report.peak_memory_bytes) / (1024.0 * 1024.0));
     if (a.verify) std::printf("verify       %s\n", verify.c_str());
-    std::printf("forwarding   %zu/%zu packets delivered hop by hop (greedy power), %.2f hops on average\n", delivered,
-                pairs.size(), delivered ? hops / static_cast<double>(delivered) : 0.0);
+    if (failed > 0)
+      std::printf("forwarding   skipped: the packing run was abandoned\n");
+    else
+      std::printf("forwarding   %zu/%zu packets delivered hop by hop (greedy power%s), %.2f hops on average\n", delivered,
+                  pairs.size(), lossy ? ", over loss-free links" : "", delivered ? hops / static_cast<double>(delivered) : 0.0);
   }
   return converged == n ? 0 : 3;
 }
@@ -284,16 +389,23 @@ Action add_simulate_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "simulate", "Run the distributed packing protocol, one actor per node, in the discrete-event simulator.");
   cmd->footer("Then every selected pair sends a packet, forwarded hop by hop by greedy power routing.\n"
-              "Exit status: 0 converged, 3 not converged, 2 bad input.");
+              "With --loss, --dup or --crash the nodes run the reliability layer (acks, retransmissions,\n"
+              "duplicate detection, crash detection); a detected crash ends every survivor with neighbour_failed.\n"
+              "Exit status: 0 converged, 3 not converged or a node failed, 2 bad input.");
   cmd->add_option("graph", args->graph, "Graph file (edge list, coords or planar_code)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--format", args->format, "Input format: automatic, edges, coords, planar_code")->capture_default_str();
   cmd->add_option("--index", args->index, "Which graph of a multi-graph file (from 1)")->capture_default_str();
-  cmd->add_option("--mode", args->mode, "Protocol mode: sync (async arrives with the fault-tolerant protocol)")
+  cmd->add_option("--mode", args->mode, "Protocol mode: sync (bit for bit with core::pack) or async (chaotic updates)")
+      ->check(CLI::IsMember({"sync", "async"}))
       ->capture_default_str();
   cmd->add_option("--latency", args->latency, "constant:D, uniform:LO:HI or distance:BASE:NS_PER_UNIT[:JITTER]")
       ->capture_default_str();
-  cmd->add_option("--loss", args->loss, "Loss probability per copy")->capture_default_str();
-  cmd->add_option("--dup", args->dup, "Duplication probability per message")->capture_default_str();
+  cmd->add_option("--loss", args->loss, "Loss probability per copy (turns the reliability layer on)")->capture_default_str();
+  cmd->add_option("--dup", args->dup, "Duplication probability per message (turns the reliability layer on)")
+      ->capture_default_str();
+  cmd->add_option("--crash", args->crashes, "Crash node ID at TIME for good, e.g. 17@40ms (repeatable)");
+  cmd->add_option("--retransmit-after", args->retransmit_after,
+                  "First retransmission period of the reliability layer (default: 3 × the longest latency)");
   cmd->add_option("--seed", args->seed, "Seed of every random stream (and of the pair sample)")->capture_default_str();
   cmd->add_option("--steps-per-round,-N", args->steps, "Thurston steps per round")->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--max-iterations", args->max_iterations, "Cap on Thurston steps")->capture_default_str();

@@ -184,10 +184,53 @@ TEST_F(Cli, SimulateRunsTheProtocolAndMatchesTheCore) {
 }
 
 TEST_F(Cli, SimulateRejectsWhatItCannotDoYet) {
-  Outcome r = run("simulate " + example + " --loss 0.2");
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.out.find("reliable links"), std::string::npos) << r.out;
+  Outcome r = run("simulate " + example + " --mode sometimes");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("--mode"), std::string::npos) << r.out;
   r = run("simulate " + example + " --latency sometimes");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.out.find("--latency"), std::string::npos) << r.out;
+  r = run("simulate " + example + " --crash 17x");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("--crash"), std::string::npos) << r.out;
+  r = run("simulate " + example + " --crash 999@1ms");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("no node with id 999"), std::string::npos) << r.out;
+}
+
+TEST_F(Cli, SimulateSurvivesLossAndDuplicationBitForBit) {
+  const Outcome r = run("simulate " + example + " --loss 0.2 --dup 0.05 --latency uniform:1ms:5ms --verify --pairs 50 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["converged_nodes"], 60);
+  EXPECT_EQ(doc["verify"], "identical to core::pack, bit for bit");
+  EXPECT_GT(doc["reliability"]["retransmissions"].get<int>(), 0);
+  EXPECT_GT(doc["reliability"]["duplicates"].get<int>(), 0);
+  EXPECT_EQ(doc["reliability"]["links_given_up"], 0);
+  const Outcome text = run("simulate " + example + " --loss 0.1 --dup 0.05 --verify --pairs 10");
+  ASSERT_EQ(text.status, 0) << text.out;
+  EXPECT_NE(text.out.find("retransmissions"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("duplicates detected"), std::string::npos) << text.out;
+}
+
+TEST_F(Cli, SimulateRunsTheAsynchronousMode) {
+  for (const auto& g : {example, example3}) {
+    const Outcome r = run("simulate " + g + " --mode async --loss 0.1 --latency uniform:1ms:4ms --verify --pairs 50 --json");
+    ASSERT_EQ(r.status, 0) << r.out;
+    const auto doc = nlohmann::json::parse(r.out);
+    EXPECT_EQ(doc["mode"], "async");
+    EXPECT_EQ(doc["converged_nodes"], 60);
+    EXPECT_NE(doc["verify"].get<std::string>().find("holds at 60/60 nodes"), std::string::npos) << r.out;
+    EXPECT_EQ(doc["delivered"], doc["packets"]);
+  }
+}
+
+TEST_F(Cli, SimulateReportsACrashedNodeAtEverySurvivor) {
+  const Outcome r = run("simulate " + example + " --crash 17@100ms --verify --json --pairs 5");
+  EXPECT_EQ(r.status, 3) << r.out;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["survivors"], 59);
+  EXPECT_EQ(doc["failed_nodes"], 59);
+  EXPECT_EQ(doc["suspects"]["17"], 59);
+  EXPECT_EQ(doc["verify"], "not applicable: the run was abandoned after a node failure");
 }

@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// The messages of the packing protocol and of packet forwarding, and their byte encoding, identical in
-/// every host. Types 9–12 were added without changing the encoding of types 1–8 (same wire_version).
+/// every host. Types 9–12, then 13–15, were added without changing the encoding of types 1–8 (same
+/// wire_version).
 ///
 /// Wire format (all integers little-endian, every field fixed-size, no padding):
 ///
@@ -12,8 +13,8 @@
 ///                   f64             the IEEE-754 bits of a double as a u64 (bit-exact, NaN payloads
 ///                                   and signed zeros included)
 ///
-/// A fixed-size message has exactly `encoded_size(type)` bytes. The two variable-size messages
-/// (FaceCirclesMsg, RelayMsg) have a fixed part of `encoded_size(type)` bytes that ends with a u32
+/// A fixed-size message has exactly `encoded_size(type)` bytes. The three variable-size messages
+/// (FaceCirclesMsg, RelayMsg, FrameMsg) have a fixed part of `encoded_size(type)` bytes that ends with a u32
 /// count, followed by exactly that many items; the count is range-checked before it is used, so a
 /// length never depends on unchecked data. `decode` checks, in this order: at least two bytes (else
 /// `truncated`), the version, the type, the exact length (`truncated` if short, `trailing_bytes` if
@@ -25,6 +26,11 @@
 /// graph has a non-triangle inner face, convergecast and broadcast once), FaceCirclesMsg (a face
 /// vertex tells the vertices of its face all their circles) and RelayMsg (an envelope carrying a
 /// message between a face vertex's host and a vertex of that face along the face's boundary).
+///
+/// Lossy links (PackingNode.hpp, "Loss, duplication and crashes") add three more: FrameMsg (a
+/// sequence-numbered envelope of the per-link reliability layer, carrying one message of another type
+/// and a piggybacked acknowledgement), AckMsg (an acknowledgement alone) and FailureMsg (a flooded
+/// "neighbour failed" notice, carried in frames).
 
 #include <cstddef>
 #include <cstdint>
@@ -52,10 +58,13 @@ enum class MessageType : std::uint8_t {
   face_circles = 10,  ///< FaceCirclesMsg: a face vertex sends every circle of its face (one round)
   relay = 11,    ///< RelayMsg: an envelope relayed along a face between a face vertex and a face member
   data = 12,     ///< DataMsg: a data packet forwarded greedily (Forwarding.hpp)
+  frame = 13,    ///< FrameMsg: a sequence-numbered envelope of the reliability layer (lossy links)
+  ack = 14,      ///< AckMsg: the reliability layer's acknowledgement of received frames
+  failure = 15,  ///< FailureMsg: a node declared a neighbour failed (flooded, carried in frames)
 };
 
 /// Largest MessageType value (types 1 … max_message_type exist).
-inline constexpr std::uint8_t max_message_type = 12;
+inline constexpr std::uint8_t max_message_type = 15;
 
 /// Name of a message type ("depth", "election", …), "?" for values outside the enum.
 std::string_view to_string(MessageType t);
@@ -204,15 +213,52 @@ struct DataMsg {
   friend bool operator==(const DataMsg&, const DataMsg&) = default;
 };
 
+/// What a receiver of a link has got so far: every sequence number below `next` (the first one
+/// missing), and `next + 1 + k` for every bit k set in `bits` (a selective acknowledgement).
+struct AckInfo {
+  std::uint32_t next = 0;  ///< the first sequence number not yet received
+  std::uint64_t bits = 0;  ///< bit k: sequence number next + 1 + k was received
+  friend bool operator==(const AckInfo&, const AckInfo&) = default;
+};
+
+/// Largest payload of a FrameMsg: any other message, a maximal RelayMsg included.
+inline constexpr std::uint32_t max_frame_payload = 31 + max_relay_payload;
+
+/// One message of the per-link reliability layer (PackingNode.hpp): sequence number `seq` on the
+/// directed link sender → receiver, the sender's acknowledgement of the reverse link, and the carried
+/// message, encoded (empty for a liveness probe). Fields: u32 seq, u32 ack.next, u64 ack.bits,
+/// u32 count ∈ [0, max_frame_payload], count payload bytes. The payload is decoded by the receiver
+/// only once the frame is known not to be a duplicate.
+struct FrameMsg {
+  std::uint32_t seq = 0;           ///< sequence number on the directed link
+  AckInfo ack;                     ///< what the sender has received on the reverse link
+  std::vector<std::byte> payload;  ///< the carried message, encoded; empty for a probe
+  friend bool operator==(const FrameMsg&, const FrameMsg&) = default;
+};
+
+/// An acknowledgement alone (when no frame is going the other way soon). Fields: u32 ack.next,
+/// u64 ack.bits.
+struct AckMsg {
+  AckInfo ack;  ///< what the sender has received on the reverse link
+  friend bool operator==(const AckMsg&, const AckMsg&) = default;
+};
+
+/// "Node `suspect` stopped answering": flooded to every node (inside frames), which then ends its
+/// run with PackingOutcome::neighbour_failed. Fields: u64 suspect.
+struct FailureMsg {
+  std::uint64_t suspect = 0;  ///< the node declared failed
+  friend bool operator==(const FailureMsg&, const FailureMsg&) = default;
+};
+
 /// Any message of the packing protocol and of packet forwarding.
 using Message = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg, DecisionMsg,
-                             ShapeMsg, FaceCirclesMsg, RelayMsg, DataMsg>;
+                             ShapeMsg, FaceCirclesMsg, RelayMsg, DataMsg, FrameMsg, AckMsg, FailureMsg>;
 
 /// The type byte of a message.
 MessageType type_of(const Message& m);
 
 /// Encoded size of a message of type `t`, header included: exact for fixed-size types, the fixed
-/// part (up to and including the count) for FaceCirclesMsg and RelayMsg; 0 for values outside the enum.
+/// part (up to and including the count) for FaceCirclesMsg, RelayMsg and FrameMsg; 0 for values outside the enum.
 std::size_t encoded_size(MessageType t);
 
 /// Exact encoded size of `m`, header included.

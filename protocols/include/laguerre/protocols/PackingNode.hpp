@@ -1,33 +1,80 @@
 #pragma once
 /// @file
-/// The distributed circle-packing protocol of thesis §5.3, synchronous mode, for triangulated discs
-/// and 3-connected plane graphs: one `PackingNode` per network node, hosted through `Runtime`.
+/// The distributed circle-packing protocol of thesis §5.3 for triangulated discs and 3-connected plane
+/// graphs: one `PackingNode` per network node, hosted through `Runtime`. Synchronous mode (bit for bit
+/// with core::pack), optionally over lossy links and with crash detection, and an asynchronous mode.
 ///
-/// ## Design note: tolerating loss and duplication (planned, not implemented)
+/// ## Loss, duplication and crashes (`PackingParams::retransmit_after` > 0)
 ///
-/// The synchronous mode assumes reliable links. The plan keeps its results bit for bit under loss,
-/// duplication and delay, because every value a node computes is keyed by its position in the run,
-/// never by when or how often a message arrives:
-///  - *Idempotent state messages.* Each message already names its slot: (pulse) for Depth/Wave,
-///    (step) for Radius, (round) for Placed/FaceCircles/Report/Decision, (direction) for Shape. A
-///    receiver stores at most one value per (neighbour, type, key) and ignores a repeat with the same
-///    key and value as a *duplicate* (its own counter, not `unexpected`); the handlers that today count
-///    a second copy (final depth, placed wave, echo tokens, child reports) move to per-neighbour flags.
-///    Two slots per neighbour still suffice: neighbours stay at most one step/round apart.
-///  - *Retransmission timers.* Every node keeps, per neighbour, the last message of each type it sent
-///    for the current key and re-sends it when a timer (`Runtime::schedule`, period from
-///    `PackingParams`) fires, until receipt is proven. Most proofs are implicit: a neighbour's message
-///    with a later key (Radius step t + 1, a Report for round r, the next pulse) shows it holds ours.
-///    Report and Decision, which nothing later acknowledges before the next round, get an explicit
-///    Ack(type, round). A finished node keeps answering with its final Decision, so a lost "stop"
-///    cannot strand a subtree.
-///  - *Relayed face traffic* is retransmitted end to end (face host ↔ member, keyed as above); relays
-///    stay stateless.
-///  - *Crashes.* A neighbour that proves nothing for a bounded number of periods is declared
-///    unreachable; the node reports that status up the tree (or to its neighbours during set-up) and
-///    the run ends with it instead of hanging.
-///  - Set-up (BFS, echo election, wave) uses the same rules; the election's echo counts per-neighbour
-///    flags, so a duplicated token cannot complete a wave early.
+/// The synchronous mode needs reliable links but tolerates any delay and any reordering: every
+/// message names its slot (pulse, step or round) and every handler is correct whatever the arrival
+/// order, as the shuffled-delivery tests show. So the lossy mode does not touch the protocol: it puts
+/// a per-link *reliability layer* under it that turns a lossy, duplicating, reordering link into a
+/// reliable, reordering one — exactly-once delivery of every message — after which every node
+/// computes what it computes on reliable links, hence core::pack's radii, circles and iteration count
+/// bit for bit, whatever is lost or duplicated. The rules (PackingNode implements them; the agents
+/// are unchanged):
+///  - *Frames.* Every message a node hands to a neighbour u (protocol messages, relay envelopes,
+///    failure notices) travels in a FrameMsg with the next sequence number of the directed link
+///    v → u. The key (link, seq) identifies the message: a receiver records which sequence numbers it
+///    has (AckInfo: the first missing one plus a 64-bit selective bitmap above it), delivers a frame's
+///    payload only the first time, and counts every further copy as a *duplicate* (a sim duplicate or
+///    a retransmission whose ack was lost) — never applied twice. A frame more than 64 ahead of the
+///    first missing one is dropped unacknowledged (the sender retransmits it later); a correct node
+///    never gets that far ahead, since neighbours stay within a step or a round of each other.
+///  - *Acks.* Receipt is proven *implicitly* when a frame goes back: every frame carries the sender's
+///    AckInfo of the reverse link (most radius and placement exchanges are answered this way). Where
+///    nothing goes back soon (convergecast reports, decisions, relays, the last message of a run) an
+///    explicit AckMsg follows after `ack_delay` unless a frame took it first. Relayed face traffic is
+///    acknowledged hop by hop (each hop is a link like any other), hence delivered exactly once end to
+///    end; relays keep no per-message state beyond their links'. Every received copy,
+///    duplicates included, re-arms the ack, so a lost ack is repaired by the next retransmission.
+///  - *Retransmission.* Per neighbour, one timer runs while frames to it are unacknowledged; when it
+///    fires, every unacknowledged frame to that neighbour is sent again (with a fresh piggybacked ack)
+///    and the period doubles, from `retransmit_after` up to `backoff_cap` × `retransmit_after`. Any
+///    progress (a frame newly acknowledged) resets the period and the attempt count; the timer is
+///    cancelled as soon as nothing is outstanding. Set `retransmit_after` above the longest round
+///    trip plus `ack_delay` (`enable_lossy_links` does) or copies are merely sent twice.
+///  - *Quiescence.* A node never sends unprompted except (a) new protocol messages, (b) retransmissions
+///    of unacknowledged frames, (c) acks of frames it received, (d) probes (below) while it is still
+///    running. After the stop decision (a) and (d) end; (b) ends when the last frames are acknowledged
+///    — answered by the neighbours' acks, which a finished node keeps sending for every copy it gets —
+///    or given up; (c) only answers (b). So every node goes quiet and the host's event queue drains.
+///  - *Crashes.* A link whose frames get no acknowledgement after `max_retransmissions` backed-off
+///    retransmissions is declared dead and its neighbour *suspected*: the node ends its run with
+///    PackingOutcome::neighbour_failed and floods FailureMsg(suspect) to its other neighbours (in
+///    frames, so reliably); every node that gets the notice ends likewise and floods it on. A node
+///    that is still running but has nothing in flight to a neighbour it has not heard from for
+///    `probe_after` sends it an empty frame (a probe), so a crash is detected even when the node is
+///    only waiting (e.g. for a dead child's report). Removing one node from a triangulated disc or a
+///    3-connected graph leaves it connected, so the notice reaches every survivor; each survivor then
+///    stops probing, its frames to the dead node are given up after the bounded retransmissions, and
+///    the queue drains. A false suspicion needs max_retransmissions + 1 consecutive lost round trips:
+///    at 20% loss per copy, 0.36^25 ≈ 1e-11 per link episode with the default 24.
+///  - *Counters* (PackingCounters): frames, retransmissions, standalone acks, duplicates, probes,
+///    links declared dead — per node, physical messages (a retransmission counts again).
+///
+/// With `retransmit_after` = 0 (the default) nothing of this exists: no frames, timers or acks, the
+/// wire traffic is the synchronous mode's, for reliable links.
+///
+/// ## Asynchronous mode (`PackingParams::asynchronous`)
+///
+/// Set-up, layout, check, convergecast and decision are those above; only the Thurston steps change.
+/// In round r each interior vertex makes N updates (min(N, cap − steps), as above) with
+/// `core::star_updated_radius`, each from the *newest* X it knows of every neighbour (whatever step
+/// produced it: chaotic relaxation, between Jacobi and Gauss–Seidel), and sends its new X after each
+/// update in a RadiusMsg whose `step` is its update count (the value's version; a receiver keeps the
+/// highest). Update 1 of a round goes at once; update k ≥ 2 waits until k − 1 radius messages of this
+/// round have arrived (from any neighbours), so a vertex never re-solves its star with nothing new.
+/// This cannot deadlock: if every interior vertex makes j updates of round r, each has sent j messages
+/// to each interior neighbour, so every vertex that has an interior neighbour has received at least j
+/// and can make update j + 1 (a vertex without one never waits); neighbours are at most one round
+/// apart, so a per-round-parity counter suffices. The layout reads only the X each vertex sends in its
+/// PlacedMsg, so every round's layout is consistent and its LPD/GLPD verdict exact; steps() counts
+/// updates (N per round at every vertex), the iteration-equivalents. Results depend on message timing,
+/// so they are not core::pack's bit for bit; the stop rule (LPD/GLPD everywhere on the layout the
+/// nodes hold) is the same. Combines with the reliability layer (which guarantees exactly-once delivery,
+/// so the arrival counts stay exact).
 ///
 /// ## Phases and messages
 ///
@@ -42,7 +89,11 @@
 ///     then smaller id (RootRule::deepest), or the smallest id (RootRule::smallest_id). Interior nodes
 ///     whose key beats all interior neighbours' start an echo wave; a node joins the strongest wave it
 ///     has seen and ignores weaker ones; the only wave that completes is the strongest one's, whose
-///     initiator thus learns it is the root. This is the vertex core::choose_root picks.
+///     initiator thus learns it is the root. This is the vertex core::choose_root picks. A vertex
+///     echoes a wave only once it has decided whether it is a candidate itself (its depth and its
+///     neighbours' known): otherwise, with long delays (retransmissions), a deep vertex that learns its
+///     depth late could echo a weaker wave to completion before starting its own, and the wrong root
+///     would win.
 ///  3. *Wave* (StartMsg, then WaveMsg): the root floods Start(root, first = its neighbour 0) and every
 ///     node runs pulses of the combinatorial layout wave: root and first are placed at pulse 0; a node
 ///     is placed at pulse r when, among the neighbours placed at pulses < r, some inner-face wedge has
@@ -95,8 +146,9 @@
 /// of every vertex of its incident faces and decides GLPD with `check_glpd_local` (LocalChecks.hpp),
 /// exactly as core::check_glpd. A face vertex's own check is trivially true (core checks G only).
 ///
-/// Limits (the synchronous mode's assumptions): reliable links (any delay, any order); a triangulated
-/// disc or a 3-connected plane graph with at least one interior vertex.
+/// Limits: reliable links (any delay, any order) unless the reliability layer is on, which adds loss,
+/// duplication and crash-stop failures of nodes (not recoveries: a node that comes back resumes with
+/// stale links); a triangulated disc or a 3-connected plane graph with at least one interior vertex.
 
 #include <array>
 #include <cstdint>
@@ -128,13 +180,25 @@ inline constexpr NodeId max_face_node_id = (NodeId{1} << 31) - 1;
 /// (both ≤ max_face_node_id): 2^63 + host·2^31 + successor, never a node id.
 constexpr NodeId face_vertex_id(NodeId host, NodeId successor) { return (NodeId{1} << 63) | (host << 31) | successor; }
 
-/// Parameters shared by all nodes of a run (the same values core::PackOptions would hold).
+/// Parameters shared by all nodes of a run (the same values core::PackOptions would hold, plus the
+/// reliability layer's, see "Loss, duplication and crashes").
 struct PackingParams {
   int steps_per_check = 1;                                        ///< N: Thurston steps per round (≥ 1)
   int max_iterations = 100000;                                    ///< cap on steps (≥ 0)
   core::UpdateRule update = core::UpdateRule::uniform_neighbour;  ///< per-vertex update
   core::RootRule root = core::RootRule::deepest;                  ///< which root the election picks
+  Duration retransmit_after = 0;  ///< first retransmission period (ns); 0 = reliable links, no reliability layer
+  int backoff_cap = 8;            ///< longest retransmission period, in multiples of retransmit_after (≥ 1)
+  int max_retransmissions = 24;   ///< retransmissions without progress before a neighbour is suspected (≥ 1)
+  Duration ack_delay = 0;         ///< wait before a standalone ack (ns), in case a frame can carry it
+  Duration probe_after = 0;       ///< silence before a running node probes a neighbour (ns); 0 = 32 × retransmit_after
+  bool asynchronous = false;      ///< asynchronous Thurston updates (see "Asynchronous mode"); not bit for bit with core
 };
+
+/// Turns the reliability layer on with periods fitted to links whose one-way latency is at most
+/// `max_latency` ns: ack_delay = max_latency / 2, retransmit_after = 3 × max_latency (above the longest
+/// round trip plus the ack delay), other fields unchanged.
+void enable_lossy_links(PackingParams& params, Duration max_latency);
 
 /// Where a node is in the protocol.
 enum class PackingPhase : std::uint8_t {
@@ -151,6 +215,7 @@ enum class PackingOutcome : std::uint8_t {
   running,    ///< not finished
   converged,  ///< LPD/GLPD holds everywhere
   cap,        ///< the iteration cap was reached first
+  neighbour_failed,  ///< some node stopped answering (PackingNode::suspect names it); the run was abandoned
 };
 
 /// Per-node message statistics (physical messages: a relayed envelope counts at every hop).
@@ -163,6 +228,13 @@ struct PackingCounters {
   std::uint64_t unexpected = 0;                               ///< well-formed but not fitting the state
   std::uint64_t relayed = 0;                                  ///< RelayMsg envelopes forwarded for others
   std::uint64_t bad_payload = 0;                              ///< relayed payloads that did not decode
+  std::uint64_t frames = 0;                                   ///< frames sent for the first time (lossy mode)
+  std::uint64_t retransmissions = 0;                          ///< frames sent again after a timeout
+  std::uint64_t acks = 0;                                     ///< standalone acks sent
+  std::uint64_t duplicates = 0;                               ///< frames received again (never delivered twice)
+  std::uint64_t out_of_window = 0;                            ///< frames too far ahead, dropped unacknowledged
+  std::uint64_t probes = 0;                                   ///< empty frames sent to silent neighbours
+  std::uint64_t links_failed = 0;                             ///< links given up after max_retransmissions
 };
 
 /// The state of one protocol vertex (the node's own vertex or a hosted face vertex).
@@ -185,8 +257,8 @@ class PackingAgent;
 class AgentHost;
 }  // namespace detail
 
-/// One node of the packing protocol (synchronous mode): its own protocol vertex plus the face
-/// vertices it hosts.
+/// One node of the packing protocol: its own protocol vertex plus the face vertices it hosts, and (on
+/// lossy links) the reliability layer under them.
 class PackingNode final : public Node {
 public:
   /// A node with its static knowledge; `runtime` must outlive it. Throws std::invalid_argument if the
@@ -206,13 +278,18 @@ public:
   /// Decodes a message: an envelope is relayed or delivered to a hosted vertex, anything else goes to
   /// the node's own vertex.
   void on_message(NodeId from, std::span<const std::byte> bytes) override;
-  /// The synchronous mode sets no timers: counted as unexpected.
+  /// The reliability layer's timers (retransmission, delayed ack, probe); without it, counted as
+  /// unexpected.
   void on_timer(TimerId timer) override;
 
   /// The current phase.
   PackingPhase phase() const;
-  /// How the run ended (running until the stop decision arrives).
+  /// How the run ended (running until the stop decision or a failure notice arrives).
   PackingOutcome outcome() const;
+  /// The node suspected of having failed (meaningful when outcome() is neighbour_failed).
+  NodeId suspect() const { return suspect_; }
+  /// Whether the node is done: stopped by the decision, or ended by a failure.
+  bool is_final() const;
   /// This node's id.
   NodeId id() const { return know_.id; }
   /// Depth from the boundary in K (set-up result; meaningful once past the depth phase).
@@ -259,6 +336,18 @@ private:
     NodeId host = 0;            // smallest id on the face
     std::size_t agent = 0;      // index in agents_ if hosted here, else 0
   };
+  struct Link {         // the reliability layer's state for one G-neighbour (see the file comment)
+    std::uint32_t next_seq = 0;                                          // next sequence number to send
+    std::deque<std::pair<std::uint32_t, std::vector<std::byte>>> unacked;  // (seq, payload), by seq
+    TimerHandle retransmit_timer = 0;
+    Duration period = 0;                                                 // current retransmission period
+    int attempts = 0;                                                    // retransmissions since progress
+    AckInfo received;                                                    // what we have of the reverse link
+    bool ack_pending = false;
+    TimerHandle ack_timer = 0;
+    Time last_heard = 0;
+    bool dead = false;
+  };
   struct Local {        // a message between two agents of this node, delivered after the callback
     std::size_t agent;
     std::size_t from_index;
@@ -272,8 +361,23 @@ private:
   void handle_relay(std::size_t from, RelayMsg& m);
   void deliver_payload(std::size_t agent, std::size_t from_index, std::span<const std::byte> bytes);
   void drain();
+  bool lossy() const { return params_.retransmit_after > 0; }
+  void transmit(std::size_t i, std::span<const std::byte> bytes);
+  void send_frame(std::size_t i, std::span<const std::byte> payload);
+  void put_frame(std::size_t i, std::uint32_t seq, std::span<const std::byte> payload);
+  void handle_frame(std::size_t i, FrameMsg& f);
+  void handle_ack(std::size_t i, const AckInfo& a);
+  void deliver_frame_payload(std::size_t i, std::span<const std::byte> payload);
+  void flush_acks();
+  void arm_retransmit(std::size_t i);
+  void on_retransmit(std::size_t i);
+  void on_probe();
+  void give_up(std::size_t i);
+  void declare_failure(NodeId suspect, std::size_t except);
+  void raw_send(NodeId to, std::span<const std::byte> bytes);
 
   Runtime& rt_;
+  PackingParams params_;
   LocalKnowledge know_;
   std::size_t deg_ = 0;
   std::vector<std::pair<NodeId, std::uint32_t>> sorted_ids_;  // (id, index) for lookup
@@ -282,6 +386,12 @@ private:
   std::unique_ptr<detail::AgentHost> host_;
   std::deque<Local> local_;
   std::vector<std::byte> relay_buffer_;
+  std::vector<std::byte> frame_buffer_;
+  std::vector<Link> links_;                                   // per G-neighbour (lossy mode)
+  std::vector<std::size_t> ack_owed_;                         // links with ack_pending, to flush
+  TimerHandle probe_timer_ = 0;
+  bool failed_ = false;
+  NodeId suspect_ = 0;
   PackingCounters counters_;
 };
 

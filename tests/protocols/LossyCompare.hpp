@@ -1,0 +1,108 @@
+#pragma once
+// Runs the protocol with its reliability layer on the lossy host and core::pack on the same graph, and
+// compares bit for bit (radii, circles, centres, iteration count, local outcomes, face vertices); also
+// checks that the run drained and that the nodes' counters are consistent.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "LossyHost.hpp"
+#include "SyncCompare.hpp"
+
+namespace laguerre::protocols::testing {
+
+// Totals over the nodes of one run.
+struct LossyTotals {
+  PackingCounters counters;
+  LossyHost::Stats host;
+  int iterations = -1;
+};
+
+inline void add(PackingCounters& a, const PackingCounters& b) {
+  a.sent += b.sent;
+  a.bytes_sent += b.bytes_sent;
+  a.received += b.received;
+  for (std::size_t i = 0; i < a.decode.size(); ++i) a.decode[i] += b.decode[i];
+  a.not_a_neighbour += b.not_a_neighbour;
+  a.unexpected += b.unexpected;
+  a.relayed += b.relayed;
+  a.bad_payload += b.bad_payload;
+  a.frames += b.frames;
+  a.retransmissions += b.retransmissions;
+  a.acks += b.acks;
+  a.duplicates += b.duplicates;
+  a.out_of_window += b.out_of_window;
+  a.probes += b.probes;
+  a.links_failed += b.links_failed;
+}
+
+// Parameters of core::pack equivalent to `params`.
+inline core::PackOptions pack_options(const PackingParams& params) {
+  core::PackOptions opt;
+  opt.stop = core::StopRule::lpd;
+  opt.sweep = core::Sweep::jacobi;
+  opt.update = params.update;
+  opt.root = params.root;
+  opt.steps_per_check = params.steps_per_check;
+  opt.max_iterations = params.max_iterations;
+  return opt;
+}
+
+inline LossyTotals expect_lossy_equals_core(const core::PlanarGraph& g, const PackingParams& params,
+                                            const LossyConfig& config, const std::string& label) {
+  SCOPED_TRACE(label);
+  LossyTotals totals;
+  [&] {
+    const core::PackResult r = core::pack(g, pack_options(params));
+    totals.iterations = r.iterations;
+    const core::PackingComplex k = core::PackingComplex::from_graph(g);
+    const auto ids = protocol_ids(g, k);
+    LossyHost host(g, params, config);
+    totals.host = host.run();
+    ASSERT_TRUE(totals.host.drained) << "the event queue must drain (no infinite chatter)";
+    for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
+      const PackingNode& n = host.node(v);
+      SCOPED_TRACE("vertex " + std::to_string(v));
+      ASSERT_EQ(n.phase(), PackingPhase::finished);
+      EXPECT_EQ(n.steps(), static_cast<std::uint32_t>(r.iterations));
+      EXPECT_EQ(bits(n.x()), bits(r.radii[v])) << n.x() << " vs " << r.radii[v];
+      expect_same_circle(n.placement(), r.layout, v);
+      EXPECT_EQ(n.local_condition(), r.local[v]);
+      if (r.status == core::PackStatus::converged) {
+        EXPECT_EQ(n.outcome(), PackingOutcome::converged);
+      } else if (r.status == core::PackStatus::iteration_cap) {
+        EXPECT_EQ(n.outcome(), PackingOutcome::cap);
+      }
+      const auto& c = n.counters();
+      EXPECT_EQ(c.unexpected, 0u);
+      EXPECT_EQ(c.not_a_neighbour, 0u);
+      EXPECT_EQ(c.bad_payload, 0u);
+      EXPECT_EQ(c.links_failed, 0u);
+      EXPECT_EQ(c.decode[0], c.received);
+      add(totals.counters, c);
+    }
+    for (std::size_t i = 0; i < k.face_of_vertex.size(); ++i) {
+      const core::Vertex fv = static_cast<core::Vertex>(g.num_vertices() + i);
+      const NodeId fid = ids[fv];
+      const PackingNode& h = host.node(static_cast<core::Vertex>((fid >> 31) & max_face_node_id));
+      bool found = false;
+      for (std::size_t j = 0; j < h.hosted_faces(); ++j) {
+        const VertexState st = h.hosted_face_state(j);
+        if (st.id != fid) continue;
+        found = true;
+        EXPECT_EQ(bits(st.x), bits(r.radii[fv]));
+        expect_same_circle(st.placement, r.layout, fv);
+      }
+      EXPECT_TRUE(found);
+    }
+    // The host's ledger and the nodes' agree: every message a node sent went through the host, and
+    // every copy the host delivered was received by a node.
+    EXPECT_EQ(totals.counters.sent, totals.host.sent);
+    EXPECT_EQ(totals.counters.received, totals.host.delivered);
+    EXPECT_EQ(totals.counters.sent, totals.counters.frames + totals.counters.retransmissions + totals.counters.acks);
+  }();
+  return totals;
+}
+
+}  // namespace laguerre::protocols::testing
