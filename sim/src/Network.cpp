@@ -137,4 +137,15 @@ void Network::validate() const {
   }
 }
 
+Network network_of(const core::PlanarGraph& g, const LinkModel& link) {
+  std::vector<Edge> edges;
+  edges.reserve(g.num_edges());
+  for (core::Dart d = 0; d < g.num_darts(); ++d)
+    if (g.tail(d) < g.head(d)) edges.emplace_back(g.tail(d), g.head(d));
+  Network net(g.num_vertices(), edges);
+  net.set_ids(g.ids());
+  net.set_link_model(link);
+  return net;
+}
+
 }  // namespace laguerre::sim

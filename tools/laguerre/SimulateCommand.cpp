@@ -93,17 +93,12 @@ sim::LatencyModel parse_latency(const std::string& spec) {
 
 sim::Network make_network(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
                           const sim::LinkModel& link) {
-  std::vector<sim::Edge> edges;
-  for (core::Dart d = 0; d < g.num_darts(); ++d)
-    if (g.tail(d) < g.head(d)) edges.emplace_back(g.tail(d), g.head(d));
-  sim::Network net(g.num_vertices(), edges);
-  net.set_ids(g.ids());
+  sim::Network net = sim::network_of(g, link);
   if (!positions.empty()) {
     std::vector<protocols::Position> pos;
     for (const auto& p : positions) pos.push_back({p.x, p.y});
     net.set_positions(std::move(pos));
   }
-  net.set_link_model(link);
   return net;
 }
 

@@ -23,18 +23,12 @@ namespace {
 
 std::uint64_t bits(double d) { return std::bit_cast<std::uint64_t>(d); }
 
-sim::Network network_of(const core::PlanarGraph& g, double loss, double dup) {
-  std::vector<sim::Edge> edges;
-  for (core::Dart d = 0; d < g.num_darts(); ++d)
-    if (g.tail(d) < g.head(d)) edges.emplace_back(g.tail(d), g.head(d));
-  sim::Network net(g.num_vertices(), edges);
-  net.set_ids(g.ids());
+sim::Network lossy_network(const core::PlanarGraph& g, double loss, double dup) {
   sim::LinkModel link;
   link.latency = sim::LatencyModel::uniform(sim::milliseconds(1), sim::milliseconds(5));
   link.loss = loss;
   link.duplication = dup;
-  net.set_link_model(link);
-  return net;
+  return sim::network_of(g, link);
 }
 
 protocols::PackingParams params(int steps) {
@@ -52,7 +46,7 @@ struct SimRun {
 
 SimRun simulate(const core::PlanarGraph& g, const protocols::PackingParams& p, double loss, double dup, std::uint64_t seed,
              std::optional<std::pair<core::Vertex, sim::Time>> crash = std::nullopt) {
-  sim::Network net = network_of(g, loss, dup);
+  sim::Network net = lossy_network(g, loss, dup);
   if (crash) net.add_crash(crash->first, crash->second);
   sim::SimConfig config;
   config.seed = seed;

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "laguerre/core/graph/PlanarGraph.hpp"
 #include "laguerre/protocols/Runtime.hpp"
 #include "laguerre/sim/Link.hpp"
 #include "laguerre/sim/Time.hpp"
@@ -103,5 +104,9 @@ private:
   std::vector<std::uint32_t> model_of_link_;
   std::vector<Crash> crashes_;
 };
+
+/// The network of a planar graph: one node per vertex (same indices), one link per edge, the
+/// graph's user ids, every link following `link`.
+Network network_of(const core::PlanarGraph& g, const LinkModel& link = {});
 
 }  // namespace laguerre::sim
