@@ -19,24 +19,6 @@ struct LossyTotals {
   int iterations = -1;
 };
 
-inline void add(PackingCounters& a, const PackingCounters& b) {
-  a.sent += b.sent;
-  a.bytes_sent += b.bytes_sent;
-  a.received += b.received;
-  for (std::size_t i = 0; i < a.decode.size(); ++i) a.decode[i] += b.decode[i];
-  a.not_a_neighbour += b.not_a_neighbour;
-  a.unexpected += b.unexpected;
-  a.relayed += b.relayed;
-  a.bad_payload += b.bad_payload;
-  a.frames += b.frames;
-  a.retransmissions += b.retransmissions;
-  a.acks += b.acks;
-  a.duplicates += b.duplicates;
-  a.out_of_window += b.out_of_window;
-  a.probes += b.probes;
-  a.links_failed += b.links_failed;
-}
-
 // Parameters of core::pack equivalent to `params`.
 inline core::PackOptions pack_options(const PackingParams& params) {
   core::PackOptions opt;
@@ -80,7 +62,7 @@ inline LossyTotals expect_lossy_equals_core(const core::PlanarGraph& g, const Pa
       EXPECT_EQ(c.bad_payload, 0u);
       EXPECT_EQ(c.links_failed, 0u);
       EXPECT_EQ(c.decode[0], c.received);
-      add(totals.counters, c);
+      totals.counters += c;
     }
     for (std::size_t i = 0; i < k.face_of_vertex.size(); ++i) {
       const core::Vertex fv = static_cast<core::Vertex>(g.num_vertices() + i);

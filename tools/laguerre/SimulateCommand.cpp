@@ -197,12 +197,7 @@ int run_simulate(const SimulateArgs& a) {
     steps = std::max(steps, node.steps());
     rounds = std::max(rounds, node.round());
     const auto& c = node.counters();
-    rel.frames += c.frames;
-    rel.retransmissions += c.retransmissions;
-    rel.acks += c.acks;
-    rel.duplicates += c.duplicates;
-    rel.probes += c.probes;
-    rel.links_failed += c.links_failed;
+    rel += c;
     const bool crashed = std::any_of(crashes.begin(), crashes.end(), [&](const auto& cr) { return cr.first == v; });
     if (crashed) continue;
     ++survivors;

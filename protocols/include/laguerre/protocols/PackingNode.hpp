@@ -235,6 +235,26 @@ struct PackingCounters {
   std::uint64_t out_of_window = 0;                            ///< frames too far ahead, dropped unacknowledged
   std::uint64_t probes = 0;                                   ///< empty frames sent to silent neighbours
   std::uint64_t links_failed = 0;                             ///< links given up after max_retransmissions
+
+  /// Adds `o` field by field (totals over nodes).
+  PackingCounters& operator+=(const PackingCounters& o) {
+    sent += o.sent;
+    bytes_sent += o.bytes_sent;
+    received += o.received;
+    for (std::size_t i = 0; i < decode.size(); ++i) decode[i] += o.decode[i];
+    not_a_neighbour += o.not_a_neighbour;
+    unexpected += o.unexpected;
+    relayed += o.relayed;
+    bad_payload += o.bad_payload;
+    frames += o.frames;
+    retransmissions += o.retransmissions;
+    acks += o.acks;
+    duplicates += o.duplicates;
+    out_of_window += o.out_of_window;
+    probes += o.probes;
+    links_failed += o.links_failed;
+    return *this;
+  }
 };
 
 /// The state of one protocol vertex (the node's own vertex or a hosted face vertex).
