@@ -303,14 +303,7 @@ void PackingAgent::handle(std::size_t i, const ShapeMsg& m) {
     ++host_.counters().unexpected;
     return;
   }
-  shape_known_ = true;
-  polygon_ = m.polygon;
-  encode(ShapeMsg{true, polygon_}, buffer_);
-  for (std::size_t j = 0; j < deg_; ++j)
-    if (child_[j]) send_encoded(j);
-  phase_ = PackingPhase::rounds;
-  round_ = 0;
-  begin_round();
+  learn_shape(m.polygon);
 }
 
 void PackingAgent::advance_shape() {
@@ -330,9 +323,14 @@ void PackingAgent::advance_shape() {
     send(parent_index_, ShapeMsg{false, any});
     return;
   }
-  // The root knows the answer for the whole of K (the tree spans it): tell everyone, start round 0.
+  // The root knows the answer for the whole of K (the tree spans it).
+  learn_shape(any);
+}
+
+void PackingAgent::learn_shape(bool polygon) {
+  // The answer for the whole of K: pass it down the tree and start round 0.
   shape_known_ = true;
-  polygon_ = any;
+  polygon_ = polygon;
   encode(ShapeMsg{true, polygon_}, buffer_);
   for (std::size_t j = 0; j < deg_; ++j)
     if (child_[j]) send_encoded(j);

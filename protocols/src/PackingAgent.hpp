@@ -107,6 +107,7 @@ private:
   void begin_wave(std::size_t from, NodeId root, NodeId first);
   void advance_wave();
   void maybe_finish_setup();
+  void learn_shape(bool polygon);
   void advance_shape();
   void begin_round();
   void advance_steps();

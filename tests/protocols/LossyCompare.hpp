@@ -19,18 +19,6 @@ struct LossyTotals {
   int iterations = -1;
 };
 
-// Parameters of core::pack equivalent to `params`.
-inline core::PackOptions pack_options(const PackingParams& params) {
-  core::PackOptions opt;
-  opt.stop = core::StopRule::lpd;
-  opt.sweep = core::Sweep::jacobi;
-  opt.update = params.update;
-  opt.root = params.root;
-  opt.steps_per_check = params.steps_per_check;
-  opt.max_iterations = params.max_iterations;
-  return opt;
-}
-
 inline LossyTotals expect_lossy_equals_core(const core::PlanarGraph& g, const PackingParams& params,
                                             const LossyConfig& config, const std::string& label) {
   SCOPED_TRACE(label);

@@ -52,13 +52,8 @@ inline void expect_same_circle(const core::PlacedCircle& a, const core::Layout& 
   EXPECT_EQ(bits(a.centre.imag()), bits(l.centre[v].imag()));
 }
 
-// Compares one protocol run with core::pack (Jacobi, stop = lpd) on g, vertex by vertex of K; returns
-// core's iteration count.
-inline int expect_sync_equals_core(const core::PlanarGraph& g, const PackingParams& params, std::uint64_t shuffle_seed,
-                                    const std::string& label) {
-  SCOPED_TRACE(label);
-  int iterations = -1;
-  [&] {
+// Parameters of core::pack equivalent to `params`.
+inline core::PackOptions pack_options(const PackingParams& params) {
   core::PackOptions opt;
   opt.stop = core::StopRule::lpd;
   opt.sweep = core::Sweep::jacobi;
@@ -66,7 +61,17 @@ inline int expect_sync_equals_core(const core::PlanarGraph& g, const PackingPara
   opt.root = params.root;
   opt.steps_per_check = params.steps_per_check;
   opt.max_iterations = params.max_iterations;
-  const core::PackResult r = core::pack(g, opt);
+  return opt;
+}
+
+// Compares one protocol run with core::pack (Jacobi, stop = lpd) on g, vertex by vertex of K; returns
+// core's iteration count.
+inline int expect_sync_equals_core(const core::PlanarGraph& g, const PackingParams& params, std::uint64_t shuffle_seed,
+                                    const std::string& label) {
+  SCOPED_TRACE(label);
+  int iterations = -1;
+  [&] {
+  const core::PackResult r = core::pack(g, pack_options(params));
   iterations = r.iterations;
   const core::PackingComplex k = core::PackingComplex::from_graph(g);
   const core::Vertex root = core::choose_root(k, params.root);

@@ -16,6 +16,7 @@
 #include "laguerre/core/geometry/Predicates.hpp"
 #include "laguerre/core/routing/Router.hpp"
 #include "laguerre/core/routing/Routing.hpp"
+#include "DrawingGraph.hpp"
 
 using namespace laguerre::core;
 
@@ -33,25 +34,9 @@ void add_edge(Drawing& d, Vertex a, Vertex b) { d.edges.insert({std::min(a, b), 
 
 /// The graph whose rotation is the exact counter-clockwise order of the neighbours around each point.
 PlanarGraph to_graph(const Drawing& d) {
-  const std::size_t n = d.points.size();
-  std::vector<std::vector<Vertex>> rot(n);
-  for (const auto& [a, b] : d.edges) {
-    rot[a].push_back(b);
-    rot[b].push_back(a);
-  }
-  for (Vertex v = 0; v < n; ++v) {
-    const Point2 p = d.points[v];
-    auto half = [&](Vertex w) {  // 0: direction angle in [0, π), 1: in [π, 2π); exact double comparisons
-      const Point2 q = d.points[w];
-      return (q.y > p.y || (q.y == p.y && q.x > p.x)) ? 0 : 1;
-    };
-    std::sort(rot[v].begin(), rot[v].end(), [&](Vertex a, Vertex b) {
-      const int ha = half(a), hb = half(b);
-      if (ha != hb) return ha < hb;
-      return orientation(p, d.points[a], d.points[b]) == Sign::positive;
-    });
-  }
-  return PlanarGraph::from_rotation(std::move(rot));
+  CircleEmbedding phi;
+  for (const Point2& q : d.points) phi.push_back({q.x, q.y, 0.0});
+  return graph_of(phi, {d.edges.begin(), d.edges.end()});
 }
 
 CircleEmbedding embedding_of(const Drawing& d, double radius = 0) {

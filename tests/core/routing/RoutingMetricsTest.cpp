@@ -15,28 +15,11 @@
 
 #include "laguerre/core/geometry/Predicates.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
+#include "DrawingGraph.hpp"
 
 using namespace laguerre::core;
 
 namespace {
-
-/// The graph on the circles' centres, rotation = exact counter-clockwise order of the neighbours.
-PlanarGraph graph_of(const CircleEmbedding& phi, const std::vector<std::pair<Vertex, Vertex>>& edges) {
-  std::vector<std::vector<Vertex>> rot(phi.size());
-  for (const auto& [a, b] : edges) {
-    rot[a].push_back(b);
-    rot[b].push_back(a);
-  }
-  for (Vertex v = 0; v < phi.size(); ++v) {
-    const Point2 p = centre(phi[v]);
-    auto half = [&](Vertex w) { return (phi[w].y > p.y || (phi[w].y == p.y && phi[w].x > p.x)) ? 0 : 1; };
-    std::sort(rot[v].begin(), rot[v].end(), [&](Vertex a, Vertex b) {
-      if (half(a) != half(b)) return half(a) < half(b);
-      return orientation(p, centre(phi[a]), centre(phi[b])) == Sign::positive;
-    });
-  }
-  return PlanarGraph::from_rotation(std::move(rot));
-}
 
 /// A w × h unit grid; with `diagonals`, every cell also gets its (x, y)–(x+1, y+1) diagonal. With
 /// `jitter_seed`, centres move by up to ±0.15 and radii vary in [0.2, 0.45) (still a plane drawing).

@@ -9,6 +9,7 @@
 #include <map>
 
 #include "../SyncCompare.hpp"
+#include "../NullRuntime.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/core/routing/Routing.hpp"
@@ -138,15 +139,7 @@ TEST(Forwarding, EqualsCoreRouteOnThreeConnectedGraphs) {
 }
 
 TEST(Forwarding, RejectsBadInputAndForeignMessages) {
-  struct NullRuntime final : Runtime {
-    NodeId self() const override { return 1; }
-    Time now() const override { return 0; }
-    void send(NodeId, std::span<const std::byte>) override {}
-    void broadcast(std::span<const std::byte>) override {}
-    TimerHandle schedule(Duration, TimerId) override { return 1; }
-    bool cancel(TimerHandle) override { return false; }
-    std::uint64_t random_u64() override { return 4; }
-  } rt;
+  laguerre::protocols::testing::NullRuntime rt;
   Recorder sink;
   const core::Circle c{0, 0, 0.1}, d{0.3, 0, 0.1};
   EXPECT_THROW(ForwardingNode(rt, sink, 1, {2, 3}, c, {d}), std::invalid_argument);

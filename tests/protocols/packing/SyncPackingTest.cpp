@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "../SyncCompare.hpp"
+#include "../NullRuntime.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 
@@ -38,17 +39,7 @@ TEST(LocalKnowledge, MatchesTheGraph) {
 }
 
 TEST(PackingNode, RejectsInconsistentKnowledge) {
-  DequeHost::Envelope unused{};
-  (void)unused;
-  struct NullRuntime final : Runtime {
-    NodeId self() const override { return 1; }
-    Time now() const override { return 0; }
-    void send(NodeId, std::span<const std::byte>) override {}
-    void broadcast(std::span<const std::byte>) override {}
-    TimerHandle schedule(Duration, TimerId) override { return 1; }
-    bool cancel(TimerHandle) override { return false; }
-    std::uint64_t random_u64() override { return 4; }
-  } rt;
+  laguerre::protocols::testing::NullRuntime rt;
   EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {}, false, LocalKnowledge::no_gap, {}, {}}, {}), std::invalid_argument);
   EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 1}, false, LocalKnowledge::no_gap, {}, {}}, {}), std::invalid_argument);
   EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3, 2}, false, LocalKnowledge::no_gap, {}, {}}, {}), std::invalid_argument);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "../SyncCompare.hpp"
+#include "../NullRuntime.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/protocols/LocalChecks.hpp"
@@ -126,15 +127,7 @@ TEST(ThreeConnected, IterationCapAndExactUpdate) {
 }
 
 TEST(ThreeConnected, RejectsInconsistentFaces) {
-  struct NullRuntime final : Runtime {
-    NodeId self() const override { return 1; }
-    Time now() const override { return 0; }
-    void send(NodeId, std::span<const std::byte>) override {}
-    void broadcast(std::span<const std::byte>) override {}
-    TimerHandle schedule(Duration, TimerId) override { return 1; }
-    bool cancel(TimerHandle) override { return false; }
-    std::uint64_t random_u64() override { return 4; }
-  } rt;
+  laguerre::protocols::testing::NullRuntime rt;
   auto knowledge = [](std::vector<std::vector<NodeId>> faces) {
     return LocalKnowledge{1, {2, 3, 4}, false, LocalKnowledge::no_gap, {}, std::move(faces)};
   };
