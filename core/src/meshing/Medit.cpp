@@ -1,0 +1,233 @@
+#include "laguerre/core/meshing/Medit.hpp"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace laguerre::core {
+
+MeshInputError::MeshInputError(const std::string& source, std::size_t line, const std::string& message)
+    : std::runtime_error(line > 0 ? source + ":" + std::to_string(line) + ": " + message : source + ": " + message) {}
+
+namespace {
+
+/// Whitespace-separated tokens with their line numbers; `#` comments run to the end of the line.
+class Tokens {
+public:
+  explicit Tokens(const std::string& path) : path_(path), in_(path) {
+    if (!in_) throw MeshInputError(path, 0, "cannot open the file for reading");
+  }
+
+  /// The next token, or "" at the end of the file.
+  std::string next() {
+    while (pos_ >= words_.size()) {
+      std::string text;
+      if (!std::getline(in_, text)) return {};
+      ++line_;
+      if (const auto hash = text.find('#'); hash != std::string::npos) text.resize(hash);
+      std::istringstream words(text);
+      words_.clear();
+      pos_ = 0;
+      for (std::string w; words >> w;) words_.push_back(w);
+    }
+    return words_[pos_++];
+  }
+
+  /// The next token as a count (a non-negative integer).
+  std::size_t count(const char* what) {
+    const std::string t = next();
+    std::size_t v = 0;
+    const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (t.empty() || ec != std::errc() || p != t.data() + t.size())
+      fail("expected " + std::string(what) + " (a non-negative integer), found '" + t + "'");
+    return v;
+  }
+
+  /// The next token as an integer.
+  long integer(const char* what) {
+    const std::string t = next();
+    long v = 0;
+    const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (t.empty() || ec != std::errc() || p != t.data() + t.size())
+      fail("expected " + std::string(what) + " (an integer), found '" + t + "'");
+    return v;
+  }
+
+  /// The next token as a finite real number.
+  double real(const char* what) {
+    const std::string t = next();
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(t.c_str(), &end);
+    if (t.empty() || end != t.c_str() + t.size() || errno == ERANGE || !std::isfinite(v))
+      fail("expected " + std::string(what) + " (a finite number), found '" + t + "'");
+    return v;
+  }
+
+  [[noreturn]] void fail(const std::string& message) const { throw MeshInputError(path_, line_, message); }
+
+private:
+  std::string path_;
+  std::ifstream in_;
+  std::vector<std::string> words_;
+  std::size_t pos_ = 0;
+  std::size_t line_ = 0;
+};
+
+/// Skips `count` records of `per_record` tokens (sections we do not use, e.g. Corners, Normals).
+void skip_records(Tokens& t, std::size_t count, std::size_t per_record) {
+  for (std::size_t i = 0; i < count * per_record; ++i)
+    if (t.next().empty()) t.fail("the file ends inside a section");
+}
+
+/// Reads a vertex index written from 1 and returns it from 0.
+std::size_t vertex_index(Tokens& t, std::size_t vertex_count) {
+  const long v = t.integer("a vertex index");
+  if (v < 1 || static_cast<std::size_t>(v) > vertex_count)
+    t.fail("vertex index " + std::to_string(v) + " is out of range 1.." + std::to_string(vertex_count));
+  return static_cast<std::size_t>(v - 1);
+}
+
+void write_or_throw(std::ofstream& out, const std::string& path) {
+  out.flush();
+  if (!out) throw std::runtime_error(path + ": cannot write the file");
+}
+
+}  // namespace
+
+TriangleMesh read_medit_mesh(const std::string& path) {
+  Tokens t(path);
+  TriangleMesh mesh;
+  bool have_dimension = false;
+  for (std::string key = t.next();; key = t.next()) {
+    if (key.empty()) t.fail("missing 'End' keyword");
+    if (key == "End") break;
+    if (key == "MeshVersionFormatted") {
+      t.integer("a format version");
+    } else if (key == "Dimension") {
+      const long d = t.integer("a dimension");
+      if (d != 2) t.fail("expected 'Dimension 2', found " + std::to_string(d) + " (only planar meshes are read)");
+      have_dimension = true;
+    } else if (key == "Vertices") {
+      const std::size_t n = t.count("a vertex count");
+      mesh.points.resize(n);
+      mesh.point_refs.resize(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        mesh.points[i] = {t.real("a vertex abscissa"), t.real("a vertex ordinate")};
+        mesh.point_refs[i] = static_cast<int>(t.integer("a vertex reference"));
+      }
+    } else if (key == "Triangles") {
+      const std::size_t n = t.count("a triangle count");
+      for (std::size_t i = 0; i < n; ++i) {
+        std::array<std::size_t, 3> tri{};
+        for (auto& v : tri) v = vertex_index(t, mesh.points.size());
+        mesh.triangles.push_back(tri);
+        mesh.triangle_refs.push_back(static_cast<int>(t.integer("a triangle reference")));
+      }
+    } else if (key == "Edges") {
+      const std::size_t n = t.count("an edge count");
+      for (std::size_t i = 0; i < n; ++i) {
+        std::array<std::size_t, 2> e{};
+        for (auto& v : e) v = vertex_index(t, mesh.points.size());
+        mesh.edges.push_back(e);
+        mesh.edge_refs.push_back(static_cast<int>(t.integer("an edge reference")));
+      }
+    } else if (key == "Corners" || key == "RequiredVertices") {
+      skip_records(t, t.count("a count"), 1);
+    } else if (key == "RequiredEdges" || key == "Ridges") {
+      skip_records(t, t.count("a count"), 1);
+    } else if (key == "Quadrilaterals") {
+      skip_records(t, t.count("a quadrilateral count"), 5);
+    } else {
+      t.fail("unknown Medit keyword '" + key +
+             "' (expected MeshVersionFormatted, Dimension, Vertices, Triangles, Edges, Corners, "
+             "RequiredVertices, RequiredEdges, Ridges, Quadrilaterals or End)");
+    }
+  }
+  if (!have_dimension) throw MeshInputError(path, 0, "missing 'Dimension 2'");
+  // Orient every triangle counter-clockwise, as the rest of the library assumes.
+  for (auto& tri : mesh.triangles) {
+    const auto& p = mesh.points[tri[0]];
+    const auto& q = mesh.points[tri[1]];
+    const auto& r = mesh.points[tri[2]];
+    if ((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]) < 0) std::swap(tri[1], tri[2]);
+  }
+  return mesh;
+}
+
+std::vector<Metric> read_medit_sol(const std::string& path, std::size_t vertex_count) {
+  Tokens t(path);
+  std::vector<Metric> metrics;
+  for (std::string key = t.next();; key = t.next()) {
+    if (key.empty()) t.fail("missing 'End' keyword");
+    if (key == "End") break;
+    if (key == "MeshVersionFormatted") {
+      t.integer("a format version");
+    } else if (key == "Dimension") {
+      if (const long d = t.integer("a dimension"); d != 2)
+        t.fail("expected 'Dimension 2', found " + std::to_string(d));
+    } else if (key == "SolAtVertices") {
+      const std::size_t n = t.count("a vertex count");
+      if (n != vertex_count)
+        t.fail("the solution has " + std::to_string(n) + " values but the mesh has " + std::to_string(vertex_count) +
+               " vertices");
+      if (const long fields = t.integer("a field count"); fields != 1)
+        t.fail("expected exactly 1 solution field, found " + std::to_string(fields));
+      const long type = t.integer("a solution type");
+      if (type != 1 && type != 3)
+        t.fail("expected solution type 1 (scalar size) or 3 (symmetric tensor), found " + std::to_string(type));
+      metrics.resize(n);
+      for (auto& m : metrics) {
+        if (type == 1) {
+          const double h = t.real("a size");
+          if (!(h > 0)) t.fail("a size must be positive, found " + std::to_string(h));
+          m = {1 / (h * h), 0, 1 / (h * h)};
+        } else {
+          m = {t.real("m11"), t.real("m12"), t.real("m22")};
+          if (!is_metric(m)) t.fail("the tensor is not symmetric positive definite");
+        }
+      }
+    } else {
+      t.fail("unknown keyword '" + key + "' (expected MeshVersionFormatted, Dimension, SolAtVertices or End)");
+    }
+  }
+  if (metrics.size() != vertex_count) throw MeshInputError(path, 0, "missing 'SolAtVertices' section");
+  return metrics;
+}
+
+void write_medit_mesh(const std::string& path, const TriangleMesh& mesh) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot open the file for writing");
+  out.precision(17);
+  out << "MeshVersionFormatted 2\nDimension 2\n\nVertices\n" << mesh.points.size() << '\n';
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    out << mesh.points[i][0] << ' ' << mesh.points[i][1] << ' '
+        << (i < mesh.point_refs.size() ? mesh.point_refs[i] : 0) << '\n';
+  if (!mesh.edges.empty()) {
+    out << "\nEdges\n" << mesh.edges.size() << '\n';
+    for (std::size_t i = 0; i < mesh.edges.size(); ++i)
+      out << mesh.edges[i][0] + 1 << ' ' << mesh.edges[i][1] + 1 << ' '
+          << (i < mesh.edge_refs.size() ? mesh.edge_refs[i] : 0) << '\n';
+  }
+  out << "\nTriangles\n" << mesh.triangles.size() << '\n';
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+    out << mesh.triangles[i][0] + 1 << ' ' << mesh.triangles[i][1] + 1 << ' ' << mesh.triangles[i][2] + 1 << ' '
+        << (i < mesh.triangle_refs.size() ? mesh.triangle_refs[i] : 0) << '\n';
+  out << "\nEnd\n";
+  write_or_throw(out, path);
+}
+
+void write_medit_sol(const std::string& path, const std::vector<Metric>& metrics) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot open the file for writing");
+  out.precision(17);
+  out << "MeshVersionFormatted 2\nDimension 2\n\nSolAtVertices\n" << metrics.size() << "\n1 3\n";
+  for (const Metric& m : metrics) out << m.a << ' ' << m.b << ' ' << m.c << '\n';
+  out << "\nEnd\n";
+  write_or_throw(out, path);
+}
+
+}  // namespace laguerre::core
