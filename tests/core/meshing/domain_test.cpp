@@ -1,0 +1,138 @@
+// Domains to mesh: validation rules, exact point location, area, and the domain file format.
+#include "laguerre/core/meshing/Domain.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <random>
+
+namespace laguerre::core {
+namespace {
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const DomainError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Domain, NormalizesOrientationAndMeasuresArea) {
+  // Outer given clockwise, hole counter-clockwise: both are flipped.
+  const Domain d({{0, 0}, {0, 2}, {2, 2}, {2, 0}}, {{{0.5, 0.5}, {1.5, 0.5}, {1.5, 1.5}, {0.5, 1.5}}});
+  EXPECT_EQ(orientation(d.outer()[0], d.outer()[1], d.outer()[2]), Sign::positive);
+  EXPECT_EQ(orientation(d.holes()[0][0], d.holes()[0][1], d.holes()[0][2]), Sign::negative);
+  EXPECT_DOUBLE_EQ(d.area(), 4 - 1);
+  EXPECT_EQ(d.constraints().size(), 8u);
+}
+
+TEST(Domain, LocatesPointsExactly) {
+  const Domain d({{0, 0}, {3, 0}, {3, 3}, {0, 3}}, {{{1, 1}, {2, 1}, {2, 2}, {1, 2}}});
+  EXPECT_EQ(d.locate({0.5, 0.5}), DomainSide::inside);
+  EXPECT_EQ(d.locate({1.5, 1.5}), DomainSide::outside);  // in the hole
+  EXPECT_EQ(d.locate({1.5, 1}), DomainSide::boundary);   // on the hole
+  EXPECT_EQ(d.locate({3, 1.5}), DomainSide::boundary);
+  EXPECT_EQ(d.locate({0, 0}), DomainSide::boundary);
+  EXPECT_EQ(d.locate({-1e-300, 1}), DomainSide::outside);
+  EXPECT_EQ(d.locate({1e-300, 1}), DomainSide::inside);
+  EXPECT_EQ(d.locate({1.5, 3}), DomainSide::boundary);
+  // Rays through vertices are counted once: points level with the hole's corners.
+  EXPECT_EQ(d.locate({0.5, 1}), DomainSide::inside);
+  EXPECT_EQ(d.locate({2.5, 2}), DomainSide::inside);
+}
+
+TEST(Domain, LocationAgreesWithAClosedFormShape) {
+  // An L-shaped outer boundary with a triangular hole, classified against its closed-form description
+  // on random points and on a grid that hits vertices' heights exactly.
+  const Domain d({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, {{{0.2, 0.2}, {0.8, 0.2}, {0.5, 0.7}}});
+  EXPECT_NEAR(d.area(), 3 - 0.15, 1e-12);
+  auto truth = [](double x, double y) {
+    const bool in_l = x > 0 && y > 0 && x < 2 && y < 2 && (y < 1 || x < 1);
+    const bool in_hole = y > 0.2 && y < 0.7 && std::abs(x - 0.5) < 0.3 * (0.7 - y) / 0.5;
+    return in_l && !in_hole;
+  };
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-0.1, 2.1);
+  for (int i = 0; i < 100000; ++i) {
+    const double x = u(rng), y = u(rng);
+    const DomainSide side = d.locate({x, y});
+    if (side != DomainSide::boundary) {
+      ASSERT_EQ(side == DomainSide::inside, truth(x, y)) << x << ' ' << y;
+    }
+  }
+  for (int i = 1; i < 40; ++i)
+    for (int j = 1; j < 40; ++j) {
+      const double x = i / 20.0 + 0.0125, y = j / 20.0;  // rows through the vertices' heights 1 and 2
+      if (std::abs(y - 1) > 1e-12 && std::abs(y - 0.2) > 1e-12) {
+        EXPECT_EQ(d.locate({x, y}) == DomainSide::inside, truth(x, y)) << x << ' ' << y;
+      }
+    }
+}
+
+TEST(Domain, RejectsInvalidDomainsWithReasons) {
+  EXPECT_NE(error_of([] { Domain({{0, 0}, {1, 0}}); }).find("the outer boundary has 2 vertices"), std::string::npos);
+  EXPECT_NE(error_of([] { Domain({{0, 0}, {1, 1}, {1, 0}, {0, 1}}); }).find("is not simple"), std::string::npos);
+  EXPECT_NE(error_of([] { Domain({{0, 0}, {1, 0}, {2, 0}}); }).find("folds back"), std::string::npos);
+  EXPECT_NE(error_of([] { Domain({{0, 0}, {2, 0}, {1, 0}, {1, 1}}); }).find("folds back"), std::string::npos);
+  EXPECT_NE(error_of([] { Domain({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{{0.5, 0.5}, {1.5, 0.5}, {0.5, 0.8}}}); })
+                .find("hole 1 is not strictly inside"),
+            std::string::npos);
+  EXPECT_NE(error_of([] {
+              Domain({{0, 0}, {4, 0}, {4, 4}, {0, 4}},
+                     {{{1, 1}, {2, 1}, {2, 2}, {1, 2}}, {{1.5, 1.5}, {3, 1.5}, {3, 3}}});
+            }).find("hole 2 meets hole 1"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { Domain({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {}, {{Point2{0.5, 0.5}, Point2{1.5, 0.5}}}); })
+                .find("endpoint outside"),
+            std::string::npos);
+  EXPECT_NE(error_of([] {
+              Domain({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {},
+                     {{Point2{0.2, 0.5}, Point2{0.8, 0.5}}, {Point2{0.5, 0.2}, Point2{0.5, 0.8}}});
+            }).find("crosses constraint segment 1"),
+            std::string::npos);
+  // A constraint ending on the boundary is fine; one running along it is not.
+  EXPECT_EQ(error_of([] { Domain({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {}, {{Point2{0, 0.5}, Point2{0.5, 0.5}}}); }),
+            "no error");
+  EXPECT_NE(error_of([] { Domain({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {}, {{Point2{0.2, 0}, Point2{0.5, 0}}}); })
+                .find("crosses the boundary edge"),
+            std::string::npos);
+}
+
+TEST(Domain, ReadsTheFileFormatAndReportsLines) {
+  const auto dir = std::filesystem::temp_directory_path() / "laguerre-domain-test";
+  std::filesystem::create_directories(dir);
+  const std::string good = (dir / "good.txt").string(), bad = (dir / "bad.txt").string();
+  {
+    std::ofstream out(good);
+    out << "# a square with a hole\nouter\n0 0\n1 0\n1 1\n0 1\n\nhole\n0.4 0.4\n0.6 0.4\n0.5 0.6  # tip\n"
+           "segment 0.1 0.9 0.3 0.9\n";
+  }
+  const Domain d = read_domain(good);
+  EXPECT_EQ(d.outer().size(), 4u);
+  ASSERT_EQ(d.holes().size(), 1u);
+  EXPECT_EQ(d.segments().size(), 1u);
+  EXPECT_NEAR(d.area(), 1 - 0.02, 1e-12);
+  {
+    std::ofstream out(bad);
+    out << "outer\n0 0\n1 0\n1 x\n";
+  }
+  EXPECT_EQ(error_of([&] { read_domain(bad); }), bad + ":4: expected a finite number in a vertex 'x y', found 'x'");
+  {
+    std::ofstream out(bad);
+    out << "0 0\n";
+  }
+  EXPECT_EQ(error_of([&] { read_domain(bad); }), bad + ":1: expected 'outer', 'hole' or 'segment', found '0'");
+  {
+    std::ofstream out(bad);
+    out << "outer\n0 0\n1 0\n";
+  }
+  EXPECT_EQ(error_of([&] { read_domain(bad); }), bad + ": the outer boundary has 2 vertices, expected at least 3");
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace laguerre::core
