@@ -1,0 +1,79 @@
+#pragma once
+/// @file
+/// Locally uniform anisotropic meshes by refinement of stars (thesis chapter 3; Boissonnat, Wormser,
+/// Yvinec, SoCG 2008), in the plane.
+///
+/// Every site v carries its metric M_v = field(v) and its *star* S_v: the triangles incident to v in
+/// the Delaunay triangulation of all sites for M_v (the Euclidean Delaunay triangulation of F_v(V),
+/// F_v = M_v^{1/2}), restricted to the domain (triangles whose centroid lies in Ω). Stars of different
+/// sites disagree in general; a triangle is *consistent* when it belongs to the stars of its three
+/// vertices. Refinement inserts points until every triangle of every star is consistent and good,
+/// and the mesh is then the union of the stars: each vertex's neighbourhood in the mesh is exactly its
+/// own Delaunay star for its own metric.
+///
+/// Rules, in priority order (a rule applies only when no earlier one does), following §3.4 for 2D:
+///   1. encroachment: a boundary/constraint subsegment whose M_a- or M_b-diametral ball (a, b its
+///      endpoints) contains a site, or whose metric length exceeds 2·size_bound, or whose endpoints'
+///      distortion exceeds γ₀, is split at its midpoint;
+///   2. distortion: a triangle with γ(τ) ≥ γ₀ — γ(τ) is estimated as the largest distortion between
+///      the star's site and the other vertices and the M_v-circumcentre;
+///   3. size: a triangle with M_v-circumradius above size_bound (the size the field prescribes);
+///   4. radius–edge ratio above ρ₀ (in M_v);
+///   5. inconsistency: a triangle of S_v missing from the star of one of its other vertices.
+/// Rules 2–5 refine τ ∈ S_v by a point picked at random (seeded) in its *picking region*, the M_v-ball
+/// of radius δ·R_v(τ) around its M_v-circumcentre (§3.4, after Chew and Li–Teng), which avoids the
+/// cascades of quasi-cospherical configurations; "insert or snap": a point that encroaches a
+/// subsegment, or falls outside the domain, splits that subsegment instead.
+/// 3D (sliver rule 4 of §3.4) is not implemented.
+
+#include "laguerre/core/meshing/Domain.hpp"
+#include "laguerre/core/meshing/Medit.hpp"
+#include "laguerre/core/meshing/MetricField.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace laguerre::core {
+
+/// Parameters of the star refinement (see StarMesher.hpp's file comment).
+struct StarMeshOptions {
+  double size_bound = 1.0;          ///< largest M_v-circumradius of a triangle (in the field's units)
+  double radius_edge_bound = 1.0;   ///< ρ₀: largest M_v-circumradius / shortest M_v-edge (1 ⇔ 30°)
+  double distortion_bound = 1.5;    ///< γ₀
+  double picking_ratio = 0.1;       ///< δ: radius of the picking region relative to the circumradius
+  std::size_t max_vertices = 1000000;  ///< stop (not converged) beyond this many sites
+  std::uint64_t seed = 1;           ///< seed of the picking
+};
+
+/// How many times each rule refined something, and the work done.
+struct StarMeshStats {
+  std::size_t encroachment = 0;   ///< rule 1 splits
+  std::size_t distortion = 0;     ///< rule 2 insertions
+  std::size_t size = 0;           ///< rule 3 insertions
+  std::size_t shape = 0;          ///< rule 4 insertions
+  std::size_t inconsistency = 0;  ///< rule 5 insertions
+  std::size_t snapped = 0;        ///< picked points replaced by a subsegment split
+  std::size_t star_updates = 0;   ///< star recomputations
+  std::size_t consistency_sweeps = 0;  ///< full passes looking for inconsistent triangles
+};
+
+/// The result: the merged mesh, one metric per vertex, statistics and status.
+struct StarMeshResult {
+  TriangleMesh mesh;             ///< vertices, consistent triangles (counter-clockwise), constraint subsegments
+  std::vector<Metric> metrics;   ///< M_v per vertex
+  StarMeshStats stats;           ///< rule counts
+  bool converged = false;        ///< every star consistent and every rule satisfied
+  std::string status;            ///< "converged", or why not
+};
+
+/// Meshes `domain` for `field` by star refinement. Deterministic for a given seed.
+StarMeshResult mesh_with_stars(const Domain& domain, const MetricField& field, const StarMeshOptions& options = {});
+
+/// Checks that `mesh` triangulates `domain`: counter-clockwise triangles, every edge in one or two
+/// triangles, edges in one triangle exactly the constraint subsegments on the boundary, and total
+/// area equal to the domain's (relative 1e-9). Returns "" when valid, else the first problem found.
+std::string check_triangulation(const TriangleMesh& mesh, const Domain& domain);
+
+}  // namespace laguerre::core

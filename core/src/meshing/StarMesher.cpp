@@ -1,0 +1,524 @@
+#include "laguerre/core/meshing/StarMesher.hpp"
+
+#include "detail/LocalDelaunay.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <queue>
+#include <set>
+#include <tuple>
+
+namespace laguerre::core {
+
+namespace {
+
+using Index = std::uint32_t;
+
+/// SplitMix64: the picking's random stream (deterministic across standard libraries).
+struct Stream {
+  std::uint64_t state;
+  double uniform() {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-53;
+  }
+};
+
+/// A triangle (v, a, b) of the star of v, with its M_v-circumball.
+struct StarTriangle {
+  Index a, b;      ///< the other vertices, (v, a, b) counter-clockwise
+  double cx, cy;   ///< M_v-circumcentre
+  double radius;   ///< M_v-circumradius
+  double shortest; ///< shortest M_v-edge
+};
+
+struct Star {
+  std::vector<StarTriangle> triangles;
+  std::uint32_t version = 0;
+  double query_radius = 0;
+  std::array<std::size_t, 4> cells{1, 1, 0, 0};  ///< registered zone cells: i0, j0, i1, j1 (empty if i0 > i1)
+};
+
+struct Subsegment {
+  Index a, b;
+  bool alive = true;
+};
+
+/// A refinement request: rule (2..5), the star's site and version, the triangle.
+struct Request {
+  int rule;
+  double radius;
+  Index v, a, b;
+  std::uint32_t version;
+  bool operator<(const Request& o) const {  // priority_queue: top = lowest rule, then largest radius
+    if (rule != o.rule) return rule > o.rule;
+    if (radius != o.radius) return radius < o.radius;
+    return std::tie(v, a, b) > std::tie(o.v, o.a, o.b);
+  }
+};
+
+/// A uniform grid of buckets over a box.
+class Grid {
+public:
+  Grid(std::array<double, 4> box, std::size_t n) : box_(box), n_(n), cells_(n * n) {
+    w_ = (box_[2] - box_[0]) / static_cast<double>(n);
+    h_ = (box_[3] - box_[1]) / static_cast<double>(n);
+  }
+  std::size_t ix(double x) const { return clamp_index((x - box_[0]) / w_); }
+  std::size_t iy(double y) const { return clamp_index((y - box_[1]) / h_); }
+  std::vector<Index>& at(std::size_t i, std::size_t j) { return cells_[j * n_ + i]; }
+  const std::vector<Index>& at(std::size_t i, std::size_t j) const { return cells_[j * n_ + i]; }
+  double cell_size() const { return std::max(w_, h_); }
+
+private:
+  std::size_t clamp_index(double t) const {
+    if (!(t > 0)) return 0;
+    return std::min(n_ - 1, static_cast<std::size_t>(t));
+  }
+  std::array<double, 4> box_;
+  std::size_t n_;
+  double w_ = 1, h_ = 1;
+  std::vector<std::vector<Index>> cells_;
+};
+
+class StarMesher {
+public:
+  StarMesher(const Domain& domain, const MetricField& field, const StarMeshOptions& options)
+      : domain_(domain), field_(field), options_(options), rng_{options.seed}, box_(expanded_box(domain)),
+        sites_grid_(box_, 256), zones_grid_(box_, 128), subs_grid_(box_, 128) {}
+
+  StarMeshResult run() {
+    StarMeshResult result;
+    // Sites: every constraint endpoint once; subsegments: the constraints.
+    std::map<std::pair<double, double>, Index> index_of;
+    auto site_of = [&](Point2 p) {
+      const auto [it, inserted] = index_of.emplace(std::make_pair(p.x, p.y), 0);
+      if (inserted) it->second = add_site(p);
+      return it->second;
+    };
+    for (const auto& c : domain_.constraints()) add_subsegment(site_of(c[0]), site_of(c[1]));
+    for (std::size_t s = 0; s < subs_.size(); ++s) check_subsegment(static_cast<Index>(s));
+
+    while (true) {
+      if (points_.size() > options_.max_vertices) {
+        result.status = "stopped at " + std::to_string(points_.size()) + " vertices (max_vertices)";
+        break;
+      }
+      if (!split_queue_.empty()) {
+        const Index s = split_queue_.back();
+        split_queue_.pop_back();
+        if (subs_[s].alive && subsegment_is_bad(s)) split(s);
+        continue;
+      }
+      if (!dirty_.empty()) {
+        const Index v = dirty_.back();
+        dirty_.pop_back();
+        is_dirty_[v] = false;
+        update_star(v);
+        continue;
+      }
+      if (!requests_.empty()) {
+        const Request r = requests_.top();
+        requests_.pop();
+        if (r.version == stars_[r.v].version) refine(r);
+        continue;
+      }
+      if (!consistency_sweep()) {
+        result.converged = true;
+        result.status = "converged";
+        break;
+      }
+      if (points_.size() == sites_at_last_sweep_) {
+        result.status = "stuck: inconsistent triangles remain but no refinement point could be inserted";
+        break;
+      }
+      sites_at_last_sweep_ = points_.size();
+    }
+    result.stats = stats_;
+    merge(result);
+    return result;
+  }
+
+private:
+  static std::array<double, 4> expanded_box(const Domain& d) {
+    auto b = d.bounding_box();
+    const double pad = 1e-6 * std::max(b[2] - b[0], b[3] - b[1]);
+    return {b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad};
+  }
+
+  Index add_site(Point2 p) {
+    const Index v = static_cast<Index>(points_.size());
+    points_.push_back(p);
+    const Metric m = field_.at(p.x, p.y);
+    metrics_.push_back(m);
+    roots_.push_back(square_root(m));
+    largest_size_.push_back(sizes_of(m)[0]);
+    stars_.emplace_back();
+    is_dirty_.push_back(false);
+    sites_grid_.at(sites_grid_.ix(p.x), sites_grid_.iy(p.y)).push_back(v);
+    // Stars whose conflict zone contains p change; so does p's own.
+    mark_dirty(v);
+    for (Index w : zones_grid_.at(zones_grid_.ix(p.x), zones_grid_.iy(p.y)))
+      if (!is_dirty_[w] && in_conflict_zone(w, p)) mark_dirty(w);
+    // Subsegments p may encroach.
+    for (Index s : subs_grid_.at(subs_grid_.ix(p.x), subs_grid_.iy(p.y)))
+      if (subs_[s].alive && encroaches(s, p)) split_queue_.push_back(s);
+    return v;
+  }
+
+  void mark_dirty(Index v) {
+    if (!is_dirty_[v]) {
+      is_dirty_[v] = true;
+      dirty_.push_back(v);
+    }
+  }
+
+  bool in_conflict_zone(Index w, Point2 p) const {
+    for (const StarTriangle& t : stars_[w].triangles)
+      if (metric_length(metrics_[w], p.x - t.cx, p.y - t.cy) < t.radius) return true;
+    return false;
+  }
+
+  // --- subsegments -------------------------------------------------------------------------------
+
+  void add_subsegment(Index a, Index b) {
+    const Index s = static_cast<Index>(subs_.size());
+    subs_.push_back({a, b, true});
+    // Register over the bounding box of both diametral ellipses.
+    const Point2 pa = points_[a], pb = points_[b];
+    const double mx = (pa.x + pb.x) / 2, my = (pa.y + pb.y) / 2;
+    double ex = 0, ey = 0;
+    for (Index e : {a, b}) {
+      const Metric& m = metrics_[e];
+      const double r = metric_length(m, pa.x - mx, pa.y - my);
+      const double det = m.a * m.c - m.b * m.b;
+      ex = std::max(ex, r * std::sqrt(m.c / det));
+      ey = std::max(ey, r * std::sqrt(m.a / det));
+    }
+    for (std::size_t j = subs_grid_.iy(my - ey); j <= subs_grid_.iy(my + ey); ++j)
+      for (std::size_t i = subs_grid_.ix(mx - ex); i <= subs_grid_.ix(mx + ex); ++i) subs_grid_.at(i, j).push_back(s);
+  }
+
+  /// p lies strictly inside the M_a- or M_b-diametral ball of subsegment s.
+  bool encroaches(Index s, Point2 p) const {
+    const Subsegment& sub = subs_[s];
+    const Point2 pa = points_[sub.a], pb = points_[sub.b];
+    const double mx = (pa.x + pb.x) / 2, my = (pa.y + pb.y) / 2;
+    for (Index e : {sub.a, sub.b}) {
+      const Metric& m = metrics_[e];
+      if (metric_length(m, p.x - mx, p.y - my) < metric_length(m, pa.x - mx, pa.y - my) * (1 - 1e-12)) return true;
+    }
+    return false;
+  }
+
+  bool subsegment_is_bad(Index s) const {
+    const Subsegment& sub = subs_[s];
+    const Point2 pa = points_[sub.a], pb = points_[sub.b];
+    for (Index e : {sub.a, sub.b})
+      if (metric_length(metrics_[e], pb.x - pa.x, pb.y - pa.y) > 2 * options_.size_bound) return true;
+    if (distortion(metrics_[sub.a], metrics_[sub.b]) >= options_.distortion_bound) return true;
+    // Encroached by a site near its midpoint.
+    const double mx = (pa.x + pb.x) / 2, my = (pa.y + pb.y) / 2;
+    double reach = 0;  // Euclidean extent of the diametral ellipses: radius × largest size
+    for (Index e : {sub.a, sub.b})
+      reach = std::max(reach, metric_length(metrics_[e], pa.x - mx, pa.y - my) * largest_size_[e]);
+    bool bad = false;
+    for_sites_in_box(mx - reach, my - reach, mx + reach, my + reach, [&](Index w) {
+      if (!bad && w != sub.a && w != sub.b && encroaches(s, points_[w])) bad = true;
+    });
+    return bad;
+  }
+
+  void check_subsegment(Index s) {
+    if (subsegment_is_bad(s)) split_queue_.push_back(s);
+  }
+
+  void split(Index s) {
+    ++stats_.encroachment;
+    subs_[s].alive = false;
+    const Index a = subs_[s].a, b = subs_[s].b;
+    const Point2 m{(points_[a].x + points_[b].x) / 2, (points_[a].y + points_[b].y) / 2};
+    const Index v = add_site(m);
+    const Index s1 = static_cast<Index>(subs_.size());
+    add_subsegment(a, v);
+    add_subsegment(v, b);
+    check_subsegment(s1);
+    check_subsegment(s1 + 1);
+  }
+
+  template <class F>
+  void for_sites_in_box(double x0, double y0, double x1, double y1, F&& f) const {
+    for (std::size_t j = sites_grid_.iy(y0); j <= sites_grid_.iy(y1); ++j)
+      for (std::size_t i = sites_grid_.ix(x0); i <= sites_grid_.ix(x1); ++i)
+        for (Index w : sites_grid_.at(i, j)) f(w);
+  }
+
+  // --- stars ---------------------------------------------------------------------------------------
+
+  /// Recomputes S_v from a growing neighbourhood until the fan is provably the Delaunay one (every
+  /// triangle's M_v-circumball inside the queried disc, and the fan closed or its gap outside Ω).
+  void update_star(Index v) {
+    ++stats_.star_updates;
+    Star& star = stars_[v];
+    const Point2 p = points_[v];
+    const Matrix2& f = roots_[v];
+    const Metric& m = metrics_[v];
+    const double diag = std::hypot(box_[2] - box_[0], box_[3] - box_[1]);
+    double r = star.query_radius > 0 ? 0.7 * star.query_radius : 2 * sites_grid_.cell_size();
+    std::vector<Index> ids;
+    std::vector<std::array<double, 2>> stretched;
+    std::vector<std::array<std::size_t, 2>> fan;
+    std::vector<StarTriangle> kept;
+    while (true) {
+      ids.clear();
+      stretched.clear();
+      std::size_t centre = 0;
+      for_sites_in_box(p.x - r, p.y - r, p.x + r, p.y + r, [&](Index w) {
+        const double dx = points_[w].x - p.x, dy = points_[w].y - p.y;
+        if (dx * dx + dy * dy > r * r) return;
+        if (w == v) centre = ids.size();
+        ids.push_back(w);
+        stretched.push_back({f.m00 * dx + f.m01 * dy, f.m10 * dx + f.m11 * dy});
+      });
+      const bool everything = r >= diag;
+      bool on_hull = true;
+      if (ids.size() >= 3) detail::delaunay_fan(stretched, centre, fan, on_hull);
+      else fan.clear();
+      bool complete = !fan.empty() || everything;
+      kept.clear();
+      for (const auto& [ia, ib] : fan) {
+        const auto& sa = stretched[ia];
+        const auto& sb = stretched[ib];
+        // Circumcentre of (0, sa, sb) in the stretched frame.
+        const double d = 2 * (sa[0] * sb[1] - sa[1] * sb[0]);
+        const double na = sa[0] * sa[0] + sa[1] * sa[1], nb = sb[0] * sb[0] + sb[1] * sb[1];
+        const double ux = (sb[1] * na - sa[1] * nb) / d, uy = (sa[0] * nb - sb[0] * na) / d;
+        const double radius = std::hypot(ux, uy);
+        // Back to the plane: c = p + F⁻¹u.
+        const double det = f.m00 * f.m11 - f.m01 * f.m10;
+        const double cx = p.x + (f.m11 * ux - f.m01 * uy) / det, cy = p.y + (-f.m10 * ux + f.m00 * uy) / det;
+        if (!everything && std::hypot(cx - p.x, cy - p.y) + radius * largest_size_[v] * 1.0000001 > r) {
+          complete = false;
+          break;
+        }
+        const Index a = ids[ia], b = ids[ib];
+        const Point2 g{(p.x + points_[a].x + points_[b].x) / 3, (p.y + points_[a].y + points_[b].y) / 3};
+        if (domain_.locate(g) != DomainSide::inside) continue;
+        const double shortest = std::min({std::hypot(sa[0], sa[1]), std::hypot(sb[0], sb[1]),
+                                          std::hypot(sa[0] - sb[0], sa[1] - sb[1])});
+        kept.push_back({a, b, cx, cy, radius, shortest});
+      }
+      if (complete && on_hull && !everything && !fan.empty()) complete = gap_outside_domain(v, ids[fan.front()[0]], ids[fan.back()[1]]);
+      if (complete) break;
+      r *= 1.6;
+    }
+    star.triangles = std::move(kept);
+    kept = {};
+    star.query_radius = r;
+    ++star.version;
+    register_zone(v);
+    evaluate(v, m);
+  }
+
+  /// For an open fan at v from neighbour `first` (ccw) round to `last`: the directions in the gap from
+  /// `last` counter-clockwise to `first` lie outside the domain (tested on the gap's bisector).
+  bool gap_outside_domain(Index v, Index first, Index last) const {
+    const Point2 p = points_[v];
+    const double ux = points_[first].x - p.x, uy = points_[first].y - p.y;
+    const double wx = points_[last].x - p.x, wy = points_[last].y - p.y;
+    const double lu = std::hypot(ux, uy), lw = std::hypot(wx, wy);
+    double bx = ux / lu + wx / lw, by = uy / lu + wy / lw;
+    // The gap runs counter-clockwise from `last` to `first`; if that turn is a left turn the gap is
+    // less than π and its bisector is u + w, otherwise −(u + w).
+    if (orientation(p, points_[last], points_[first]) != Sign::positive) bx = -bx, by = -by;
+    const double lb = std::hypot(bx, by);
+    if (lb == 0) return false;
+    const double eps = 1e-7 * std::min(lu, lw);
+    return domain_.locate({p.x + eps * bx / lb, p.y + eps * by / lb}) == DomainSide::outside;
+  }
+
+  void register_zone(Index v) {
+    Star& star = stars_[v];
+    if (star.cells[0] <= star.cells[2])
+      for (std::size_t j = star.cells[1]; j <= star.cells[3]; ++j)
+        for (std::size_t i = star.cells[0]; i <= star.cells[2]; ++i) {
+          auto& cell = zones_grid_.at(i, j);
+          cell.erase(std::find(cell.begin(), cell.end(), v));
+        }
+    if (star.triangles.empty()) {
+      star.cells = {1, 1, 0, 0};
+      return;
+    }
+    const Metric& m = metrics_[v];
+    const double det = m.a * m.c - m.b * m.b;
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (const StarTriangle& t : star.triangles) {
+      const double ex = t.radius * std::sqrt(m.c / det), ey = t.radius * std::sqrt(m.a / det);
+      x0 = std::min(x0, t.cx - ex), x1 = std::max(x1, t.cx + ex);
+      y0 = std::min(y0, t.cy - ey), y1 = std::max(y1, t.cy + ey);
+    }
+    star.cells = {zones_grid_.ix(x0), zones_grid_.iy(y0), zones_grid_.ix(x1), zones_grid_.iy(y1)};
+    for (std::size_t j = star.cells[1]; j <= star.cells[3]; ++j)
+      for (std::size_t i = star.cells[0]; i <= star.cells[2]; ++i) zones_grid_.at(i, j).push_back(v);
+  }
+
+  /// Queues the rule-2..4 violations of S_v (rule 5 waits for a consistency sweep).
+  void evaluate(Index v, const Metric& m) {
+    const Star& star = stars_[v];
+    for (const StarTriangle& t : star.triangles) {
+      int rule = 0;
+      double g = std::max(distortion(m, metrics_[t.a]), distortion(m, metrics_[t.b]));
+      try {
+        g = std::max(g, distortion(m, field_.at(t.cx, t.cy)));
+      } catch (const FieldError&) {
+        // The circumcentre lies outside a background mesh: the vertices' metrics decide.
+      }
+      if (g >= options_.distortion_bound) rule = 2;
+      else if (t.radius > options_.size_bound) rule = 3;
+      else if (t.radius > options_.radius_edge_bound * t.shortest) rule = 4;
+      if (rule) requests_.push({rule, t.radius, v, t.a, t.b, star.version});
+    }
+  }
+
+  bool star_has(Index v, Index a, Index b) const {
+    for (const StarTriangle& t : stars_[v].triangles)
+      if (t.a == a && t.b == b) return true;
+    return false;
+  }
+
+  /// Queues every inconsistent triangle; false if there is none.
+  bool consistency_sweep() {
+    ++stats_.consistency_sweeps;
+    bool found = false;
+    for (Index v = 0; v < stars_.size(); ++v)
+      for (const StarTriangle& t : stars_[v].triangles)
+        if (!star_has(t.a, t.b, v) || !star_has(t.b, v, t.a)) {
+          requests_.push({5, t.radius, v, t.a, t.b, stars_[v].version});
+          found = true;
+        }
+    return found;
+  }
+
+  void refine(const Request& r) {
+    const StarTriangle* t = nullptr;
+    for (const StarTriangle& c : stars_[r.v].triangles)
+      if (c.a == r.a && c.b == r.b) t = &c;
+    if (!t) return;
+    if (r.rule == 5 && star_has(t->a, t->b, r.v) && star_has(t->b, r.v, t->a)) return;  // fixed meanwhile
+    // Pick a point in the picking region: the M_v-ball of radius δR around the circumcentre.
+    const Matrix2& f = roots_[r.v];
+    const double det = f.m00 * f.m11 - f.m01 * f.m10;
+    const double rho = options_.picking_ratio * t->radius * std::sqrt(rng_.uniform());
+    const double angle = 2 * M_PI * rng_.uniform();
+    const double ux = rho * std::cos(angle), uy = rho * std::sin(angle);
+    const Point2 p{t->cx + (f.m11 * ux - f.m01 * uy) / det, t->cy + (-f.m10 * ux + f.m00 * uy) / det};
+    const Point2 g{(points_[r.v].x + points_[r.a].x + points_[r.b].x) / 3,
+                   (points_[r.v].y + points_[r.a].y + points_[r.b].y) / 3};
+    // Insert or snap: a point encroaching a subsegment, or outside Ω, splits a subsegment instead.
+    std::vector<Index> hit;
+    if (p.x >= box_[0] && p.x <= box_[2] && p.y >= box_[1] && p.y <= box_[3])
+      for (Index s : subs_grid_.at(subs_grid_.ix(p.x), subs_grid_.iy(p.y)))
+        if (subs_[s].alive && encroaches(s, p)) hit.push_back(s);
+    if (hit.empty() && domain_.locate(p) != DomainSide::inside) {
+      // The subsegment crossed on the way from the triangle to p.
+      for (std::size_t s = 0; s < subs_.size() && hit.empty(); ++s)
+        if (subs_[s].alive && segments_intersect(g, p, points_[subs_[s].a], points_[subs_[s].b]))
+          hit.push_back(static_cast<Index>(s));
+      if (hit.empty()) return;  // cannot happen for a triangle inside Ω; skip rather than loop
+    }
+    if (!hit.empty()) {
+      ++stats_.snapped;
+      for (Index s : hit)
+        if (subs_[s].alive) split(s);
+      return;
+    }
+    switch (r.rule) {
+      case 2: ++stats_.distortion; break;
+      case 3: ++stats_.size; break;
+      case 4: ++stats_.shape; break;
+      default: ++stats_.inconsistency; break;
+    }
+    add_site(p);
+  }
+
+  // --- output --------------------------------------------------------------------------------------
+
+  void merge(StarMeshResult& result) const {
+    TriangleMesh& mesh = result.mesh;
+    for (const Point2& p : points_) mesh.points.push_back({p.x, p.y});
+    mesh.point_refs.assign(points_.size(), 0);
+    for (Index v = 0; v < stars_.size(); ++v)
+      for (const StarTriangle& t : stars_[v].triangles)
+        if (v < t.a && v < t.b && star_has(t.a, t.b, v) && star_has(t.b, v, t.a)) {
+          mesh.triangles.push_back({v, t.a, t.b});
+          mesh.triangle_refs.push_back(0);
+        }
+    for (const Subsegment& s : subs_)
+      if (s.alive) {
+        mesh.edges.push_back({s.a, s.b});
+        mesh.edge_refs.push_back(1);
+      }
+    result.metrics = metrics_;
+  }
+
+  const Domain& domain_;
+  const MetricField& field_;
+  StarMeshOptions options_;
+  Stream rng_;
+  std::array<double, 4> box_;
+  Grid sites_grid_, zones_grid_, subs_grid_;
+  std::vector<Point2> points_;
+  std::vector<Metric> metrics_;
+  std::vector<Matrix2> roots_;
+  std::vector<double> largest_size_;
+  std::vector<Star> stars_;
+  std::vector<bool> is_dirty_;
+  std::vector<Index> dirty_;
+  std::vector<Subsegment> subs_;
+  std::vector<Index> split_queue_;
+  std::priority_queue<Request> requests_;
+  StarMeshStats stats_;
+  std::size_t sites_at_last_sweep_ = 0;
+};
+
+}  // namespace
+
+StarMeshResult mesh_with_stars(const Domain& domain, const MetricField& field, const StarMeshOptions& options) {
+  return StarMesher(domain, field, options).run();
+}
+
+std::string check_triangulation(const TriangleMesh& mesh, const Domain& domain) {
+  std::map<std::pair<std::size_t, std::size_t>, int> directed;
+  double area = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    const Point2 p{mesh.points[tri[0]][0], mesh.points[tri[0]][1]}, q{mesh.points[tri[1]][0], mesh.points[tri[1]][1]},
+        r{mesh.points[tri[2]][0], mesh.points[tri[2]][1]};
+    if (orientation(p, q, r) != Sign::positive) return "triangle " + std::to_string(t) + " is not counter-clockwise";
+    area += ((q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x)) / 2;
+    for (int k = 0; k < 3; ++k)
+      if (++directed[{tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)]}] > 1)
+        return "triangles overlap along edge " + std::to_string(tri[static_cast<std::size_t>(k)]) + "–" +
+               std::to_string(tri[static_cast<std::size_t>((k + 1) % 3)]);
+  }
+  std::set<std::pair<std::size_t, std::size_t>> constraints;
+  for (const auto& e : mesh.edges) constraints.insert({std::min(e[0], e[1]), std::max(e[0], e[1])});
+  std::size_t boundary_edges = 0;
+  for (const auto& [e, count] : directed) {
+    if (directed.count({e.second, e.first})) continue;  // interior edge, used once each way
+    ++boundary_edges;
+    if (!constraints.count({std::min(e.first, e.second), std::max(e.first, e.second)}))
+      return "edge " + std::to_string(e.first) + "–" + std::to_string(e.second) +
+             " bounds a single triangle but is not a boundary subsegment (a hole in the mesh)";
+  }
+  const double expected = domain.area();
+  if (std::abs(area - expected) > 1e-9 * std::abs(expected))
+    return "the triangles cover an area of " + std::to_string(area) + " instead of " + std::to_string(expected);
+  (void)boundary_edges;
+  return {};
+}
+
+}  // namespace laguerre::core
