@@ -103,12 +103,13 @@ void check(cairo_status_t status, const std::string& path) {
 }
 }  // namespace
 
-std::vector<std::string> render_packing(const PackingPicture& picture, const std::string& stem, int size) {
+std::vector<std::string> render_svg_png(const std::string& stem, int width, int height,
+                                        const std::function<void(cairo_t*)>& draw_on) {
   const std::string svg = stem + ".svg", png = stem + ".png";
   {
-    cairo_surface_t* s = cairo_svg_surface_create(svg.c_str(), size, size);
+    cairo_surface_t* s = cairo_svg_surface_create(svg.c_str(), width, height);
     cairo_t* cr = cairo_create(s);
-    draw(cr, picture, size);
+    draw_on(cr);
     cairo_destroy(cr);
     cairo_surface_finish(s);
     const cairo_status_t st = cairo_surface_status(s);
@@ -116,15 +117,19 @@ std::vector<std::string> render_packing(const PackingPicture& picture, const std
     check(st, svg);
   }
   {
-    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, size, size);
+    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height);
     cairo_t* cr = cairo_create(s);
-    draw(cr, picture, size);
+    draw_on(cr);
     cairo_destroy(cr);
     const cairo_status_t st = cairo_surface_write_to_png(s, png.c_str());
     cairo_surface_destroy(s);
     check(st, png);
   }
   return {svg, png};
+}
+
+std::vector<std::string> render_packing(const PackingPicture& picture, const std::string& stem, int size) {
+  return render_svg_png(stem, size, size, [&](cairo_t* cr) { draw(cr, picture, size); });
 }
 
 }  // namespace laguerre::tools

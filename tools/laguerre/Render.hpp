@@ -2,6 +2,7 @@
 /// @file
 /// Pictures of packings and routes (Cairo: SVG and PNG side by side).
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -9,7 +10,15 @@
 #include "laguerre/core/geometry/Predicates.hpp"
 #include "laguerre/core/graph/PlanarGraph.hpp"
 
+struct _cairo;
+
 namespace laguerre::tools {
+
+/// Draws the same picture twice, into `stem.svg` and `stem.png` (width × height pixels), by calling
+/// `draw` on each Cairo context; returns the two paths. Throws std::runtime_error if a file cannot be
+/// written. Every picture of the CLI goes through here.
+std::vector<std::string> render_svg_png(const std::string& stem, int width, int height,
+                                        const std::function<void(_cairo*)>& draw);
 
 /// What a packing picture shows.
 struct PackingPicture {

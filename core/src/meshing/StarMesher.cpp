@@ -158,6 +158,7 @@ private:
     largest_size_.push_back(sizes_of(m)[0]);
     stars_.emplace_back();
     is_dirty_.push_back(false);
+    if (options_.progress && v % 1000 == 0 && v > 0) options_.progress(v);
     sites_grid_.at(sites_grid_.ix(p.x), sites_grid_.iy(p.y)).push_back(v);
     // Stars whose conflict zone contains p change; so does p's own.
     mark_dirty(v);

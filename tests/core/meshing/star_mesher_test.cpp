@@ -1,5 +1,6 @@
 // Star refinement (thesis chapter 3): termination with consistent stars, the merged mesh is a valid
 // triangulation of the domain, and the promised bounds hold on every element in its vertices' metrics.
+#include "laguerre/core/meshing/MeshQuality.hpp"
 #include "laguerre/core/meshing/StarMesher.hpp"
 
 #include <gtest/gtest.h>
@@ -9,42 +10,15 @@
 namespace laguerre::core {
 namespace {
 
-/// The largest M-radius–edge ratio and M-circumradius of triangle t over the metrics of its vertices.
-std::pair<double, double> worst_quality(const StarMeshResult& r, std::size_t t) {
-  double ratio = 0, radius = 0;
-  const auto& tri = r.mesh.triangles[t];
-  for (std::size_t k = 0; k < 3; ++k) {
-    const Matrix2 f = square_root(r.metrics[tri[k]]);
-    std::array<std::array<double, 2>, 3> q{};
-    for (std::size_t i = 0; i < 3; ++i) {
-      const auto& p = r.mesh.points[tri[i]];
-      q[i] = {f.m00 * p[0] + f.m01 * p[1], f.m10 * p[0] + f.m11 * p[1]};
-    }
-    const double ax = q[1][0] - q[0][0], ay = q[1][1] - q[0][1], bx = q[2][0] - q[0][0], by = q[2][1] - q[0][1];
-    const double d = 2 * (ax * by - ay * bx);
-    const double ux = (by * (ax * ax + ay * ay) - ay * (bx * bx + by * by)) / d;
-    const double uy = (ax * (bx * bx + by * by) - bx * (ax * ax + ay * ay)) / d;
-    const double R = std::hypot(ux, uy);
-    const double shortest = std::min({std::hypot(ax, ay), std::hypot(bx, by), std::hypot(bx - ax, by - ay)});
-    ratio = std::max(ratio, R / shortest);
-    radius = std::max(radius, R);
-  }
-  return {ratio, radius};
-}
-
 void expect_good_mesh(const StarMeshResult& r, const Domain& d, const StarMeshOptions& o, double slack) {
   ASSERT_TRUE(r.converged) << r.status;
   EXPECT_EQ(check_triangulation(r.mesh, d), "");
   // Each triangle is in the stars of its three vertices, so for each vertex's metric it satisfies
   // that star's bounds; across vertices the bounds hold up to the distortion γ₀ (slack).
-  double worst_ratio = 0, worst_radius = 0;
-  for (std::size_t t = 0; t < r.mesh.triangles.size(); ++t) {
-    const auto [ratio, radius] = worst_quality(r, t);
-    worst_ratio = std::max(worst_ratio, ratio);
-    worst_radius = std::max(worst_radius, radius);
-  }
-  EXPECT_LE(worst_ratio, o.radius_edge_bound * slack);
-  EXPECT_LE(worst_radius, o.size_bound * slack);
+  const MeshQuality q = measure_quality(r.mesh, r.metrics);
+  EXPECT_LE(q.radius_edge.max, o.radius_edge_bound * slack);
+  EXPECT_GE(q.smallest_angle.min, std::asin(1 / (2 * o.radius_edge_bound * slack)) * 180 / M_PI - 1e-9);
+  EXPECT_LE(q.edge_length.max, 2 * o.size_bound * slack);  // an edge is a chord of the circumcircle
 }
 
 TEST(StarMesher, IsotropicSquare) {

@@ -32,6 +32,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,7 @@ struct StarMeshOptions {
   double picking_ratio = 0.1;       ///< δ: radius of the picking region relative to the circumradius
   std::size_t max_vertices = 1000000;  ///< stop (not converged) beyond this many sites
   std::uint64_t seed = 1;           ///< seed of the picking
+  std::function<void(std::size_t)> progress;  ///< called with the vertex count every 1000 insertions, optional
 };
 
 /// How many times each rule refined something, and the work done.

@@ -1,0 +1,210 @@
+// `laguerre mesh`: anisotropic meshing of a polygonal domain under a metric field, with a quality
+// report, Medit/VTK/JSON outputs and a picture.
+#include <cairo.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "Commands.hpp"
+#include "Common.hpp"
+#include "Render.hpp"
+#include "laguerre/core/meshing/Domain.hpp"
+#include "laguerre/core/meshing/MeshQuality.hpp"
+#include "laguerre/core/meshing/StarMesher.hpp"
+#include "laguerre/core/meshing/Vtk.hpp"
+
+namespace laguerre::tools {
+
+namespace {
+
+struct MeshArgs {
+  std::string domain;
+  std::string metric = "shock";
+  std::string algorithm = "stars";
+  std::string out;
+  core::StarMeshOptions options;
+  bool force = false;
+  bool json = false;
+  bool picture = true;
+};
+
+nlohmann::json summary_json(const core::QualitySummary& s) {
+  return {{"count", s.count}, {"min", s.min},           {"mean", s.mean},           {"max", s.max},
+          {"p5", s.p5},       {"p95", s.p95},           {"bin_start", s.bin_start}, {"bin_width", s.bin_width},
+          {"histogram", s.histogram}};
+}
+
+/// The mesh, triangles coloured by their smallest angle in the metric (red < 20°, green ≥ 40°).
+void draw_mesh(cairo_t* cr, const core::TriangleMesh& mesh, const core::MeshQuality& q, const core::Domain& domain,
+               int size, const std::string& title) {
+  const auto box = domain.bounding_box();
+  const double span = std::max(box[2] - box[0], box[3] - box[1]);
+  const double margin = 0.03 * span;
+  const double scale = size / (span + 2 * margin);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  cairo_save(cr);
+  cairo_translate(cr, 0, size);
+  cairo_scale(cr, scale, -scale);
+  cairo_translate(cr, margin - box[0], margin - box[1]);
+  const double px = 1 / scale;
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    cairo_move_to(cr, mesh.points[tri[0]][0], mesh.points[tri[0]][1]);
+    cairo_line_to(cr, mesh.points[tri[1]][0], mesh.points[tri[1]][1]);
+    cairo_line_to(cr, mesh.points[tri[2]][0], mesh.points[tri[2]][1]);
+    cairo_close_path(cr);
+    const double a = std::clamp((q.elements[t].smallest_angle - 20) / 20, 0.0, 1.0);
+    cairo_set_source_rgb(cr, 0.95 - 0.4 * a, 0.55 + 0.35 * a, 0.5);
+    cairo_fill_preserve(cr);
+    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+    cairo_set_line_width(cr, std::min(0.6, 0.25 + 2e3 / static_cast<double>(mesh.triangles.size() + 1)) * px);
+    cairo_stroke(cr);
+  }
+  cairo_set_source_rgb(cr, 0, 0, 0.6);
+  cairo_set_line_width(cr, 1.5 * px);
+  for (const auto& c : domain.constraints()) {
+    cairo_move_to(cr, c[0].x, c[0].y);
+    cairo_line_to(cr, c[1].x, c[1].y);
+  }
+  cairo_stroke(cr);
+  cairo_restore(cr);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, size / 60.0);
+  cairo_move_to(cr, 10, size / 45.0);
+  cairo_show_text(cr, title.c_str());
+}
+
+int run_mesh(MeshArgs& a) {
+  if (a.algorithm == "voronoi")
+    throw std::invalid_argument(
+        "--algorithm voronoi (thesis Part II, refinement of the anisotropic Voronoi diagram) is not available yet; "
+        "use --algorithm stars.");
+  const core::Domain domain = a.domain == "square" ? core::Domain::unit_square() : core::read_domain(a.domain);
+  const auto field = core::parse_metric_field(a.metric);
+  const std::string stem = a.out.empty() ? "out/mesh/" + (a.domain == "square" ? "square" : file_stem(a.domain)) : a.out;
+  std::vector<std::string> outputs = {stem + ".mesh", stem + ".sol", stem + ".vtk", stem + ".json"};
+  if (a.picture) outputs.insert(outputs.end(), {stem + ".svg", stem + ".png"});
+  for (const auto& o : outputs) check_writable(o, a.force);
+  if (const auto dir = std::filesystem::path(stem).parent_path(); !dir.empty()) std::filesystem::create_directories(dir);
+
+  const bool tty = isatty(STDERR_FILENO);
+  if (tty)
+    a.options.progress = [](std::size_t n) { std::cerr << "\rmeshing: " << n << " vertices" << std::flush; };
+  const auto start = std::chrono::steady_clock::now();
+  const core::StarMeshResult r = core::mesh_with_stars(domain, *field, a.options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (tty) std::cerr << "\r\033[K";
+  const std::string valid = core::check_triangulation(r.mesh, domain);
+  const core::MeshQuality q = core::measure_quality(r.mesh, r.metrics);
+
+  core::write_medit_mesh(stem + ".mesh", r.mesh);
+  core::write_medit_sol(stem + ".sol", r.metrics);
+  core::write_vtk(stem + ".vtk", r.mesh, r.metrics, &q);
+  nlohmann::json j = {
+      {"domain", a.domain},
+      {"metric", field->describe()},
+      {"algorithm", a.algorithm},
+      {"status", r.status},
+      {"converged", r.converged},
+      {"valid_triangulation", valid.empty()},
+      {"validation", valid},
+      {"vertices", r.mesh.points.size()},
+      {"triangles", r.mesh.triangles.size()},
+      {"seconds", seconds},
+      {"vertices_per_second", static_cast<double>(r.mesh.points.size()) / seconds},
+      {"options",
+       {{"size_bound", a.options.size_bound},
+        {"radius_edge_bound", a.options.radius_edge_bound},
+        {"distortion_bound", a.options.distortion_bound},
+        {"picking_ratio", a.options.picking_ratio},
+        {"max_vertices", a.options.max_vertices},
+        {"seed", a.options.seed}}},
+      {"rules",
+       {{"encroachment", r.stats.encroachment},
+        {"distortion", r.stats.distortion},
+        {"size", r.stats.size},
+        {"shape", r.stats.shape},
+        {"inconsistency", r.stats.inconsistency},
+        {"snapped", r.stats.snapped},
+        {"star_updates", r.stats.star_updates},
+        {"consistency_sweeps", r.stats.consistency_sweeps}}},
+      {"quality",
+       {{"radius_edge", summary_json(q.radius_edge)},
+        {"smallest_angle_degrees", summary_json(q.smallest_angle)},
+        {"distortion", summary_json(q.distortion)},
+        {"edge_length", summary_json(q.edge_length)}}},
+  };
+  std::ofstream(stem + ".json") << j.dump(2) << '\n';
+  if (a.picture)
+    render_svg_png(stem, 1000, 1000, [&](cairo_t* cr) {
+      draw_mesh(cr, r.mesh, q, domain, 1000,
+                field->describe() + ": " + std::to_string(r.mesh.points.size()) + " vertices, min angle " +
+                    std::to_string(static_cast<int>(q.smallest_angle.min)) + "° in the metric");
+    });
+
+  if (a.json) {
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::printf("mesh         %s, metric %s, algorithm %s\n", a.domain.c_str(), field->describe().c_str(),
+                a.algorithm.c_str());
+    std::printf("status       %s; %s\n", r.status.c_str(), valid.empty() ? "valid triangulation of the domain" : valid.c_str());
+    std::printf("size         %zu vertices, %zu triangles in %.2f s (%.0f vertices/s)\n", r.mesh.points.size(),
+                r.mesh.triangles.size(), seconds, static_cast<double>(r.mesh.points.size()) / seconds);
+    std::printf("rules        encroachment %zu, distortion %zu, size %zu, shape %zu, inconsistency %zu (snapped %zu)\n",
+                r.stats.encroachment, r.stats.distortion, r.stats.size, r.stats.shape, r.stats.inconsistency,
+                r.stats.snapped);
+    std::printf("quality      %-16s %8s %8s %8s %8s %8s\n", "(in the metric)", "min", "p5", "mean", "p95", "max");
+    auto row = [](const char* name, const core::QualitySummary& s) {
+      std::printf("             %-16s %8.3f %8.3f %8.3f %8.3f %8.3f\n", name, s.min, s.p5, s.mean, s.p95, s.max);
+    };
+    row("smallest angle", q.smallest_angle);
+    row("radius-edge", q.radius_edge);
+    row("edge length", q.edge_length);
+    row("distortion", q.distortion);
+    std::printf("wrote        %s.{mesh,sol,vtk,json%s}\n", stem.c_str(), a.picture ? ",svg,png" : "");
+  }
+  return r.converged && valid.empty() ? 0 : 3;
+}
+
+}  // namespace
+
+Action add_mesh_command(CLI::App& app) {
+  auto args = std::make_shared<MeshArgs>();
+  CLI::App* cmd = app.add_subcommand("mesh", "Anisotropic mesh of a polygonal domain under a metric field (thesis Parts II-III).");
+  cmd->footer(
+      "DOMAIN is a domain file (outer polygon, holes, constraint segments: see core/meshing/Domain.hpp)\n"
+      "or 'square' for the unit square. Metric fields (see core/meshing/MetricField.hpp):\n"
+      "  uniform:H1:H2[:THETA]  shock[:HMIN:HMAX:WIDTH:X0]  thesis[:H:RATIO:WIDTH:Y0]\n"
+      "  expr:a=..;b=..;c=..    sizes:h1=..;h2=..;theta=..  mesh:FILE.mesh[:FILE.sol]\n"
+      "Writes OUT.mesh + OUT.sol (Medit: mmg, gmsh), OUT.vtk (ParaView), OUT.json and OUT.svg/.png.\n"
+      "Exit status: 0 converged and valid, 3 stopped early or invalid, 2 bad input.");
+  cmd->add_option("domain", args->domain, "Domain file, or 'square'")->required();
+  cmd->add_option("--metric", args->metric, "Metric field specification")->capture_default_str();
+  cmd->add_option("--algorithm", args->algorithm, "stars (Part III, locally uniform) or voronoi (Part II)")
+      ->check(CLI::IsMember({"stars", "voronoi"}))->capture_default_str();
+  cmd->add_option("--size-bound", args->options.size_bound, "Largest circumradius in the metric")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--radius-edge", args->options.radius_edge_bound, "Largest radius-edge ratio rho0 (1 = 30 degrees)")
+      ->check(CLI::Range(0.58, 100.0))->capture_default_str();
+  cmd->add_option("--distortion", args->options.distortion_bound, "Distortion bound gamma0")
+      ->check(CLI::Range(1.0001, 100.0))->capture_default_str();
+  cmd->add_option("--picking", args->options.picking_ratio, "Picking ratio delta")
+      ->check(CLI::Range(0.0, 0.5))->capture_default_str();
+  cmd->add_option("--max-vertices", args->options.max_vertices, "Stop beyond this many vertices")->capture_default_str();
+  cmd->add_option("--seed", args->options.seed, "Seed of the picking")->capture_default_str();
+  cmd->add_option("-o,--out", args->out, "Output path stem (default out/mesh/<domain>)");
+  cmd->add_flag("--force", args->force, "Overwrite existing outputs");
+  cmd->add_flag("--json", args->json, "Print the JSON report instead of the table");
+  cmd->add_flag("!--no-picture", args->picture, "Skip the SVG/PNG picture");
+  return [args] { return run_mesh(*args); };
+}
+
+}  // namespace laguerre::tools
