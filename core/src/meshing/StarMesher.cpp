@@ -76,7 +76,8 @@ public:
 private:
   std::size_t clamp_index(double t) const {
     if (!(t > 0)) return 0;
-    return std::min(n_ - 1, static_cast<std::size_t>(t));
+    if (!(t < static_cast<double>(n_))) return n_ - 1;  // also +∞
+    return static_cast<std::size_t>(t);
   }
   std::array<double, 4> box_;
   std::size_t n_;
@@ -96,7 +97,7 @@ public:
     std::map<std::pair<double, double>, Index> index_of;
     auto site_of = [&](Point2 p) {
       const auto [it, inserted] = index_of.emplace(std::make_pair(p.x, p.y), 0);
-      if (inserted) it->second = add_site(p);
+      if (inserted) it->second = add_site(p, INFINITY);
       return it->second;
     };
     for (const auto& c : domain_.constraints()) add_subsegment(site_of(c[0]), site_of(c[1]));
@@ -113,17 +114,22 @@ public:
         if (subs_[s].alive && subsegment_is_bad(s)) split(s);
         continue;
       }
-      if (!dirty_.empty()) {
-        const Index v = dirty_.back();
-        dirty_.pop_back();
-        is_dirty_[v] = false;
-        update_star(v);
-        continue;
-      }
+      // Refine from clean stars first: a request of a star made dirty by an insertion since is
+      // dropped (its star is re-evaluated when recomputed), so stars are recomputed once per batch of
+      // insertions rather than after every insertion.
       if (!requests_.empty()) {
         const Request r = requests_.top();
         requests_.pop();
-        if (r.version == stars_[r.v].version) refine(r);
+        if (r.version == stars_[r.v].version && !is_dirty_[r.v]) refine(r);
+        continue;
+      }
+      if (!dirty_.empty()) {
+        while (!dirty_.empty()) {
+          const Index v = dirty_.back();
+          dirty_.pop_back();
+          is_dirty_[v] = false;
+          update_star(v);
+        }
         continue;
       }
       if (!consistency_sweep()) {
@@ -149,9 +155,11 @@ private:
     return {b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad};
   }
 
-  Index add_site(Point2 p) {
+  /// Adds a site; `hint` is a first guess of its star's query radius in its metric.
+  Index add_site(Point2 p, double hint) {
     const Index v = static_cast<Index>(points_.size());
     points_.push_back(p);
+    hint_.push_back(hint);
     const Metric m = field_.at(p.x, p.y);
     metrics_.push_back(m);
     roots_.push_back(square_root(m));
@@ -242,7 +250,8 @@ private:
     subs_[s].alive = false;
     const Index a = subs_[s].a, b = subs_[s].b;
     const Point2 m{(points_[a].x + points_[b].x) / 2, (points_[a].y + points_[b].y) / 2};
-    const Index v = add_site(m);
+    const double length = metric_length(metrics_[a], points_[b].x - points_[a].x, points_[b].y - points_[a].y);
+    const Index v = add_site(m, 2 * length);
     const Index s1 = static_cast<Index>(subs_.size());
     add_subsegment(a, v);
     add_subsegment(v, b);
@@ -260,36 +269,49 @@ private:
   // --- stars ---------------------------------------------------------------------------------------
 
   /// Recomputes S_v from a growing neighbourhood until the fan is provably the Delaunay one (every
-  /// triangle's M_v-circumball inside the queried disc, and the fan closed or its gap outside Ω).
+  /// triangle's M_v-circumball inside the queried M_v-ball, and the fan closed or its gap outside Ω).
   void update_star(Index v) {
     ++stats_.star_updates;
     Star& star = stars_[v];
     const Point2 p = points_[v];
     const Matrix2& f = roots_[v];
     const Metric& m = metrics_[v];
-    const double diag = std::hypot(box_[2] - box_[0], box_[3] - box_[1]);
-    double r = star.query_radius > 0 ? 0.7 * star.query_radius : 2 * sites_grid_.cell_size();
+    // The query region is the M_v-ball of radius r around v (r in metric units): its bounding box
+    // has half-extents r·√((M⁻¹)₁₁) and r·√((M⁻¹)₂₂).
+    const double det_m = m.a * m.c - m.b * m.b;
+    const double sx = std::sqrt(m.c / det_m), sy = std::sqrt(m.a / det_m);
+    double r = star.query_radius > 0 ? star.query_radius : hint_[v];
     std::vector<Index> ids;
     std::vector<std::array<double, 2>> stretched;
     std::vector<std::array<std::size_t, 2>> fan;
     std::vector<StarTriangle> kept;
+    double needed = 0;  // the largest |circumcentre| + circumradius over the fan, in the metric
     while (true) {
       ids.clear();
       stretched.clear();
       std::size_t centre = 0;
-      for_sites_in_box(p.x - r, p.y - r, p.x + r, p.y + r, [&](Index w) {
+      const double ex = r * sx, ey = r * sy;
+      for_sites_in_box(p.x - ex, p.y - ey, p.x + ex, p.y + ey, [&](Index w) {
         const double dx = points_[w].x - p.x, dy = points_[w].y - p.y;
-        if (dx * dx + dy * dy > r * r) return;
+        const double qx = f.m00 * dx + f.m01 * dy, qy = f.m10 * dx + f.m11 * dy;
+        if (qx * qx + qy * qy > r * r) return;
         if (w == v) centre = ids.size();
         ids.push_back(w);
-        stretched.push_back({f.m00 * dx + f.m01 * dy, f.m10 * dx + f.m11 * dy});
+        stretched.push_back({qx, qy});
       });
-      const bool everything = r >= diag;
+      // The ball covers the whole box only if the box's four corners are inside it.
+      bool everything = true;
+      for (const double cx : {box_[0], box_[2]})
+        for (const double cy : {box_[1], box_[3]})
+          everything = everything && metric_length(m, cx - p.x, cy - p.y) <= r;
       bool on_hull = true;
+      ++stats_.star_attempts;
+      stats_.star_points += ids.size();
       if (ids.size() >= 3) detail::delaunay_fan(stretched, centre, fan, on_hull);
       else fan.clear();
       bool complete = !fan.empty() || everything;
       kept.clear();
+      needed = 0;
       for (const auto& [ia, ib] : fan) {
         const auto& sa = stretched[ia];
         const auto& sb = stretched[ib];
@@ -301,7 +323,8 @@ private:
         // Back to the plane: c = p + F⁻¹u.
         const double det = f.m00 * f.m11 - f.m01 * f.m10;
         const double cx = p.x + (f.m11 * ux - f.m01 * uy) / det, cy = p.y + (-f.m10 * ux + f.m00 * uy) / det;
-        if (!everything && std::hypot(cx - p.x, cy - p.y) + radius * largest_size_[v] * 1.0000001 > r) {
+        needed = std::max(needed, std::hypot(ux, uy) + radius);
+        if (!everything && needed * (1 + 1e-9) > r) {
           complete = false;
           break;
         }
@@ -318,7 +341,8 @@ private:
     }
     star.triangles = std::move(kept);
     kept = {};
-    star.query_radius = r;
+    // Next time, start from what this star needed (stars only shrink as sites are added).
+    star.query_radius = needed > 0 ? std::min(r, 1.2 * needed) : r;
     ++star.version;
     register_zone(v);
     evaluate(v, m);
@@ -442,7 +466,7 @@ private:
       case 4: ++stats_.shape; break;
       default: ++stats_.inconsistency; break;
     }
-    add_site(p);
+    add_site(p, 3 * t->radius);
   }
 
   // --- output --------------------------------------------------------------------------------------
@@ -475,6 +499,7 @@ private:
   std::vector<Metric> metrics_;
   std::vector<Matrix2> roots_;
   std::vector<double> largest_size_;
+  std::vector<double> hint_;
   std::vector<Star> stars_;
   std::vector<bool> is_dirty_;
   std::vector<Index> dirty_;

@@ -58,6 +58,8 @@ struct StarMeshStats {
   std::size_t inconsistency = 0;  ///< rule 5 insertions
   std::size_t snapped = 0;        ///< picked points replaced by a subsegment split
   std::size_t star_updates = 0;   ///< star recomputations
+  std::size_t star_attempts = 0;  ///< local Delaunay triangulations built (a star may need several)
+  std::size_t star_points = 0;    ///< points in those triangulations, summed
   std::size_t consistency_sweeps = 0;  ///< full passes looking for inconsistent triangles
 };
 
