@@ -45,6 +45,7 @@ struct Star {
 struct Subsegment {
   Index a, b;
   bool alive = true;
+  bool two_sided = false;  ///< an interior constraint (Ω on both sides); boundary edges have Ω on their left
 };
 
 /// A refinement request: rule (2..5), the star's site and version, the triangle.
@@ -100,7 +101,30 @@ public:
       if (inserted) it->second = add_site(p, INFINITY);
       return it->second;
     };
-    for (const auto& c : domain_.constraints()) add_subsegment(site_of(c[0]), site_of(c[1]));
+    const auto constraints = domain_.constraints();
+    const std::size_t boundary_edges = constraints.size() - domain_.segments().size();
+    // A constraint endpoint may lie inside another constraint (a wall ending on the boundary): split
+    // that constraint there, so that every site on a constraint is a subsegment endpoint.
+    std::vector<Point2> endpoints;
+    for (const auto& c : constraints) endpoints.insert(endpoints.end(), {c[0], c[1]});
+    for (std::size_t i = 0; i < constraints.size(); ++i) {
+      const auto [a, b] = constraints[i];
+      std::vector<std::pair<double, Point2>> inner;
+      for (const Point2& e : endpoints) {
+        const bool at_end = (e.x == a.x && e.y == a.y) || (e.x == b.x && e.y == b.y);
+        if (!at_end && orientation(a, b, e) == Sign::zero && std::min(a.x, b.x) <= e.x && e.x <= std::max(a.x, b.x) &&
+            std::min(a.y, b.y) <= e.y && e.y <= std::max(a.y, b.y))
+          inner.push_back({std::hypot(e.x - a.x, e.y - a.y), e});
+      }
+      std::sort(inner.begin(), inner.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
+      Point2 from = a;
+      for (const auto& [d, e] : inner) {
+        if (e.x == from.x && e.y == from.y) continue;  // the same endpoint listed twice
+        add_subsegment(site_of(from), site_of(e), i >= boundary_edges);
+        from = e;
+      }
+      add_subsegment(site_of(from), site_of(b), i >= boundary_edges);
+    }
     for (std::size_t s = 0; s < subs_.size(); ++s) check_subsegment(static_cast<Index>(s));
 
     while (true) {
@@ -193,9 +217,9 @@ private:
 
   // --- subsegments -------------------------------------------------------------------------------
 
-  void add_subsegment(Index a, Index b) {
+  void add_subsegment(Index a, Index b, bool two_sided) {
     const Index s = static_cast<Index>(subs_.size());
-    subs_.push_back({a, b, true});
+    subs_.push_back({a, b, true, two_sided});
     // Register over the bounding box of both diametral ellipses.
     const Point2 pa = points_[a], pb = points_[b];
     const double mx = (pa.x + pb.x) / 2, my = (pa.y + pb.y) / 2;
@@ -211,10 +235,14 @@ private:
       for (std::size_t i = subs_grid_.ix(mx - ex); i <= subs_grid_.ix(mx + ex); ++i) subs_grid_.at(i, j).push_back(s);
   }
 
-  /// p lies strictly inside the M_a- or M_b-diametral ball of subsegment s.
+  /// p lies strictly inside the M_a- or M_b-diametral ball of subsegment s, on a side of s where the
+  /// domain is: for a boundary subsegment, only points strictly on its left (Ω's side) encroach, so
+  /// that across a sharp hole corner the other edge's sites do not (the cascade Ruppert's small-angle
+  /// problem would otherwise cause).
   bool encroaches(Index s, Point2 p) const {
     const Subsegment& sub = subs_[s];
     const Point2 pa = points_[sub.a], pb = points_[sub.b];
+    if (!sub.two_sided && orientation(pa, pb, p) != Sign::positive) return false;
     const double mx = (pa.x + pb.x) / 2, my = (pa.y + pb.y) / 2;
     for (Index e : {sub.a, sub.b}) {
       const Metric& m = metrics_[e];
@@ -253,8 +281,8 @@ private:
     const double length = metric_length(metrics_[a], points_[b].x - points_[a].x, points_[b].y - points_[a].y);
     const Index v = add_site(m, 2 * length);
     const Index s1 = static_cast<Index>(subs_.size());
-    add_subsegment(a, v);
-    add_subsegment(v, b);
+    add_subsegment(a, v, subs_[s].two_sided);
+    add_subsegment(v, b, subs_[s].two_sided);
     check_subsegment(s1);
     check_subsegment(s1 + 1);
   }

@@ -1,0 +1,99 @@
+// `laguerre mesh` as a user runs it: bundled domains, outputs and their guarantees, refusals and errors.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct MeshRun {
+  int status = -1;
+  std::string out;  // stdout and stderr together
+};
+
+MeshRun mesh(const std::string& args) {
+  const std::string cmd = std::string(LAGUERRE_EXE) + " mesh " + args + " 2>&1";
+  MeshRun r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  std::size_t got;
+  while ((got = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), got);
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+class MeshCli : public ::testing::Test {
+protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("laguerre-mesh-cli-" + std::to_string(::getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+const std::string domains = std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/domains/";
+
+}  // namespace
+
+TEST_F(MeshCli, BundledDomainsMeshWithTheirGuarantees) {
+  for (const char* name : {"square-with-holes", "l-shape-with-wall"}) {
+    const std::string stem = path(name);
+    const MeshRun r = mesh(domains + name + ".txt --metric thesis:0.15:4:0.2:0.5 --json -o " + stem);
+    ASSERT_EQ(r.status, 0) << r.out;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_TRUE(j["converged"].get<bool>());
+    EXPECT_TRUE(j["valid_triangulation"].get<bool>()) << j["validation"];
+    // ρ₀ = 1 promises smallest angles of at least 30° in the metrics of the vertices, up to γ₀.
+    EXPECT_LE(j["quality"]["radius_edge"]["max"].get<double>(), 1.5);
+    EXPECT_GE(j["quality"]["smallest_angle_degrees"]["min"].get<double>(), 19.4);
+    for (const char* ext : {".mesh", ".sol", ".vtk", ".json", ".svg", ".png"})
+      EXPECT_TRUE(fs::exists(stem + ext)) << stem << ext;
+    std::ifstream medit(stem + ".mesh");
+    std::string first;
+    medit >> first;
+    EXPECT_EQ(first, "MeshVersionFormatted");
+  }
+}
+
+TEST_F(MeshCli, RefusesToOverwriteAndExplainsBadInput) {
+  const std::string stem = path("square");
+  ASSERT_EQ(mesh("square --metric uniform:0.3:0.3 --no-picture -o " + stem).status, 0);
+  const MeshRun again = mesh("square --metric uniform:0.3:0.3 --no-picture -o " + stem);
+  EXPECT_EQ(again.status, 2);
+  EXPECT_NE(again.out.find("Refusing to overwrite " + stem + ".mesh"), std::string::npos) << again.out;
+  EXPECT_EQ(mesh("square --metric uniform:0.3:0.3 --no-picture --force -o " + stem).status, 0);
+
+  const MeshRun metric = mesh("square --metric uniform:0.3 -o " + path("m"));
+  EXPECT_EQ(metric.status, 2);
+  EXPECT_NE(metric.out.find("usage uniform:H1:H2"), std::string::npos) << metric.out;
+
+  std::ofstream(path("bad.txt")) << "outer\n0 0\n1 0\n1 1\n0 1\nhole\n0.5 0.5\n2 0.5\n0.5 0.7\n";
+  const MeshRun domain = mesh(path("bad.txt") + " -o " + path("m"));
+  EXPECT_EQ(domain.status, 2);
+  EXPECT_NE(domain.out.find("bad.txt: hole 1 is not strictly inside the outer boundary"), std::string::npos)
+      << domain.out;
+
+  const MeshRun voronoi = mesh("square --algorithm voronoi -o " + path("m"));
+  EXPECT_EQ(voronoi.status, 2);
+  EXPECT_NE(voronoi.out.find("not available yet"), std::string::npos) << voronoi.out;
+}
+
+TEST_F(MeshCli, StoppedEarlyExitsThree) {
+  const MeshRun r = mesh("square --metric uniform:0.05:0.05 --max-vertices 50 --no-picture -o " + path("cap"));
+  EXPECT_EQ(r.status, 3) << r.out;
+  EXPECT_NE(r.out.find("max_vertices"), std::string::npos) << r.out;
+}
