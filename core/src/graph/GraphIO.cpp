@@ -5,6 +5,9 @@
 #include <cerrno>
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/boyer_myrvold_planar_test.hpp>
+#include <boost/graph/graphviz.hpp>
+#include <boost/property_tree/ptree.hpp>
+#include <boost/property_tree/xml_parser.hpp>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -13,6 +16,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <set>
 #include <span>
 #include <sstream>
 #include <stdexcept>
@@ -686,8 +690,298 @@ std::vector<GraphInput> read_planar_code(std::string_view data, const std::strin
   return graphs;
 }
 
+// ---------------------------------------------------------------------------------------------------
+// GraphML and DOT (through Boost.PropertyTree's XML parser and Boost.Graph's read_graphviz).
+
+/// A graph read from GraphML or DOT, with the file's node names, before ids are assigned.
+struct NamedGraph {
+  std::vector<std::string> names;                     // node names, in file order
+  std::vector<std::optional<double>> x, y;            // per node, if given
+  std::vector<std::pair<std::size_t, std::size_t>> edges;  // node indices, in file order
+  std::vector<std::string> outer;                     // the laguerre 'outer' attribute, as node names
+};
+
+/// User ids from node names: the names themselves if all are decimal integers; else the numbers after a
+/// common non-numeric prefix (n0, n1, … as yEd and networkx write) if those are distinct; else 0, 1, …
+/// in file order.
+std::vector<std::uint64_t> ids_from_names(const std::vector<std::string>& names) {
+  const std::size_t n = names.size();
+  std::vector<std::uint64_t> ids(n);
+  const auto try_suffix = [&](std::size_t prefix) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (names[i].size() <= prefix || (prefix > 0 && names[i].compare(0, prefix, names[0], 0, prefix) != 0)) return false;
+      if (!parse_id(std::string_view(names[i]).substr(prefix), ids[i])) return false;
+      if (names[i].size() > prefix + 1 && names[i][prefix] == '0') return false;  // "n01" and "n1" must differ
+    }
+    auto sorted = ids;
+    std::sort(sorted.begin(), sorted.end());
+    return std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
+  };
+  if (n > 0) {
+    if (try_suffix(0)) return ids;
+    std::size_t prefix = 0;
+    while (prefix < names[0].size() && !std::isdigit(static_cast<unsigned char>(names[0][prefix]))) ++prefix;
+    if (prefix > 0 && try_suffix(prefix)) return ids;
+  }
+  std::iota(ids.begin(), ids.end(), std::uint64_t{0});
+  return ids;
+}
+
+std::string node_quoted(const std::string& name) { return "'" + name + "'"; }
+
+/// Checks a named graph (simple, connected, positions all or none) and builds it like the text formats.
+GraphInput build_named(const NamedGraph& ng, const std::string& source) {
+  const std::size_t n = ng.names.size();
+  if (n == 0) throw GraphInputError(source, 0, 0, "the graph has no nodes.");
+  std::set<std::pair<std::size_t, std::size_t>> seen;
+  for (std::size_t e = 0; e < ng.edges.size(); ++e) {
+    const auto [a, b] = ng.edges[e];
+    const std::string name = node_quoted(ng.names[a]) + " -- " + node_quoted(ng.names[b]);
+    if (a == b)
+      throw GraphInputError(source, 0, 0, "edge " + std::to_string(e + 1) + " (" + name + ") is a self-loop; the graph must be simple.");
+    if (!seen.emplace(std::min(a, b), std::max(a, b)).second)
+      throw GraphInputError(source, 0, 0, "edge " + std::to_string(e + 1) + " (" + name +
+                                              ") repeats an earlier edge; the graph must be simple.");
+  }
+  {  // connectivity, isolated nodes included
+    std::vector<std::vector<std::size_t>> adj(n);
+    for (auto [a, b] : ng.edges) {
+      adj[a].push_back(b);
+      adj[b].push_back(a);
+    }
+    std::vector<std::uint8_t> reached(n, 0);
+    std::vector<std::size_t> stack{0};
+    reached[0] = 1;
+    while (!stack.empty()) {
+      const std::size_t v = stack.back();
+      stack.pop_back();
+      for (std::size_t w : adj[v])
+        if (!reached[w]) reached[w] = 1, stack.push_back(w);
+    }
+    for (std::size_t v = 0; v < n; ++v)
+      if (!reached[v])
+        throw GraphInputError(source, 0, 0, "the graph is not connected: node " + node_quoted(ng.names[v]) +
+                                                " cannot be reached from node " + node_quoted(ng.names[0]) + ".");
+  }
+  std::size_t with_position = 0;
+  for (std::size_t v = 0; v < n; ++v) with_position += ng.x[v] && ng.y[v];
+  if (with_position != 0 && with_position != n)
+    for (std::size_t v = 0; v < n; ++v)
+      if (!ng.x[v] || !ng.y[v])
+        throw GraphInputError(source, 0, 0, "node " + node_quoted(ng.names[v]) +
+                                                " has no position, but other nodes have one; give x and y for all nodes or none.");
+  const std::vector<std::uint64_t> ids = ids_from_names(ng.names);
+  TextGraph text;
+  for (auto [a, b] : ng.edges) {
+    text.edges.emplace_back(ids[a], ids[b]);
+    text.edge_lines.push_back(0);
+  }
+  for (const std::string& name : ng.outer) {
+    const auto it = std::find(ng.names.begin(), ng.names.end(), name);
+    if (it == ng.names.end())
+      throw GraphInputError(source, 0, 0, "the 'outer' attribute lists node " + node_quoted(name) + ", which is not declared.");
+    text.outer.push_back(ids[static_cast<std::size_t>(it - ng.names.begin())]);
+  }
+  if (!text.outer.empty() && text.outer.size() < 3)
+    throw GraphInputError(source, 0, 0, "the 'outer' attribute must list a cycle of at least 3 nodes.");
+  if (with_position == 0) {
+    if (n == 1) throw GraphInputError(source, 0, 0, "the input contains no edges.");
+    return build_from_edges_text(text, source);
+  }
+  for (std::size_t v = 0; v < n; ++v) {
+    text.vertex_ids.push_back(ids[v]);
+    text.positions.push_back({*ng.x[v], *ng.y[v]});
+  }
+  return build_from_coords_text(text, source);
+}
+
+std::vector<std::string> split_outer(const std::string& value) {
+  std::vector<std::string> out;
+  for (std::string_view t : split_blanks(value)) out.emplace_back(t);
+  return out;
+}
+
+std::optional<double> parse_position_value(const std::string& value, const std::string& what, const std::string& source) {
+  double d = 0;
+  if (!parse_coordinate(trim(value), d))
+    throw GraphInputError(source, 0, 0, what + " is " + quoted(std::string_view(value)) + "; expected a finite number.");
+  return d;
+}
+
+std::vector<GraphInput> read_graphml(std::string_view data, const std::string& source) {
+  namespace pt = boost::property_tree;
+  pt::ptree tree;
+  {
+    std::istringstream in{std::string(data)};
+    try {
+      pt::read_xml(in, tree, pt::xml_parser::no_comments);
+    } catch (const pt::xml_parser_error& e) {
+      throw GraphInputError(source, e.line(), 0, "the GraphML is not well-formed XML: " + e.message() + ".");
+    }
+  }
+  const auto root = tree.get_child_optional("graphml");
+  if (!root) throw GraphInputError(source, 0, 0, "the XML document has no <graphml> root element.");
+  const auto attribute = [](const pt::ptree& node, const char* name) {
+    return node.get_optional<std::string>(pt::ptree::path_type(std::string("<xmlattr>/") + name, '/'));
+  };
+  // Keys: id -> attr.name, for nodes and for the graph.
+  std::map<std::string, std::string> node_keys, graph_keys;
+  for (const auto& [tag, child] : *root) {
+    if (tag != "key") continue;
+    const auto id = attribute(child, "id");
+    if (!id) throw GraphInputError(source, 0, 0, "a <key> element has no 'id' attribute.");
+    const std::string domain = attribute(child, "for").value_or("all");
+    const std::string name = attribute(child, "attr.name").value_or(*id);
+    if (domain == "node" || domain == "all") node_keys[*id] = name;
+    if (domain == "graph" || domain == "all") graph_keys[*id] = name;
+  }
+  std::vector<const pt::ptree*> graphs;
+  for (const auto& [tag, child] : *root)
+    if (tag == "graph") graphs.push_back(&child);
+  if (graphs.size() != 1)
+    throw GraphInputError(source, 0, 0, "the GraphML file contains " + std::to_string(graphs.size()) +
+                                            " <graph> elements; laguerre reads files with exactly one.");
+  const pt::ptree& graph = *graphs[0];
+  const std::string edgedefault = attribute(graph, "edgedefault").value_or("undirected");
+  if (edgedefault != "directed" && edgedefault != "undirected")
+    throw GraphInputError(source, 0, 0, "the graph's edgedefault is " + quoted(std::string_view(edgedefault)) +
+                                            "; expected 'undirected' (or 'directed', which laguerre rejects).");
+  NamedGraph ng;
+  std::map<std::string, std::size_t> index;
+  for (const auto& [tag, child] : graph) {
+    if (tag == "data") {
+      const auto key = attribute(child, "key");
+      if (key && graph_keys.count(*key) && graph_keys[*key] == "outer") ng.outer = split_outer(child.get_value<std::string>());
+    }
+    if (tag == "hyperedge") throw GraphInputError(source, 0, 0, "the graph has a <hyperedge>; laguerre reads simple graphs.");
+    if (tag != "node") continue;
+    const auto id = attribute(child, "id");
+    if (!id) throw GraphInputError(source, 0, 0, "node " + std::to_string(ng.names.size() + 1) + " has no 'id' attribute.");
+    if (!index.emplace(*id, ng.names.size()).second)
+      throw GraphInputError(source, 0, 0, "node " + node_quoted(*id) + " is declared twice.");
+    ng.names.push_back(*id);
+    ng.x.emplace_back();
+    ng.y.emplace_back();
+    for (const auto& [inner, item] : child) {
+      if (inner == "graph") throw GraphInputError(source, 0, 0, "node " + node_quoted(*id) + " contains a nested graph; laguerre reads flat graphs.");
+      if (inner != "data") continue;
+      const auto key = attribute(item, "key");
+      if (!key || !node_keys.count(*key)) continue;
+      const std::string& name = node_keys[*key];
+      if (name == "x") ng.x.back() = parse_position_value(item.get_value<std::string>(), "the x of node " + node_quoted(*id), source);
+      if (name == "y") ng.y.back() = parse_position_value(item.get_value<std::string>(), "the y of node " + node_quoted(*id), source);
+    }
+  }
+  for (const auto& [tag, child] : graph) {
+    if (tag != "edge") continue;
+    const std::string number = "edge " + std::to_string(ng.edges.size() + 1);
+    const auto s = attribute(child, "source"), t = attribute(child, "target");
+    if (!s || !t) throw GraphInputError(source, 0, 0, number + " lacks a 'source' or 'target' attribute.");
+    const std::string directed = attribute(child, "directed").value_or(edgedefault == "directed" ? "true" : "false");
+    if (directed == "true")
+      throw GraphInputError(source, 0, 0, number + " (" + node_quoted(*s) + " -> " + node_quoted(*t) +
+                                              ") is directed; laguerre reads undirected graphs (edgedefault=\"undirected\").");
+    for (const std::string* end : {&*s, &*t})
+      if (!index.count(*end))
+        throw GraphInputError(source, 0, 0, number + " (" + node_quoted(*s) + " -- " + node_quoted(*t) + ") refers to node " +
+                                                node_quoted(*end) + ", which is not declared.");
+    ng.edges.emplace_back(index[*s], index[*t]);
+  }
+  std::vector<GraphInput> out;
+  out.push_back(build_named(ng, source));
+  return out;
+}
+
+/// Vertex properties read from DOT.
+struct DotNode {
+  std::string name, pos, x, y;
+};
+
+std::vector<GraphInput> read_dot(std::string_view data, const std::string& source) {
+  using DotGraph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, DotNode>;
+  DotGraph g;
+  std::string outer;
+  boost::dynamic_properties dp(boost::ignore_other_properties);
+  dp.property("node_id", boost::get(&DotNode::name, g));
+  dp.property("pos", boost::get(&DotNode::pos, g));
+  dp.property("x", boost::get(&DotNode::x, g));
+  dp.property("y", boost::get(&DotNode::y, g));
+  dp.property("outer", boost::ref_property_map<DotGraph*, std::string>(outer));
+  try {
+    std::istringstream in{std::string(data)};
+    if (!boost::read_graphviz(in, g, dp, "node_id"))
+      throw GraphInputError(source, 0, 0, "the DOT input could not be read.");
+  } catch (const boost::directed_graph_error&) {
+    throw GraphInputError(source, 0, 0, "the DOT input is a digraph; laguerre reads undirected graphs ('graph { a -- b }').");
+  } catch (const boost::bad_graphviz_syntax& e) {
+    throw GraphInputError(source, 0, 0, "DOT syntax error: " + std::string(e.what()) + ".");
+  } catch (const boost::graph_exception& e) {
+    throw GraphInputError(source, 0, 0, "the DOT input could not be read: " + std::string(e.what()) + ".");
+  }
+  NamedGraph ng;
+  for (std::size_t v = 0; v < boost::num_vertices(g); ++v) {
+    const DotNode& node = g[v];
+    ng.names.push_back(node.name);
+    ng.x.emplace_back();
+    ng.y.emplace_back();
+    if (!node.pos.empty()) {
+      std::string pos = node.pos;
+      if (!pos.empty() && pos.back() == '!') pos.pop_back();  // graphviz's "pinned" mark
+      const auto comma = pos.find(',');
+      double px = 0, py = 0;
+      if (comma == std::string::npos || !parse_coordinate(trim(std::string_view(pos).substr(0, comma)), px) ||
+          !parse_coordinate(trim(std::string_view(pos).substr(comma + 1)), py))
+        throw GraphInputError(source, 0, 0, "node " + node_quoted(node.name) + " has pos=" + quoted(std::string_view(node.pos)) +
+                                                "; expected \"x,y\" with two finite numbers.");
+      ng.x.back() = px;
+      ng.y.back() = py;
+    }
+    if (!node.x.empty()) ng.x.back() = parse_position_value(node.x, "the x of node " + node_quoted(node.name), source);
+    if (!node.y.empty()) ng.y.back() = parse_position_value(node.y, "the y of node " + node_quoted(node.name), source);
+  }
+  for (auto [it, end] = boost::edges(g); it != end; ++it) ng.edges.emplace_back(boost::source(*it, g), boost::target(*it, g));
+  ng.outer = split_outer(outer);
+  std::vector<GraphInput> out;
+  out.push_back(build_named(ng, source));
+  return out;
+}
+
+/// Whether the text starts (after a byte-order mark, blanks and comments) with a DOT graph keyword.
+bool looks_like_dot(std::string_view data) {
+  if (data.substr(0, 3) == "\xEF\xBB\xBF") data.remove_prefix(3);
+  std::size_t i = 0;
+  for (;;) {
+    while (i < data.size() && std::isspace(static_cast<unsigned char>(data[i]))) ++i;
+    if (data.substr(i, 2) == "//" || (i < data.size() && data[i] == '#')) {
+      i = data.find('\n', i);
+      if (i == std::string_view::npos) return false;
+    } else if (data.substr(i, 2) == "/*") {
+      i = data.find("*/", i + 2);
+      if (i == std::string_view::npos) return false;
+      i += 2;
+    } else {
+      break;
+    }
+  }
+  std::size_t j = i;
+  while (j < data.size() && std::isalpha(static_cast<unsigned char>(data[j]))) ++j;
+  std::string word(data.substr(i, j - i));
+  for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return word == "graph" || word == "digraph" || word == "strict";
+}
+
+/// Whether the text starts (after a byte-order mark and blanks) with an XML or GraphML tag.
+bool looks_like_xml(std::string_view data) {
+  if (data.substr(0, 3) == "\xEF\xBB\xBF") data.remove_prefix(3);
+  std::size_t i = 0;
+  while (i < data.size() && std::isspace(static_cast<unsigned char>(data[i]))) ++i;
+  return data.substr(i, 5) == "<?xml" || data.substr(i, 8) == "<graphml" || data.substr(i, 4) == "<!--";
+}
+
 GraphFormat detect_format(std::string_view data) {
   if (data.substr(0, planar_code_magic.size()) == planar_code_magic) return GraphFormat::planar_code;
+  if (looks_like_xml(data)) return GraphFormat::graphml;
+  if (looks_like_dot(data)) return GraphFormat::dot;
   for (const TextLine& line : split_lines(data))
     if (line.content == "vertices") return GraphFormat::coords;
   return GraphFormat::edges;
@@ -696,10 +990,11 @@ GraphFormat detect_format(std::string_view data) {
 }  // namespace
 
 GraphFormat parse_graph_format(std::string_view name) {
-  for (GraphFormat f : {GraphFormat::automatic, GraphFormat::edges, GraphFormat::planar_code, GraphFormat::coords})
+  for (GraphFormat f : {GraphFormat::automatic, GraphFormat::edges, GraphFormat::planar_code, GraphFormat::coords,
+                        GraphFormat::graphml, GraphFormat::dot})
     if (to_string(f) == name) return f;
   throw std::invalid_argument("Unknown graph format '" + std::string(name) +
-                              "'; expected one of automatic, edges, planar_code, coords.");
+                              "'; expected one of automatic, edges, planar_code, coords, graphml, dot.");
 }
 
 std::string_view to_string(GraphFormat format) {
@@ -708,6 +1003,8 @@ std::string_view to_string(GraphFormat format) {
     case GraphFormat::edges: return "edges";
     case GraphFormat::planar_code: return "planar_code";
     case GraphFormat::coords: return "coords";
+    case GraphFormat::graphml: return "graphml";
+    case GraphFormat::dot: return "dot";
   }
   return "unknown";
 }
@@ -722,6 +1019,8 @@ std::vector<GraphInput> read_graphs_from_string(std::string_view data, const std
       out.push_back(build_from_coords_text(parse_coords_text(data, source_name), source_name));
       return out;
     }
+    case GraphFormat::graphml: return read_graphml(data, source_name);
+    case GraphFormat::dot: return read_dot(data, source_name);
     case GraphFormat::edges:
     case GraphFormat::automatic: break;
   }
@@ -752,6 +1051,76 @@ std::string write_edge_list(const PlanarGraph& g) {
   std::sort(edges.begin(), edges.end());
   for (auto [a, b] : edges) out += std::to_string(a) + " " + std::to_string(b) + "\n";
   return out;
+}
+
+namespace {
+
+/// Edges by user ids (smaller first, sorted), as the edge-list writer lists them.
+std::vector<std::pair<std::uint64_t, std::uint64_t>> sorted_id_edges(const PlanarGraph& g) {
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> edges;
+  for (Dart d = 0; d < g.num_darts(); ++d)
+    if (g.id(g.tail(d)) < g.id(g.head(d))) edges.emplace_back(g.id(g.tail(d)), g.id(g.head(d)));
+  std::sort(edges.begin(), edges.end());
+  return edges;
+}
+
+std::string exact_number(double value) {
+  std::ostringstream s;
+  s.precision(17);  // round-trips every double
+  s << value;
+  return s.str();
+}
+
+void check_positions(const PlanarGraph& g, const std::vector<Point2>& positions, const char* writer) {
+  if (!positions.empty() && positions.size() != g.num_vertices())
+    throw std::invalid_argument(std::string(writer) + " needs no positions or one per vertex, got " +
+                                std::to_string(positions.size()) + " for " + std::to_string(g.num_vertices()) + " vertices.");
+}
+
+std::string outer_ids(const PlanarGraph& g) {
+  std::string out;
+  for (Vertex v : g.boundary_cycle()) out += (out.empty() ? "" : " ") + std::to_string(g.id(v));
+  return out;
+}
+
+}  // namespace
+
+std::string write_graphml(const PlanarGraph& g, const std::vector<Point2>& positions) {
+  check_positions(g, positions, "write_graphml");
+  std::string out =
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      "<graphml xmlns=\"http://graphml.graphdrawing.org/xmlns\">\n"
+      "  <key id=\"outer\" for=\"graph\" attr.name=\"outer\" attr.type=\"string\"/>\n";
+  if (!positions.empty())
+    out += "  <key id=\"x\" for=\"node\" attr.name=\"x\" attr.type=\"double\"/>\n"
+           "  <key id=\"y\" for=\"node\" attr.name=\"y\" attr.type=\"double\"/>\n";
+  out += "  <graph id=\"G\" edgedefault=\"undirected\">\n";
+  if (g.outer_face() != none) out += "    <data key=\"outer\">" + outer_ids(g) + "</data>\n";
+  for (Vertex v = 0; v < g.num_vertices(); ++v) {
+    out += "    <node id=\"" + std::to_string(g.id(v)) + "\"";
+    if (positions.empty()) {
+      out += "/>\n";
+      continue;
+    }
+    out += "><data key=\"x\">" + exact_number(positions[v].x) + "</data><data key=\"y\">" +
+           exact_number(positions[v].y) + "</data></node>\n";
+  }
+  for (auto [a, b] : sorted_id_edges(g))
+    out += "    <edge source=\"" + std::to_string(a) + "\" target=\"" + std::to_string(b) + "\"/>\n";
+  return out + "  </graph>\n</graphml>\n";
+}
+
+std::string write_dot(const PlanarGraph& g, const std::vector<Point2>& positions) {
+  check_positions(g, positions, "write_dot");
+  std::string out = "graph G {\n";
+  if (g.outer_face() != none) out += "  outer=\"" + outer_ids(g) + "\";\n";
+  for (Vertex v = 0; v < g.num_vertices(); ++v) {
+    out += "  " + std::to_string(g.id(v));
+    if (!positions.empty()) out += " [pos=\"" + exact_number(positions[v].x) + "," + exact_number(positions[v].y) + "\"]";
+    out += ";\n";
+  }
+  for (auto [a, b] : sorted_id_edges(g)) out += "  " + std::to_string(a) + " -- " + std::to_string(b) + ";\n";
+  return out + "}\n";
 }
 
 std::string write_planar_code(const std::vector<PlanarGraph>& graphs) {

@@ -108,10 +108,11 @@ TEST(GraphIO, ParsesFormatNames) {
   EXPECT_EQ(parse_graph_format("planar_code"), GraphFormat::planar_code);
   EXPECT_EQ(parse_graph_format("coords"), GraphFormat::coords);
   try {
-    parse_graph_format("graphml");
+    parse_graph_format("gml");
     FAIL() << "no exception";
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "Unknown graph format 'graphml'; expected one of automatic, edges, planar_code, coords.");
+    EXPECT_STREQ(e.what(),
+                 "Unknown graph format 'gml'; expected one of automatic, edges, planar_code, coords, graphml, dot.");
   }
 }
 

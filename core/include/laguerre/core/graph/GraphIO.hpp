@@ -53,8 +53,31 @@
 /// header says `be`. Ids are 1..n as in plantri; the outer face is the default one. Graph i (from 1) of
 /// file F is named "F#i".
 ///
-/// **automatic**: planar_code if the input starts with `>>planar_code`, coords if a line consists of the
-/// word `vertices`, edges otherwise.
+/// **graphml** (XML, http://graphml.graphdrawing.org). Exactly one `<graph>`, undirected (an edge that
+/// is directed, by `edgedefault="directed"` or `directed="true"`, is an error); `<node id=…>` elements
+/// and `<edge source=… target=…>` elements between declared nodes (an undeclared node is an error, as
+/// are self-loops, repeated edges, nested graphs and hyperedges). Optional node keys whose `attr.name`
+/// is `x` and `y` give positions (for every node or for none); with them the graph is read as a
+/// drawing (like coords), without them it is embedded like edges. An optional graph key named `outer`
+/// (a string of node ids separated by blanks) plays the part of `# outer:`. The XML is parsed by
+/// Boost.PropertyTree (the parser Boost.Graph's own read_graphml uses; that reader is not used because
+/// it drops node ids and silently creates undeclared nodes). Malformed XML is reported with its line.
+///
+/// **dot** (Graphviz), read by Boost.Graph's read_graphviz: an undirected `graph` (a `digraph` is an
+/// error); node names are the DOT node ids; positions from `pos="x,y"` (an optional trailing `!`
+/// allowed) or from `x` and `y` attributes; a graph attribute `outer="a b c"` plays the part of
+/// `# outer:`. Self-loops and repeated edges are errors. Syntax errors carry Boost's message (Boost
+/// gives no line number).
+///
+/// Node names of GraphML and DOT become user ids: the names themselves if all are non-negative decimal
+/// integers; otherwise, if all share a non-numeric prefix followed by distinct decimal numbers without
+/// leading zeros (`n0`, `n1`, … as yEd and networkx write), those numbers; otherwise 0, 1, … in file
+/// order (GraphML) or in Boost's order of the names (DOT). Messages name nodes by their file names.
+///
+/// **automatic**: planar_code if the input starts with `>>planar_code`; graphml if it starts (after
+/// blanks) with `<?xml`, `<graphml` or an XML comment; dot if its first word (after blanks and `//`,
+/// `#` or `/* */` comments) is `graph`, `digraph` or `strict`; coords if a line consists of the word
+/// `vertices`; edges otherwise.
 ///
 /// Every problem is reported as a GraphInputError naming the source and, where it applies, the line or
 /// the graph index.
@@ -72,9 +95,9 @@
 namespace laguerre::core {
 
 /// A graph file format (see the file comment for each).
-enum class GraphFormat { automatic, edges, planar_code, coords };
+enum class GraphFormat { automatic, edges, planar_code, coords, graphml, dot };
 
-/// Parses "automatic", "edges", "planar_code" or "coords"; throws std::invalid_argument listing them.
+/// Parses "automatic", "edges", "planar_code", "coords", "graphml" or "dot"; throws std::invalid_argument listing them.
 GraphFormat parse_graph_format(std::string_view name);
 
 /// Name of a format, as accepted by parse_graph_format.
@@ -109,6 +132,16 @@ GraphInput graph_from_drawing(std::vector<std::uint64_t> ids, std::vector<Point2
 /// Writes `g` in the edges format: a comment, a `# outer:` line (boundary_cycle() order) and one
 /// `u v` line per edge (user ids, smaller first, sorted).
 std::string write_edge_list(const PlanarGraph& g);
+
+/// Writes `g` as GraphML: nodes with the user ids as GraphML ids, undirected edges sorted as in
+/// write_edge_list, a graph key `outer` (boundary_cycle() order) and, when `positions` is not empty
+/// (one per vertex, else std::invalid_argument), node keys `x` and `y` with 17 significant digits.
+std::string write_graphml(const PlanarGraph& g, const std::vector<Point2>& positions = {});
+
+/// Writes `g` as an undirected Graphviz graph: node names are user ids, `pos="x,y"` when `positions`
+/// is not empty (one per vertex, else std::invalid_argument), a graph attribute `outer`, edges sorted
+/// as in write_edge_list.
+std::string write_dot(const PlanarGraph& g, const std::vector<Point2>& positions = {});
 
 /// Writes graphs in planar_code with the header `>>planar_code le<<`; vertex i becomes i + 1 (user ids
 /// are not stored) and neighbours are listed clockwise. Throws std::invalid_argument beyond 65535 vertices.
