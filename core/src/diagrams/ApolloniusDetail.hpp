@@ -1,0 +1,49 @@
+#pragma once
+/// @file
+/// Internal: helpers shared by the two Apollonius constructions (canonical ordering of the result).
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "laguerre/core/diagrams/ApolloniusDiagram.hpp"
+
+namespace laguerre::core::detail {
+
+/// Throws std::invalid_argument when a site has a non-finite coordinate or weight.
+inline void check_apollonius_sites(const std::vector<ApolloniusSite>& sites) {
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    const ApolloniusSite& s = sites[i];
+    if (!std::isfinite(s.x) || !std::isfinite(s.y) || !std::isfinite(s.w))
+      throw std::invalid_argument("Apollonius site " + std::to_string(i) +
+                                  " has a non-finite coordinate or weight; expected finite x, y, w.");
+  }
+}
+
+/// Sorts vertices (triple, then position) and the hidden list; derives the sorted unique dual edges
+/// from `extra_edges` plus, when `derive` is set, the pairs of the vertex triples.
+inline void canonicalize(ApolloniusDiagram& d, std::vector<std::pair<SiteIndex, SiteIndex>> extra_edges, bool derive) {
+  for (ApolloniusVertex& v : d.vertices) std::sort(v.sites.begin(), v.sites.end());
+  std::sort(d.vertices.begin(), d.vertices.end(), [](const ApolloniusVertex& a, const ApolloniusVertex& b) {
+    if (a.sites != b.sites) return a.sites < b.sites;
+    if (a.position.x != b.position.x) return a.position.x < b.position.x;
+    return a.position.y < b.position.y;
+  });
+  std::sort(d.hidden.begin(), d.hidden.end());
+  d.hidden.erase(std::unique(d.hidden.begin(), d.hidden.end()), d.hidden.end());
+  auto& e = d.dual_edges;
+  e = std::move(extra_edges);
+  for (const ApolloniusVertex& v : d.vertices) {
+    if (!derive) break;
+    e.emplace_back(v.sites[0], v.sites[1]);
+    e.emplace_back(v.sites[1], v.sites[2]);
+    e.emplace_back(v.sites[0], v.sites[2]);
+  }
+  for (auto& [a, b] : e)
+    if (a > b) std::swap(a, b);
+  std::sort(e.begin(), e.end());
+  e.erase(std::unique(e.begin(), e.end()), e.end());
+}
+
+}  // namespace laguerre::core::detail

@@ -1,0 +1,151 @@
+// Voronoi and power diagrams against the raster oracle, plus known answers and degenerate inputs.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "laguerre/core/diagrams/MinimizationDiagram.hpp"
+#include "laguerre/core/diagrams/PowerDiagram.hpp"
+#include "laguerre/core/diagrams/VoronoiDiagram.hpp"
+
+using namespace laguerre::core;
+
+namespace {
+
+std::vector<WeightedPoint> random_weighted(std::size_t n, unsigned seed, double wmax) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 10), w(0, wmax);
+  std::vector<WeightedPoint> s(n);
+  for (auto& p : s) p = {u(rng), u(rng), w(rng)};
+  return s;
+}
+
+bool in_convex(const Polygon& poly, Point2 q) {
+  if (poly.size() < 3) return false;
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    const Point2 a = poly[k], b = poly[(k + 1) % poly.size()];
+    if ((b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x) < 0) return false;
+  }
+  return true;
+}
+
+// Every pixel clearly inside one oracle cell (margin > tol) is located in that site, and lies in that
+// site's clipped cell polygon.
+template <class Diagram, class Distance>
+void check_against_oracle(const Diagram& d, std::size_t n, const Distance& dist, double tol) {
+  const MinimizationDiagram oracle(d.box(), 120, 120, n, dist);
+  int checked = 0;
+  for (int row = 0; row < oracle.height(); ++row)
+    for (int col = 0; col < oracle.width(); ++col) {
+      if (oracle.margin(col, row) <= tol) continue;
+      const Point2 x = oracle.pixel_centre(col, row);
+      const SiteIndex s = oracle.label(col, row);
+      ASSERT_EQ(d.locate(x), s) << "at " << x.x << ", " << x.y;
+      ASSERT_TRUE(in_convex(d.cell(s), x)) << "pixel not in the cell of " << s;
+      ++checked;
+    }
+  EXPECT_GT(checked, 120 * 120 * 9 / 10);
+}
+
+}  // namespace
+
+TEST(PowerDiagram, AgreesWithTheRasterOracle) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const auto sites = random_weighted(60, seed, 4.0);
+    const PowerDiagram d(sites, {-1, -1, 11, 11});
+    const auto report = d.is_valid();
+    ASSERT_TRUE(report.ok) << report.message;
+    check_against_oracle(d, sites.size(), [&](SiteIndex i, Point2 x) { return power_distance(x, sites[i]); }, 1e-6);
+    // Hidden sites label no pixel of a dense raster, and only hidden sites have empty cells in the box.
+    for (SiteIndex i : d.hidden_sites()) EXPECT_TRUE(d.cell(i).empty());
+  }
+}
+
+TEST(PowerDiagram, HiddenSiteIsReported) {
+  // A small circle well inside the power cell of a big one is hidden.
+  const PowerDiagram d({{0, 0, 100}, {1, 0, 0.1}, {20, 0, 1}}, {-30, -30, 30, 30});
+  EXPECT_EQ(d.hidden_sites(), (std::vector<SiteIndex>{1}));
+  EXPECT_TRUE(d.cell(1).empty());
+  EXPECT_EQ(d.locate({1, 0}), 0u);
+  EXPECT_TRUE(d.is_valid().ok);
+}
+
+TEST(PowerDiagram, TwoSitesKnownRadicalAxis) {
+  // pow_0 = pow_1  ⇔  x² − 4 = (x − 4)² − 0  ⇔  x = 2.5 (y free).
+  const PowerDiagram d({{0, 0, 4}, {4, 0, 0}}, {-10, -10, 10, 10});
+  ASSERT_EQ(d.edges().size(), 1u);
+  EXPECT_NEAR(d.edges()[0].p.x, 2.5, 1e-12);
+  EXPECT_NEAR(d.edges()[0].q.x, 2.5, 1e-12);
+  EXPECT_NEAR(std::fabs(d.edges()[0].p.y - d.edges()[0].q.y), 20, 1e-12);
+  EXPECT_NEAR(signed_area(d.cell(0)), 12.5 * 20, 1e-9);
+  EXPECT_EQ(d.dimension(), 1);
+  EXPECT_TRUE(d.vertices().empty());
+}
+
+TEST(PowerDiagram, ZeroWeightsGiveTheVoronoiDiagram) {
+  const auto w = random_weighted(80, 7, 0.0);
+  std::vector<Point2> p;
+  for (const auto& s : w) p.push_back({s.x, s.y});
+  const PowerDiagram pd(w, {0, 0, 10, 10});
+  const VoronoiDiagram vd(p, {0, 0, 10, 10});
+  EXPECT_EQ(pd.dual_edges(), vd.dual_edges());
+  for (SiteIndex i = 0; i < p.size(); ++i) EXPECT_NEAR(signed_area(pd.cell(i)), signed_area(vd.cell(i)), 1e-9);
+}
+
+TEST(VoronoiDiagram, AgreesWithTheRasterOracle) {
+  const auto w = random_weighted(100, 11, 0.0);
+  std::vector<Point2> p;
+  for (const auto& s : w) p.push_back({s.x, s.y});
+  const VoronoiDiagram d(p, {-2, -2, 12, 12});
+  const auto report = d.is_valid();
+  ASSERT_TRUE(report.ok) << report.message;
+  check_against_oracle(d, p.size(), [&](SiteIndex i, Point2 x) { return squared_distance(x, p[i]); }, 1e-9);
+  // Euler for a triangulation of n points: edges − triangles = n − 1.
+  const std::size_t n = p.size(), t = d.vertices().size(), e = d.dual_edges().size();
+  EXPECT_EQ(e - t, n - 1);
+}
+
+TEST(VoronoiDiagram, CocircularSquare) {
+  // Four cocircular points: the Delaunay triangulation picks one diagonal; the two Voronoi vertices
+  // coincide at the centre and the diagonal's dual edge has length zero (so it is not in edges()).
+  const VoronoiDiagram d({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {-1, -1, 2, 2});
+  EXPECT_EQ(d.dual_edges().size(), 5u);
+  EXPECT_EQ(d.vertices().size(), 2u);
+  for (const auto& v : d.vertices()) {
+    EXPECT_NEAR(v.point.x, 0.5, 1e-12);
+    EXPECT_NEAR(v.point.y, 0.5, 1e-12);
+  }
+  EXPECT_EQ(d.edges().size(), 4u);
+  for (SiteIndex i = 0; i < 4; ++i) EXPECT_NEAR(signed_area(d.cell(i)), 9.0 / 4, 1e-12);
+  EXPECT_TRUE(d.is_valid().ok);
+}
+
+TEST(VoronoiDiagram, CollinearAndDuplicatePoints) {
+  const VoronoiDiagram d({{0, 0}, {1, 0}, {2, 0}, {1, 0}}, {-1, -1, 3, 1});
+  EXPECT_EQ(d.dimension(), 1);
+  EXPECT_EQ(d.hidden_sites().size(), 1u);
+  EXPECT_EQ(d.dual_edges().size(), 2u);
+  EXPECT_TRUE(d.vertices().empty());
+  // Strips of widths 1.5, 1, 1.5 (the box is [−1, 3] × [−1, 1]).
+  const SiteIndex kept = d.is_hidden(1) ? 3 : 1;
+  EXPECT_NEAR(signed_area(d.cell(0)), 3.0, 1e-12);
+  EXPECT_NEAR(signed_area(d.cell(kept)), 2.0, 1e-12);
+  EXPECT_NEAR(signed_area(d.cell(2)), 3.0, 1e-12);
+  EXPECT_TRUE(d.is_valid().ok);
+}
+
+TEST(VoronoiDiagram, EmptyAndSingleSite) {
+  const VoronoiDiagram none({}, {0, 0, 1, 1});
+  EXPECT_EQ(none.locate({0.5, 0.5}), no_site);
+  const VoronoiDiagram one({{0.3, 0.3}}, {0, 0, 1, 1});
+  EXPECT_EQ(one.locate({0.9, 0.9}), 0u);
+  EXPECT_NEAR(signed_area(one.cell(0)), 1.0, 1e-15);
+  EXPECT_TRUE(one.is_valid().ok);
+}
+
+TEST(AffineDiagrams, RejectBadInput) {
+  EXPECT_THROW(PowerDiagram({{0, 0, NAN}}, {0, 0, 1, 1}), std::invalid_argument);
+  EXPECT_THROW(VoronoiDiagram({{0, 0}}, {0, 0, -1, 1}), std::invalid_argument);
+}

@@ -1,0 +1,255 @@
+// Möbius diagrams by linearization against the raster oracle, the reductions (equal λ = power diagram,
+// μ = 0 = multiplicatively weighted Voronoi), known answers (a two-site disc, a disconnected cell) and
+// degenerate inputs.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "laguerre/core/diagrams/MinimizationDiagram.hpp"
+#include "laguerre/core/diagrams/MobiusDiagram.hpp"
+#include "laguerre/core/diagrams/PowerDiagram.hpp"
+
+using namespace laguerre::core;
+
+namespace {
+
+std::vector<MobiusSite> random_mobius(std::size_t n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 10), l(0.5, 2.0), m(0, 5);
+  std::vector<MobiusSite> s(n);
+  for (auto& p : s) p = {u(rng), u(rng), l(rng), m(rng)};
+  return s;
+}
+
+// Raster sizes: dense in optimized builds, coarser under the sanitizers (unoptimized).
+#ifdef NDEBUG
+constexpr int dense = 150;
+#else
+constexpr int dense = 50;
+#endif
+
+// Relative tolerance of the oracle comparisons: pixels whose two smallest distances are closer than
+// this (relative to the distances' size) are "on an edge" and skipped.
+constexpr double oracle_tolerance = 1e-3;
+
+// Labelling by the exact point location and by the computed cell boundaries agrees with brute-force
+// minimization on a dense grid, away from edges. Returns the number of pixels checked.
+int check_against_oracle(const MobiusDiagram& d, const Box& box, int size) {
+  const auto& s = d.sites();
+  const MinimizationDiagram oracle(box, size, size, s.size(), [&](SiteIndex i, Point2 x) { return mobius_distance(x, s[i]); });
+  int checked = 0;
+  for (int row = 0; row < size; ++row)
+    for (int col = 0; col < size; ++col) {
+      const Point2 x = oracle.pixel_centre(col, row);
+      const SiteIndex l = oracle.label(col, row);
+      const double scale = std::fabs(mobius_distance(x, s[l])) + 1;
+      if (oracle.margin(col, row) <= oracle_tolerance * scale) continue;
+      EXPECT_EQ(d.locate(x), l) << "locate at " << x.x << ", " << x.y;
+      EXPECT_EQ(d.locate_in_cells(x).first, l) << "cells at " << x.x << ", " << x.y;
+      ++checked;
+    }
+  return checked;
+}
+
+// Number of 4-connected components of the pixels labelled `site` (flood fill).
+int raster_components(const MinimizationDiagram& m, SiteIndex site) {
+  std::vector<int> seen(static_cast<std::size_t>(m.width() * m.height()), 0);
+  int count = 0;
+  for (int r0 = 0; r0 < m.height(); ++r0)
+    for (int c0 = 0; c0 < m.width(); ++c0) {
+      if (m.label(c0, r0) != site || seen[static_cast<std::size_t>(r0 * m.width() + c0)]) continue;
+      ++count;
+      std::vector<std::pair<int, int>> stack{{c0, r0}};
+      seen[static_cast<std::size_t>(r0 * m.width() + c0)] = 1;
+      while (!stack.empty()) {
+        auto [c, r] = stack.back();
+        stack.pop_back();
+        for (auto [dc, dr] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+          const int cc = c + dc, rr = r + dr;
+          if (cc < 0 || rr < 0 || cc >= m.width() || rr >= m.height()) continue;
+          auto& f = seen[static_cast<std::size_t>(rr * m.width() + cc)];
+          if (f || m.label(cc, rr) != site) continue;
+          f = 1;
+          stack.push_back({cc, rr});
+        }
+      }
+    }
+  return count;
+}
+
+std::set<std::pair<SiteIndex, SiteIndex>> edge_pairs(const MobiusDiagram& d) {
+  std::set<std::pair<SiteIndex, SiteIndex>> out;
+  for (const auto& e : d.edges()) out.insert({e.a, e.b});
+  return out;
+}
+
+}  // namespace
+
+TEST(MobiusDiagram, AgreesWithTheRasterOracle) {
+  for (unsigned seed : {1u, 2u, 3u, 4u}) {
+    const auto sites = random_mobius(25, seed);
+    const Box box{-2, -2, 12, 12};
+    const MobiusDiagram d(sites, box);
+    const auto report = d.is_valid();
+    ASSERT_TRUE(report.ok) << "seed " << seed << ": " << report.message;
+    EXPECT_GT(check_against_oracle(d, box, dense), dense * dense * 8 / 10);
+    // Every vertex is equidistant from its sites and no site is closer.
+    for (const auto& v : d.vertices()) {
+      const double d0 = mobius_distance(v.point, sites[v.sites[0]]);
+      for (SiteIndex l = 0; l < sites.size(); ++l)
+        EXPECT_GE(mobius_distance(v.point, sites[l]), d0 - 1e-7 * (1 + std::fabs(d0)));
+    }
+  }
+}
+
+TEST(MobiusDiagram, TwoSitesGiveADiscInsideTheLargerLambda) {
+  // δ_0 = 4|x|², δ_1 = |x − (3, 0)|²: equal on the circle 3|x|² + 6x − 9 = 0, i.e. centre (−1, 0),
+  // radius 2 (Apollonius circle of ratio 1/2).
+  const MobiusDiagram d({{0, 0, 4, 0}, {3, 0, 1, 0}}, {-5, -5, 5, 5});
+  ASSERT_EQ(d.edges().size(), 1u);
+  const auto& e = d.edges()[0];
+  ASSERT_TRUE(e.curve.is_arc);
+  EXPECT_NEAR(e.curve.centre.x, -1, 1e-12);
+  EXPECT_NEAR(e.curve.centre.y, 0, 1e-12);
+  EXPECT_NEAR(e.curve.radius, 2, 1e-12);
+  EXPECT_EQ(e.left, 0u);
+  ASSERT_EQ(d.cell(0).size(), 1u);
+  EXPECT_TRUE(d.cell(0)[0].holes.empty());
+  EXPECT_NEAR(d.cell(0)[0].area(), 4 * M_PI, 1e-9);
+  ASSERT_EQ(d.cell(1).size(), 1u);
+  EXPECT_EQ(d.cell(1)[0].holes.size(), 1u);
+  EXPECT_NEAR(d.cell(1)[0].area(), d.frame().width() * d.frame().height() - 4 * M_PI, 1e-9);
+  EXPECT_TRUE(d.is_valid().ok);
+}
+
+TEST(MobiusDiagram, DisconnectedCellAndHole) {
+  // Eight sites of large λ on a ring around site 0 (λ = 1): their discs overlap into an annulus that
+  // cuts the cell of site 0 into the inside of the ring and the outside (which has a hole).
+  std::vector<MobiusSite> s{{0, 0, 1, 0}};
+  for (int k = 0; k < 8; ++k) {
+    const double a = k * M_PI / 4;
+    s.push_back({3 * std::cos(a), 3 * std::sin(a), 4, 20});
+  }
+  // On the ray through a ring site, site 0 wins again beyond r = (24 + √384)/6 ≈ 7.27: the box shows it.
+  const Box box{-9, -9, 9, 9};
+  const MobiusDiagram d(s, box);
+  ASSERT_TRUE(d.is_valid().ok) << d.is_valid().message;
+  const MinimizationDiagram oracle(box, 200, 200, s.size(), [&](SiteIndex i, Point2 x) { return mobius_distance(x, s[i]); });
+  const int parts = raster_components(oracle, 0);  // 200² labels only: cheap
+  ASSERT_EQ(parts, 2);  // the oracle confirms the construction is disconnected
+  ASSERT_EQ(d.cell(0).size(), 2u);
+  std::size_t holes = 0;
+  for (const auto& c : d.cell(0)) holes += c.holes.size();
+  EXPECT_EQ(holes, 1u);
+  EXPECT_GT(check_against_oracle(d, box, dense), dense * dense * 8 / 10);
+}
+
+TEST(MobiusDiagram, EqualLambdaIsThePowerDiagram) {
+  // δ_i = λ(|x − p_i|² − μ_i/λ): the power diagram of weights μ_i/λ, same combinatorics.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 10), m(0, 3);
+  std::vector<MobiusSite> ms;
+  std::vector<WeightedPoint> wp;
+  const double lambda = 2.5;
+  for (int k = 0; k < 40; ++k) {
+    const double x = u(rng), y = u(rng), mu = m(rng);
+    ms.push_back({x, y, lambda, mu});
+    wp.push_back({x, y, mu / lambda});
+  }
+  const Box box{-1, -1, 11, 11};
+  const MobiusDiagram md(ms, box);
+  const PowerDiagram pd(wp, md.frame());
+  ASSERT_TRUE(md.is_valid().ok) << md.is_valid().message;
+  EXPECT_EQ(md.dimension(), 2);  // lifted centres all at height (1 − λ)/2
+  std::set<std::pair<SiteIndex, SiteIndex>> power_pairs;
+  for (const auto& e : pd.edges()) power_pairs.insert({e.a, e.b});
+  EXPECT_EQ(edge_pairs(md), power_pairs);
+  std::set<std::array<SiteIndex, 3>> mv, pv;
+  for (const auto& v : md.vertices()) mv.insert(v.sites);
+  for (const auto& v : pd.vertices()) {
+    auto t = v.sites;
+    std::sort(t.begin(), t.end());
+    if (md.frame().contains(v.point)) pv.insert(t);
+  }
+  EXPECT_EQ(mv, pv);
+  std::vector<SiteIndex> hidden = pd.hidden_sites();
+  EXPECT_EQ(md.hidden_sites(), hidden);
+  for (SiteIndex i = 0; i < ms.size(); ++i) {
+    double a = 0;
+    for (const auto& c : md.cell(i)) a += c.area();
+    EXPECT_NEAR(a, signed_area(pd.cell(i)), 1e-7);
+  }
+}
+
+TEST(MobiusDiagram, MultiplicativelyWeightedSpecialCase) {
+  // mw sites (p, w): distance |x − p|/w; Möbius with μ = 0, λ = 1/w².
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(0, 10), w(1, 3);
+  std::vector<MobiusSite> s;
+  std::vector<std::array<double, 3>> raw;
+  for (int k = 0; k < 30; ++k) {
+    raw.push_back({u(rng), u(rng), w(rng)});
+    s.push_back(multiplicative_site(raw.back()[0], raw.back()[1], raw.back()[2]));
+  }
+  const Box box{-2, -2, 12, 12};
+  const MobiusDiagram d(s, box);
+  ASSERT_TRUE(d.is_valid().ok) << d.is_valid().message;
+  const MinimizationDiagram oracle(box, dense, dense, s.size(), [&](SiteIndex i, Point2 x) {
+    return std::hypot(x.x - raw[i][0], x.y - raw[i][1]) / raw[i][2];
+  });
+  int checked = 0;
+  for (int row = 0; row < dense; ++row)
+    for (int col = 0; col < dense; ++col) {
+      if (oracle.margin(col, row) <= 1e-3) continue;
+      const Point2 x = oracle.pixel_centre(col, row);
+      EXPECT_EQ(d.locate_in_cells(x).first, oracle.label(col, row));
+      ++checked;
+    }
+  EXPECT_GT(checked, dense * dense * 8 / 10);
+}
+
+TEST(MobiusDiagram, DegenerateInputs) {
+  // Equal sites: one representative, the other hidden with an empty cell.
+  const MobiusDiagram dup({{0, 0, 1, 0}, {0, 0, 1, 0}, {4, 0, 2, 1}}, {-5, -5, 5, 5});
+  EXPECT_EQ(dup.hidden_sites().size(), 1u);
+  EXPECT_EQ(dup.empty_sites().size(), 1u);
+  EXPECT_TRUE(dup.is_valid().ok) << dup.is_valid().message;
+  // A site dominated everywhere (same point, same λ, smaller μ) has an empty cell.
+  const MobiusDiagram dom({{0, 0, 1, 5}, {0, 0, 1, 1}, {3, 0, 2, 0}}, {-5, -5, 5, 5});
+  EXPECT_EQ(dom.empty_sites(), (std::vector<SiteIndex>{1}));
+  // Collinear equal-λ sites: parallel lines, no vertex.
+  const MobiusDiagram col({{0, 0, 1, 0}, {1, 0, 1, 0}, {2, 0, 1, 0}}, {-1, -1, 3, 1});
+  EXPECT_TRUE(col.vertices().empty());
+  EXPECT_EQ(col.edges().size(), 2u);
+  EXPECT_TRUE(col.is_valid().ok) << col.is_valid().message;
+  // Four sites with a common vertex (cocircular in the Voronoi sense): one merged vertex.
+  const MobiusDiagram sq({{0, 0, 1, 0}, {1, 0, 1, 0}, {1, 1, 1, 0}, {0, 1, 1, 0}}, {-1, -1, 2, 2});
+  EXPECT_TRUE(sq.is_valid().ok) << sq.is_valid().message;
+  EXPECT_EQ(sq.vertices().size(), 1u);
+  EXPECT_EQ(check_against_oracle(sq, {-1, -1, 2, 2}, 60) > 0, true);
+  // The 10 × 10 integer grid with equal λ: every Voronoi vertex has degree 4 (four cocircular sites);
+  // the merged vertices are the 81 points (i + ½, j + ½) and the 9 + 9 bisector lines are cut into
+  // 10 pieces each.
+  std::vector<MobiusSite> grid;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j) grid.push_back({double(i), double(j), 1, 0});
+  const MobiusDiagram g(grid, {-1, -1, 10, 10});
+  EXPECT_TRUE(g.is_valid().ok) << g.is_valid().message;
+  EXPECT_EQ(g.vertices().size(), 81u);
+  EXPECT_EQ(g.edges().size(), 180u);
+  for (const auto& v : g.vertices()) {
+    EXPECT_NEAR(v.point.x - std::floor(v.point.x), 0.5, 1e-9);
+    EXPECT_NEAR(v.point.y - std::floor(v.point.y), 0.5, 1e-9);
+  }
+  // A single site owns the frame; no site at all.
+  const MobiusDiagram one({{1, 1, 2, 0}}, {0, 0, 2, 2});
+  ASSERT_EQ(one.cell(0).size(), 1u);
+  EXPECT_TRUE(one.is_valid().ok);
+  const MobiusDiagram none({}, {0, 0, 1, 1});
+  EXPECT_EQ(none.locate({0, 0}), no_site);
+  EXPECT_THROW(MobiusDiagram({{0, 0, NAN, 0}}, {0, 0, 1, 1}), std::invalid_argument);
+}
