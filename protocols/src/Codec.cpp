@@ -80,6 +80,7 @@ std::string_view to_string(MessageType t) {
     case MessageType::frame: return "frame";
     case MessageType::ack: return "ack";
     case MessageType::failure: return "failure";
+    case MessageType::route: return "route";
   }
   return "?";
 }
@@ -129,7 +130,8 @@ MessageType type_of(const Message& m) {
         else if constexpr (std::is_same_v<T, DataMsg>) return MessageType::data;
         else if constexpr (std::is_same_v<T, FrameMsg>) return MessageType::frame;
         else if constexpr (std::is_same_v<T, AckMsg>) return MessageType::ack;
-        else return MessageType::failure;
+        else if constexpr (std::is_same_v<T, FailureMsg>) return MessageType::failure;
+        else return MessageType::route;
       },
       m);
 }
@@ -151,6 +153,7 @@ std::size_t encoded_size(MessageType t) {
     case MessageType::frame: return header + 4 + 4 + 8 + 4;  // + 1 per payload byte
     case MessageType::ack: return header + 4 + 8;
     case MessageType::failure: return header + 8;
+    case MessageType::route: return header + 3 * 8 + 1 + 2 * 8 + 4 + 4 + 1 + 2 * 8 + 1 + 4 * 8 + 2 * 8;
   }
   return 0;
 }
@@ -234,6 +237,25 @@ void encode(const Message& m, std::vector<std::byte>& out) {
           w.u64(msg.ack.bits);
         } else if constexpr (std::is_same_v<T, FailureMsg>) {
           w.u64(msg.suspect);
+        } else if constexpr (std::is_same_v<T, RouteMsg>) {
+          w.u64(msg.packet);
+          w.u64(msg.source);
+          w.u64(msg.target);
+          w.u8(static_cast<std::uint8_t>(msg.scheme));
+          w.f64(msg.tx);
+          w.f64(msg.ty);
+          w.u32(msg.ttl);
+          w.u32(msg.hops);
+          w.u8(msg.perimeter ? 1 : 0);
+          w.f64(msg.px);
+          w.f64(msg.py);
+          w.u8(msg.crossed ? 1 : 0);
+          w.f64(msg.ax);
+          w.f64(msg.ay);
+          w.f64(msg.bx);
+          w.f64(msg.by);
+          w.u64(msg.walk_tail);
+          w.u64(msg.walk_head);
         } else {
           w.u64(msg.face);
           w.u64(msg.source);
@@ -412,6 +434,40 @@ DecodeStatus decode(std::span<const std::byte> bytes, Message& out) {
     }
     case MessageType::failure: {
       m = FailureMsg{r.u64()};
+      break;
+    }
+    case MessageType::route: {
+      RouteMsg d;
+      d.packet = r.u64();
+      d.source = r.u64();
+      d.target = r.u64();
+      const std::uint8_t scheme = r.u8();
+      d.scheme = static_cast<RouteScheme>(scheme);
+      d.tx = r.f64();
+      d.ty = r.f64();
+      d.ttl = r.u32();
+      d.hops = r.u32();
+      d.perimeter = read_bool(r, ok);
+      d.px = r.f64();
+      d.py = r.f64();
+      d.crossed = read_bool(r, ok);
+      d.ax = r.f64();
+      d.ay = r.f64();
+      d.bx = r.f64();
+      d.by = r.f64();
+      d.walk_tail = r.u64();
+      d.walk_head = r.u64();
+      auto zero = [](double v) { return std::bit_cast<std::uint64_t>(v) == 0; };
+      const bool edge_zero = zero(d.ax) && zero(d.ay) && zero(d.bx) && zero(d.by);
+      const bool edge_finite = std::isfinite(d.ax) && std::isfinite(d.ay) && std::isfinite(d.bx) && std::isfinite(d.by);
+      ok = ok && scheme >= 1 && scheme <= 3 && d.hops >= 1 && d.hops <= d.ttl && d.source != d.target &&
+           std::isfinite(d.tx) && std::isfinite(d.ty);
+      if (!d.perimeter)
+        ok = ok && zero(d.px) && zero(d.py) && !d.crossed && edge_zero && d.walk_tail == 0 && d.walk_head == 0;
+      else
+        ok = ok && d.scheme == RouteScheme::gfg && std::isfinite(d.px) && std::isfinite(d.py) &&
+             d.walk_tail != d.walk_head && (d.crossed ? edge_finite : edge_zero);
+      m = d;
       break;
     }
   }

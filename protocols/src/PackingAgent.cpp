@@ -81,6 +81,10 @@ void PackingAgent::start() {
 }
 
 void PackingAgent::receive(std::size_t i, const Message& m) {
+  // Asynchronous mode: the last round's updates do not wait for every neighbour's value, so a
+  // neighbour's final RadiusMsg may still be on its way (e.g. retransmitted) when the stop decision
+  // arrives. It is stale, not unexpected.
+  if (phase_ == PackingPhase::finished && params_.asynchronous && std::holds_alternative<RadiusMsg>(m)) return;
   if (phase_ == PackingPhase::idle || phase_ == PackingPhase::finished) {
     ++host_.counters().unexpected;
     return;
@@ -90,6 +94,7 @@ void PackingAgent::receive(std::size_t i, const Message& m) {
 
 void PackingAgent::handle(std::size_t, const RelayMsg&) { ++host_.counters().unexpected; }  // envelopes never nest
 void PackingAgent::handle(std::size_t, const DataMsg&) { ++host_.counters().unexpected; }   // ForwardingNode's
+void PackingAgent::handle(std::size_t, const RouteMsg&) { ++host_.counters().unexpected; }  // ForwardingNode's
 // The reliability layer's messages are PackingNode's; an agent never sees them from a correct peer.
 void PackingAgent::handle(std::size_t, const FrameMsg&) { ++host_.counters().unexpected; }
 void PackingAgent::handle(std::size_t, const AckMsg&) { ++host_.counters().unexpected; }

@@ -96,6 +96,7 @@ private:
   void handle(std::size_t i, const FaceCirclesMsg& m);
   void handle(std::size_t i, const RelayMsg& m);
   void handle(std::size_t i, const DataMsg& m);
+  void handle(std::size_t i, const RouteMsg& m);
   void handle(std::size_t i, const FrameMsg& m);
   void handle(std::size_t i, const AckMsg& m);
   void handle(std::size_t i, const FailureMsg& m);

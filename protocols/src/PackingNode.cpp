@@ -51,6 +51,10 @@ constexpr TimerId timer_retransmit = TimerId{1} << 56;
 constexpr TimerId timer_ack = TimerId{2} << 56;
 constexpr TimerId timer_probe = TimerId{3} << 56;
 constexpr TimerId timer_kind = TimerId{0xff} << 56;
+
+/// Serial-number order of 32-bit sequence numbers (RFC 1982): a is before b iff b − a, taken mod 2^32,
+/// lies in [1, 2^31).
+bool seq_before(std::uint32_t a, std::uint32_t b) { return a != b && static_cast<std::uint32_t>(b - a) < (1u << 31); }
 }  // namespace
 
 PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingParams params)
@@ -76,10 +80,16 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
     throw std::invalid_argument("retransmit_after, ack_delay and probe_after must not be negative.");
   if (params.backoff_cap < 1 || params.max_retransmissions < 1)
     throw std::invalid_argument("backoff_cap and max_retransmissions must be at least 1.");
+  if (params.rto_min < 0) throw std::invalid_argument("rto_min must not be negative.");
   if (lossy()) {
     if (params_.probe_after == 0) params_.probe_after = 32 * params_.retransmit_after;
+    if (params_.rto_min == 0) params_.rto_min = std::max<Duration>(1, params_.retransmit_after / 4);
     links_.assign(deg_, Link{});
-    for (Link& l : links_) l.period = params_.retransmit_after;
+    for (Link& l : links_) {
+      l.period = l.rto = params_.retransmit_after;
+      l.next_seq = params_.initial_seq;
+      l.received.next = params_.initial_seq;
+    }
   }
   if (!know_.faces.empty() && know_.faces.size() != deg_)
     throw std::invalid_argument(who + " lists faces for some but not all of its wedges.");
@@ -233,6 +243,7 @@ void PackingNode::drain() {
     if (decode(l.bytes, m) != DecodeStatus::ok) continue;  // our own encoding: cannot happen
     agents_[l.agent]->receive(l.from_index, m);
   }
+  if (finished_at_ < 0 && is_final()) finished_at_ = rt_.now();
 }
 
 void PackingNode::on_start() {
@@ -268,6 +279,23 @@ void PackingNode::on_timer(TimerId timer) {
   drain();
 }
 
+void PackingNode::on_recover() {
+  if (!lossy()) return;  // reliable links: nothing was armed
+  // Timers that fell in the outage are gone; those due later are still live. Cancel-then-schedule
+  // is right in both cases (cancelling a dead handle is a no-op).
+  for (std::size_t i = 0; i < deg_; ++i) {
+    Link& l = links_[i];
+    if (l.dead) continue;
+    if (!l.unacked.empty()) arm_retransmit(i);
+    if (l.ack_timer != 0) rt_.cancel(l.ack_timer);
+    l.ack_timer = 0;
+    if (l.ack_pending) ack_owed_.push_back(i);
+  }
+  if (probe_timer_ != 0) rt_.cancel(probe_timer_);
+  probe_timer_ = is_final() ? 0 : rt_.schedule(params_.probe_after, timer_probe);
+  flush_acks();
+}
+
 // ---- The reliability layer (lossy mode; see "Loss, duplication and crashes" in the header) ---------
 
 void PackingNode::raw_send(NodeId to, std::span<const std::byte> bytes) {
@@ -288,7 +316,7 @@ void PackingNode::send_frame(std::size_t i, std::span<const std::byte> payload) 
   Link& l = links_[i];
   if (l.dead) return;  // its neighbour is suspected: the run is ending anyway
   const std::uint32_t seq = l.next_seq++;
-  l.unacked.emplace_back(seq, std::vector<std::byte>(payload.begin(), payload.end()));
+  l.unacked.push_back({seq, std::vector<std::byte>(payload.begin(), payload.end()), rt_.now(), false});
   ++counters_.frames;
   put_frame(i, seq, payload);
   if (l.retransmit_timer == 0) arm_retransmit(i);
@@ -321,8 +349,9 @@ void PackingNode::on_retransmit(std::size_t i) {
     return;
   }
   ++l.attempts;
-  for (const auto& [seq, payload] : l.unacked) {
-    put_frame(i, seq, payload);
+  for (Link::Pending& p : l.unacked) {
+    put_frame(i, p.seq, p.payload);
+    p.retransmitted = true;
     ++counters_.retransmissions;
   }
   l.period = std::min(2 * l.period, params_.backoff_cap * params_.retransmit_after);
@@ -333,22 +362,44 @@ void PackingNode::handle_ack(std::size_t i, const AckInfo& a) {
   // Drop every frame the neighbour proves it has: below a.next, or flagged in the bitmap above it.
   Link& l = links_[i];
   const std::size_t before = l.unacked.size();
-  std::erase_if(l.unacked, [&](const auto& e) {
-    const std::uint32_t seq = e.first;
-    if (seq < a.next) return true;
-    const std::uint32_t k = seq - a.next;
-    return k >= 1 && k <= 64 && ((a.bits >> (k - 1)) & 1u) != 0;
+  bool timed = false;  // Karn: the newest newly acknowledged frame sent only once gives the sample
+  Time timed_at = 0;
+  std::erase_if(l.unacked, [&](const Link::Pending& e) {
+    const std::uint32_t k = e.seq - a.next;  // mod 2^32
+    const bool acked = seq_before(e.seq, a.next) || (k >= 1 && k <= 64 && ((a.bits >> (k - 1)) & 1u) != 0);
+    if (acked && !e.retransmitted && (!timed || e.sent_at > timed_at)) {
+      timed = true;
+      timed_at = e.sent_at;
+    }
+    return acked;
   });
   if (l.unacked.size() == before) return;
+  if (timed && params_.adaptive_rto) sample_rtt(l, rt_.now() - timed_at);
   // Progress: the link is alive; start the backoff again (or stop the timer if nothing is left).
   l.attempts = 0;
-  l.period = params_.retransmit_after;
+  l.period = l.rto;
   if (l.unacked.empty()) {
     if (l.retransmit_timer != 0) rt_.cancel(l.retransmit_timer);
     l.retransmit_timer = 0;
   } else {
     arm_retransmit(i);
   }
+}
+
+void PackingNode::sample_rtt(Link& l, Duration r) {
+  // Jacobson/Karels in integer nanoseconds (see "Adaptive timeout" in the header).
+  r = std::max<Duration>(r, 0);
+  if (!l.has_rtt) {
+    l.srtt = r;
+    l.rttvar = r / 2;
+    l.has_rtt = true;
+  } else {
+    const Duration err = l.srtt > r ? l.srtt - r : r - l.srtt;
+    l.rttvar = (3 * l.rttvar + err) / 4;
+    l.srtt = (7 * l.srtt + r) / 8;
+  }
+  l.rto = std::clamp<Duration>(l.srtt + 4 * l.rttvar, params_.rto_min,
+                               std::max<Duration>(params_.rto_min, params_.backoff_cap * params_.retransmit_after));
 }
 
 void PackingNode::handle_frame(std::size_t i, FrameMsg& f) {
@@ -370,8 +421,8 @@ void PackingNode::handle_frame(std::size_t i, FrameMsg& f) {
       r.bits >>= 1;
       if (!have) break;
     }
-  } else if (f.seq > r.next) {
-    const std::uint32_t k = f.seq - r.next - 1;
+  } else if (seq_before(r.next, f.seq)) {
+    const std::uint32_t k = f.seq - r.next - 1;  // mod 2^32
     if (k >= 64) {
       ++counters_.out_of_window;
       return;

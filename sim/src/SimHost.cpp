@@ -77,4 +77,6 @@ void SimHost::on_message(Simulator& sim, NodeIndex v, NodeIndex from, Phase,
 
 void SimHost::on_timer(Simulator&, NodeIndex v, std::uint64_t timer) { nodes_[v]->on_timer(timer); }
 
+void SimHost::on_recover(Simulator&, NodeIndex v) { nodes_[v]->on_recover(); }
+
 }  // namespace laguerre::sim

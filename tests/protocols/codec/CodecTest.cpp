@@ -35,7 +35,12 @@ std::vector<Message> samples() {
           RelayMsg{0x8000000100000002ull, 0x8000000100000002ull, 9, false, encode(RadiusMsg{4, 0.5})},
           RelayMsg{77, 5, 77, true, encode(FaceCirclesMsg{1, {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}, {1, 1, 1}}})},
           DataMsg{1, 2, 3, 0.5, -0.25, 0.0, 10, 1},
-          DataMsg{0xffffffffffffffffull, 0, 9, -0.0, 1e-300, 0.125, 0xffffffff, 0xffffffff}};
+          DataMsg{0xffffffffffffffffull, 0, 9, -0.0, 1e-300, 0.125, 0xffffffff, 0xffffffff},
+          RouteMsg{1, 2, 3, RouteScheme::greedy_euclid, 0.5, -0.25, 10, 1},
+          RouteMsg{9, 8, 7, RouteScheme::compass, -0.0, 1e300, 0xffffffff, 0xffffffff},
+          RouteMsg{4, 5, 6, RouteScheme::gfg, 0.25, 0.75, 100, 3, true, 0.1, -0.2, false, 0, 0, 0, 0, 5, 17},
+          RouteMsg{0xffffffffffffffffull, 0, 1, RouteScheme::gfg, 1, 2, 7, 7, true, -0.0, 5e-324, true, 0.1, 0.2,
+                   -0.3, 0.4, 0, 0xffffffffffffffffull}};
 }
 
 bool same(const Message& a, const Message& b) {

@@ -47,7 +47,7 @@ TEST(ReliabilityCodec, TypesHaveNamesAndSizes) {
   EXPECT_EQ(encoded_size(MessageType::frame), 22u);
   EXPECT_EQ(encoded_size(MessageType::ack), 14u);
   EXPECT_EQ(encoded_size(MessageType::failure), 10u);
-  EXPECT_EQ(max_message_type, 15);
+  EXPECT_EQ(max_message_type, 16);  // route (Forwarding.hpp) came after the reliability layer
 }
 
 TEST(ReliabilityCodec, TruncationsExtensionsAndOversizedCountsAreRejected) {

@@ -38,6 +38,7 @@ core::RouteOutcome as_core(PacketOutcome o) {
     case PacketOutcome::delivered: return core::RouteOutcome::delivered;
     case PacketOutcome::dead_end: return core::RouteOutcome::dead_end;
     case PacketOutcome::ttl_exceeded: return core::RouteOutcome::ttl_exceeded;
+    case PacketOutcome::loop: return core::RouteOutcome::loop;
   }
   return core::RouteOutcome::loop;
 }
@@ -79,7 +80,8 @@ std::size_t expect_forwarding_equals_core(const core::PlanarGraph& g, const Pack
   std::uint64_t packet = 0;
   for (core::Vertex s = 0; s < n; ++s)
     for (core::Vertex t = 0; t < n; ++t)
-      fwd.as<ForwardingNode>(s).originate({packet++, g.id(t), phi[t], static_cast<std::uint32_t>(limit)});
+      fwd.as<ForwardingNode>(s).originate(
+          {packet++, g.id(t), phi[t], static_cast<std::uint32_t>(limit), core::Scheme::greedy_power, {}});
   fwd.deliver(shuffle);
 
   std::size_t failed = 0;
@@ -152,11 +154,11 @@ TEST(Forwarding, RejectsBadInputAndForeignMessages) {
   const std::byte junk[2] = {std::byte{1}, std::byte{12}};
   f.on_message(2, junk);
   EXPECT_EQ(f.counters().rejected, 3u);
-  f.originate({7, 1, c, 4});  // to itself: delivered with no hop
+  f.originate({7, 1, c, 4, core::Scheme::greedy_power, {}});  // to itself: delivered with no hop
   ASSERT_TRUE(sink.ends.count(7));
   EXPECT_EQ(sink.ends[7].outcome, PacketOutcome::delivered);
   EXPECT_EQ(sink.ends[7].hops, 0u);
-  f.originate({8, 5, core::Circle{-1, 0, 0}, 4});  // the neighbour is farther: dead end here
+  f.originate({8, 5, core::Circle{-1, 0, 0}, 4, core::Scheme::greedy_power, {}});  // the neighbour is farther: dead end here
   EXPECT_EQ(sink.ends[8].outcome, PacketOutcome::dead_end);
   EXPECT_EQ(sink.ends[8].at, 1u);
 }

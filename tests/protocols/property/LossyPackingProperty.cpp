@@ -54,7 +54,10 @@ void check_seeds(const core::PlanarGraph& g, std::uint64_t seeds, const std::str
       EXPECT_GT(t.counters.retransmissions, 0u) << name << " seed " << seed;
     }
     if (c.loss == 0 && c.dup == 0) {
-      EXPECT_EQ(t.counters.retransmissions, 0u) << name << " seed " << seed;
+      // Lossless: only the adaptive timeout undercutting a late round trip retransmits (rarely), and
+      // each such copy arrives as a duplicate.
+      EXPECT_LE(t.counters.retransmissions * 100, t.counters.frames) << name << " seed " << seed;
+      EXPECT_EQ(t.counters.duplicates, t.counters.retransmissions) << name << " seed " << seed;
     }
     EXPECT_EQ(t.counters.out_of_window, 0u);
     ++runs;

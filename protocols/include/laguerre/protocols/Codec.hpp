@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// The messages of the packing protocol and of packet forwarding, and their byte encoding, identical in
-/// every host. Types 9–12, then 13–15, were added without changing the encoding of types 1–8 (same
-/// wire_version).
+/// every host. Types 9–12, then 13–15, then 16 were added without changing the encoding of the
+/// earlier types (same wire_version): a receiver that predates a type rejects it as unknown_type.
 ///
 /// Wire format (all integers little-endian, every field fixed-size, no padding):
 ///
@@ -31,6 +31,9 @@
 /// sequence-numbered envelope of the per-link reliability layer, carrying one message of another type
 /// and a piggybacked acknowledgement), AckMsg (an acknowledgement alone) and FailureMsg (a flooded
 /// "neighbour failed" notice, carried in frames).
+///
+/// The baseline forwarding schemes (Forwarding.hpp) add RouteMsg: a packet of greedy Euclidean,
+/// compass or greedy-face-greedy routing, whose fixed-size header carries GFG's perimeter state.
 
 #include <cstddef>
 #include <cstdint>
@@ -61,10 +64,11 @@ enum class MessageType : std::uint8_t {
   frame = 13,    ///< FrameMsg: a sequence-numbered envelope of the reliability layer (lossy links)
   ack = 14,      ///< AckMsg: the reliability layer's acknowledgement of received frames
   failure = 15,  ///< FailureMsg: a node declared a neighbour failed (flooded, carried in frames)
+  route = 16,    ///< RouteMsg: a data packet of a baseline scheme (Euclidean, compass, GFG; Forwarding.hpp)
 };
 
 /// Largest MessageType value (types 1 … max_message_type exist).
-inline constexpr std::uint8_t max_message_type = 15;
+inline constexpr std::uint8_t max_message_type = 16;
 
 /// Name of a message type ("depth", "election", …), "?" for values outside the enum.
 std::string_view to_string(MessageType t);
@@ -250,9 +254,49 @@ struct FailureMsg {
   friend bool operator==(const FailureMsg&, const FailureMsg&) = default;
 };
 
+/// The routing scheme of a RouteMsg; the values are core::Scheme's declaration order (greedy power,
+/// 0, travels as DataMsg).
+enum class RouteScheme : std::uint8_t {
+  greedy_euclid = 1,  ///< greedy Euclidean routing on the nodes' positions
+  compass = 2,        ///< compass routing
+  gfg = 3,            ///< greedy-face-greedy: greedy Euclidean, face routing at local minima
+};
+
+/// A data packet of a baseline scheme in flight, as it leaves a node (`hops` counts this hop), with
+/// the perimeter state of greedy-face-greedy routing (Forwarding.hpp explains its use). Fields:
+/// u64 packet, u64 source, u64 target, u8 scheme ∈ {1, 2, 3}, f64 target position (tx, ty), u32 ttl,
+/// u32 hops, u8 perimeter ∈ {0, 1}, f64 entry point (px, py), u8 crossed ∈ {0, 1}, f64 last crossed
+/// edge (ax, ay, bx, by), u64 walk_tail, u64 walk_head.
+///
+/// Ranges: 1 ≤ hops ≤ ttl, source ≠ target, tx, ty finite. `perimeter` = 1 only for gfg, and then
+/// px, py are finite and walk_tail ≠ walk_head; `crossed` = 1 only in perimeter mode, and then the
+/// edge is finite. The encoding is canonical: every field that its mode does not use (the perimeter
+/// block in greedy mode, the edge when `crossed` = 0) must be +0 (all bits zero), else out_of_range.
+struct RouteMsg {
+  std::uint64_t packet = 0;                        ///< packet id (chosen by the source's host)
+  std::uint64_t source = 0;                        ///< source node id
+  std::uint64_t target = 0;                        ///< target node id
+  RouteScheme scheme = RouteScheme::greedy_euclid;  ///< routing scheme
+  double tx = 0;                                   ///< target position, abscissa
+  double ty = 0;                                   ///< target position, ordinate
+  std::uint32_t ttl = 0;                           ///< hop limit
+  std::uint32_t hops = 0;                          ///< hops taken, this one included
+  bool perimeter = false;  ///< gfg: face routing (true) or greedy mode (false)
+  double px = 0;           ///< gfg perimeter: position of the node where face routing began (P)
+  double py = 0;           ///< gfg perimeter: ordinate of P
+  bool crossed = false;    ///< gfg perimeter: the last face change was at an edge crossing (else at P)
+  double ax = 0;           ///< gfg perimeter: tail of the edge of the last face change, abscissa
+  double ay = 0;           ///< gfg perimeter: its ordinate
+  double bx = 0;           ///< gfg perimeter: head of that edge, abscissa
+  double by = 0;           ///< gfg perimeter: its ordinate
+  std::uint64_t walk_tail = 0;  ///< gfg perimeter: the walk since the last face change began with the
+  std::uint64_t walk_head = 0;  ///< edge walk_tail → walk_head
+  friend bool operator==(const RouteMsg&, const RouteMsg&) = default;
+};
+
 /// Any message of the packing protocol and of packet forwarding.
 using Message = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg, DecisionMsg,
-                             ShapeMsg, FaceCirclesMsg, RelayMsg, DataMsg, FrameMsg, AckMsg, FailureMsg>;
+                             ShapeMsg, FaceCirclesMsg, RelayMsg, DataMsg, FrameMsg, AckMsg, FailureMsg, RouteMsg>;
 
 /// The type byte of a message.
 MessageType type_of(const Message& m);

@@ -31,10 +31,23 @@
 ///    duplicates included, re-arms the ack, so a lost ack is repaired by the next retransmission.
 ///  - *Retransmission.* Per neighbour, one timer runs while frames to it are unacknowledged; when it
 ///    fires, every unacknowledged frame to that neighbour is sent again (with a fresh piggybacked ack)
-///    and the period doubles, from `retransmit_after` up to `backoff_cap` × `retransmit_after`. Any
-///    progress (a frame newly acknowledged) resets the period and the attempt count; the timer is
-///    cancelled as soon as nothing is outstanding. Set `retransmit_after` above the longest round
-///    trip plus `ack_delay` (`enable_lossy_links` does) or copies are merely sent twice.
+///    and the period doubles (exponential backoff), up to `backoff_cap` × `retransmit_after`. Any
+///    progress (a frame newly acknowledged) resets the period to the link's current retransmission
+///    timeout (RTO) and the attempt count; the timer is cancelled as soon as nothing is outstanding.
+///  - *Adaptive timeout* (`adaptive_rto`, the default). The RTO of each link starts at
+///    `retransmit_after` and follows the measured round trips (Jacobson/Karels, as RFC 6298): when an
+///    ack newly covers frames, the most recently sent of them that was never retransmitted gives a
+///    sample R = now − its send time (Karn's rule: a retransmitted frame gives none, its ack could
+///    answer either copy); the first sample sets SRTT = R, RTTVAR = R/2, later ones RTTVAR ←
+///    3/4·RTTVAR + 1/4·|SRTT − R|, SRTT ← 7/8·SRTT + 1/8·R (integer nanoseconds), and RTO = SRTT +
+///    4·RTTVAR clamped to [`rto_min`, `backoff_cap` × `retransmit_after`]. A sample includes the
+///    receiver's ack delay, so the RTO covers it. Without `adaptive_rto` the RTO stays
+///    `retransmit_after`: set it above the longest round trip plus `ack_delay` (`enable_lossy_links`
+///    does) or copies are merely sent twice. Timing never changes what is delivered, only when.
+///  - *Sequence numbers* are 32-bit and wrap: they are compared in serial-number arithmetic (RFC 1982:
+///    a is before b iff (a − b) mod 2^32 ≥ 2^31), which is exact as long as fewer than 2^31 frames of
+///    one link are in flight or remembered — the window is 65. `initial_seq` (tests) starts every link
+///    elsewhere than 0.
 ///  - *Quiescence.* A node never sends unprompted except (a) new protocol messages, (b) retransmissions
 ///    of unacknowledged frames, (c) acks of frames it received, (d) probes (below) while it is still
 ///    running. After the stop decision (a) and (d) end; (b) ends when the last frames are acknowledged
@@ -51,6 +64,17 @@
 ///    stops probing, its frames to the dead node are given up after the bounded retransmissions, and
 ///    the queue drains. A false suspicion needs max_retransmissions + 1 consecutive lost round trips:
 ///    at 20% loss per copy, 0.36^25 ≈ 1e-11 per link episode with the default 24.
+///  - *Recovery* (Node::on_recover). A node that comes back keeps its state (as after a radio outage,
+///    or a reboot from stable storage) and re-arms the timers the outage swallowed: retransmission of
+///    its unacknowledged frames, owed acks, and probes while it is still running. Messages lost during
+///    the outage are recovered like any loss. So an outage shorter than the detection time (about
+///    `max_retransmissions` backed-off periods) is masked: the run converges, bit for bit. After a
+///    longer one the survivors have already ended with neighbour_failed, and the node ends too: it
+///    receives a neighbour's FailureMsg still being retransmitted to it (naming itself: suspect() is
+///    its own id), or every neighbour gave its link up and its own frames and probes go unanswered
+///    until it gives up in turn. Either way every node ends with a final outcome and the host's
+///    queue drains. (A restart from scratch would need a link re-synchronisation — sequence-number
+///    epochs — which this layer does not have.)
 ///  - *Counters* (PackingCounters): frames, retransmissions, standalone acks, duplicates, probes,
 ///    links declared dead — per node, physical messages (a retransmission counts again).
 ///
@@ -193,6 +217,9 @@ struct PackingParams {
   Duration ack_delay = 0;         ///< wait before a standalone ack (ns), in case a frame can carry it
   Duration probe_after = 0;       ///< silence before a running node probes a neighbour (ns); 0 = 32 × retransmit_after
   bool asynchronous = false;      ///< asynchronous Thurston updates (see "Asynchronous mode"); not bit for bit with core
+  bool adaptive_rto = true;       ///< adapt each link's retransmission timeout to measured round trips
+  Duration rto_min = 0;           ///< lower clamp of the adaptive timeout (ns); 0 = retransmit_after / 4
+  std::uint32_t initial_seq = 0;  ///< first sequence number of every link (all nodes must agree)
 };
 
 /// Turns the reliability layer on with periods fitted to links whose one-way latency is at most
@@ -301,6 +328,8 @@ public:
   /// The reliability layer's timers (retransmission, delayed ack, probe); without it, counted as
   /// unexpected.
   void on_timer(TimerId timer) override;
+  /// Back from an outage (see "Recovery" in the file comment): re-arms the reliability layer's timers.
+  void on_recover() override;
 
   /// The current phase.
   PackingPhase phase() const;
@@ -310,6 +339,10 @@ public:
   NodeId suspect() const { return suspect_; }
   /// Whether the node is done: stopped by the decision, or ended by a failure.
   bool is_final() const;
+  /// When the node became final (the runtime's clock at the end of that callback); -1 while running.
+  Time finished_at() const { return finished_at_; }
+  /// The current retransmission timeout towards neighbour i (lossy mode; 0 without it).
+  Duration rto(std::size_t i) const { return i < links_.size() ? links_[i].rto : 0; }
   /// This node's id.
   NodeId id() const { return know_.id; }
   /// Depth from the boundary in K (set-up result; meaningful once past the depth phase).
@@ -357,10 +390,20 @@ private:
     std::size_t agent = 0;      // index in agents_ if hosted here, else 0
   };
   struct Link {         // the reliability layer's state for one G-neighbour (see the file comment)
+    struct Pending {                                                     // a frame not yet acknowledged
+      std::uint32_t seq = 0;
+      std::vector<std::byte> payload;
+      Time sent_at = 0;                                                  // first transmission
+      bool retransmitted = false;                                        // Karn: no RTT sample from it
+    };
     std::uint32_t next_seq = 0;                                          // next sequence number to send
-    std::deque<std::pair<std::uint32_t, std::vector<std::byte>>> unacked;  // (seq, payload), by seq
+    std::deque<Pending> unacked;                                         // by seq
     TimerHandle retransmit_timer = 0;
     Duration period = 0;                                                 // current retransmission period
+    Duration rto = 0;                                                    // current timeout (backoff resets to it)
+    Duration srtt = 0;                                                   // smoothed round trip (ns)
+    Duration rttvar = 0;                                                 // its mean deviation (ns)
+    bool has_rtt = false;                                                // a sample was taken
     int attempts = 0;                                                    // retransmissions since progress
     AckInfo received;                                                    // what we have of the reverse link
     bool ack_pending = false;
@@ -387,6 +430,7 @@ private:
   void put_frame(std::size_t i, std::uint32_t seq, std::span<const std::byte> payload);
   void handle_frame(std::size_t i, FrameMsg& f);
   void handle_ack(std::size_t i, const AckInfo& a);
+  void sample_rtt(Link& l, Duration r);
   void deliver_frame_payload(std::size_t i, std::span<const std::byte> payload);
   void flush_acks();
   void arm_retransmit(std::size_t i);
@@ -412,6 +456,7 @@ private:
   TimerHandle probe_timer_ = 0;
   bool failed_ = false;
   NodeId suspect_ = 0;
+  Time finished_at_ = -1;
   PackingCounters counters_;
 };
 

@@ -103,6 +103,10 @@ public:
   virtual void on_message(NodeId from, std::span<const std::byte> bytes) = 0;
   /// A timer scheduled with `Runtime::schedule(…, timer)` fired.
   virtual void on_timer(TimerId timer) = 0;
+  /// The node is back after a crash (hosts that model outages call it; never before on_start). Its
+  /// state survived, but messages sent to it and timers due during the outage were lost: a node
+  /// re-arms what it needs here. The default does nothing.
+  virtual void on_recover() {}
 };
 
 }  // namespace laguerre::protocols

@@ -8,8 +8,8 @@
 /// simulated clock. Messages are tagged with a phase by an optional classifier over their bytes
 /// (e.g. the codec's message-type byte), since the runtime interface itself carries no phase.
 ///
-/// protocols::Node has no recovery callback: a node that recovers from a crash keeps its state and
-/// silently resumes (timers that fired during the outage are lost).
+/// A node that recovers from a crash keeps its state and gets protocols::Node::on_recover (timers
+/// that fell inside the outage are lost; the node re-arms what it needs there).
 
 #include <functional>
 #include <memory>
@@ -58,6 +58,7 @@ private:
   void on_message(Simulator& sim, NodeIndex v, NodeIndex from, Phase phase,
                   std::span<const std::byte> bytes) override;
   void on_timer(Simulator& sim, NodeIndex v, std::uint64_t timer) override;
+  void on_recover(Simulator& sim, NodeIndex v) override;
 
   Simulator simulator_;
   PhaseOf phase_of_;

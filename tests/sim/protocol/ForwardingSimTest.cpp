@@ -1,0 +1,138 @@
+// Hop-by-hop forwarding of every scheme hosted on the simulation kernel (random latencies, so packets
+// overtake each other): each packet's path, outcome, stopping node and hop count equal
+// core::route's, on random triangulations and 3-connected graphs, with the packing's circles for
+// greedy power and the graph's drawing (or the packing's centres) for the geometric schemes.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "laguerre/core/graph/GraphKind.hpp"
+#include "laguerre/core/graph/RandomGraphs.hpp"
+#include "laguerre/core/packing/Packer.hpp"
+#include "laguerre/core/routing/RoutingMetrics.hpp"
+#include "laguerre/protocols/Forwarding.hpp"
+#include "laguerre/sim/SimHost.hpp"
+
+using namespace laguerre;
+using protocols::ForwardingNode;
+using protocols::PacketOutcome;
+using protocols::PacketReport;
+
+namespace {
+
+struct Recorder final : protocols::PacketSink {
+  std::map<std::uint64_t, std::map<std::uint32_t, protocols::NodeId>> hops;
+  std::map<std::uint64_t, PacketReport> ends;
+  void on_packet_end(const PacketReport& r) override { ends[r.packet] = r; }
+  void on_forward(protocols::NodeId, protocols::NodeId next, std::uint64_t packet, protocols::NodeId,
+                  std::uint32_t hop) override {
+    hops[packet][hop] = next;
+  }
+};
+
+std::string_view name(PacketOutcome o) { return protocols::to_string(o); }
+
+// Routes a seeded sample of pairs (plus every pair for small graphs) with every scheme in one
+// simulation and compares with core::route. Returns the number of packets that were not delivered.
+std::size_t expect_equal(const core::PlanarGraph& g, const core::CircleEmbedding& phi,
+                         const std::vector<core::Point2>& pos, std::uint64_t seed, const std::string& label) {
+  SCOPED_TRACE(label);
+  const std::size_t n = g.num_vertices();
+  core::CircleEmbedding geo(n);
+  for (core::Vertex v = 0; v < n; ++v) geo[v] = {pos[v].x, pos[v].y, 0.0};
+  sim::LinkModel link;
+  link.latency = sim::LatencyModel::uniform(sim::microseconds(100), sim::milliseconds(3));
+  sim::SimConfig config;
+  config.seed = seed;
+  Recorder sink;
+  sim::SimHost host(sim::network_of(g, link), config, [&](protocols::Runtime& rt, sim::NodeIndex v) {
+    std::vector<protocols::NodeId> nb;
+    std::vector<core::Circle> circles;
+    std::vector<core::Point2> points;
+    for (core::Vertex w : g.neighbours(v)) {
+      nb.push_back(g.id(w));
+      circles.push_back(phi[w]);
+      points.push_back(pos[w]);
+    }
+    return std::make_unique<ForwardingNode>(rt, sink, g.id(v), nb, phi[v], circles, pos[v], points);
+  });
+  const auto pairs = core::select_pairs(n, {n <= 30 ? std::size_t{0} : std::size_t{400}, seed});
+  std::uint64_t packet = 0;
+  for (core::Scheme s : core::all_schemes)
+    for (const auto& [a, b] : pairs)
+      static_cast<ForwardingNode&>(host.node(a))
+          .originate({packet++, g.id(b), phi[b], static_cast<std::uint32_t>(core::default_ttl(g, core::Scheme::greedy_power)),
+                      s, pos[b]});
+  const sim::RunReport report = host.run();
+  EXPECT_EQ(report.reason, sim::StopReason::queue_empty);
+
+  std::size_t failed = 0;
+  packet = 0;
+  for (core::Scheme s : core::all_schemes)
+    for (const auto& [a, b] : pairs) {
+      const core::Route want = core::route(g, s == core::Scheme::greedy_power ? phi : geo, s, a, b,
+                                           core::default_ttl(g, core::Scheme::greedy_power));
+      const std::uint64_t p = packet++;
+      if (!sink.ends.count(p)) {
+        ADD_FAILURE() << core::to_string(s) << " " << a << "→" << b << " never ended";
+        continue;
+      }
+      const PacketReport& end = sink.ends.at(p);
+      std::vector<protocols::NodeId> path{g.id(a)};
+      if (sink.hops.count(p))
+        for (const auto& [hop, node] : sink.hops.at(p)) path.push_back(node);
+      std::vector<protocols::NodeId> expect;
+      for (core::Vertex v : want.path) expect.push_back(g.id(v));
+      EXPECT_EQ(path, expect) << core::to_string(s) << " " << a << "→" << b;
+      EXPECT_EQ(std::string(name(end.outcome)), std::string(core::to_string(want.outcome))) << core::to_string(s);
+      EXPECT_EQ(end.hops, want.hops());
+      EXPECT_EQ(end.at, want.stuck == core::none ? g.id(b) : g.id(want.stuck));
+      failed += end.outcome != PacketOutcome::delivered;
+    }
+  return failed;
+}
+
+std::vector<core::Point2> centres_of(const core::CircleEmbedding& phi) {
+  std::vector<core::Point2> out;
+  for (const core::Circle& c : phi) out.push_back(core::centre(c));
+  return out;
+}
+
+}  // namespace
+
+TEST(ForwardingSim, EverySchemeEqualsCoreOnTriangulations) {
+  for (std::size_t n : {20, 80})
+    for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+      const core::GraphInput in = core::random_delaunay_triangulation(n, 31 * n + seed);
+      const core::PlanarGraph g = core::prepare_for_packing(in);
+      const core::PackResult r = core::pack(g);
+      ASSERT_EQ(r.status, core::PackStatus::converged);
+      const std::string label = "tri n=" + std::to_string(n) + " seed=" + std::to_string(seed);
+      EXPECT_EQ(expect_equal(g, r.circles, centres_of(r.circles), seed, label + " packing"), 0u)
+          << "on a packing's tangency drawing every scheme delivers";
+      std::vector<core::Point2> pos(in.positions.begin(), in.positions.end());
+      expect_equal(in.graph, r.circles, pos, seed, label + " drawing");
+    }
+}
+
+TEST(ForwardingSim, EverySchemeEqualsCoreOnThreeConnectedGraphs) {
+  std::size_t failed = 0;
+  for (std::size_t n : {25, 60})
+    for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+      const core::GraphInput in = core::random_three_connected(n, 37 * n + seed);
+      const core::PlanarGraph g = core::prepare_for_packing(in);
+      const core::PackResult r = core::pack(g);
+      ASSERT_EQ(r.status, core::PackStatus::converged);
+      const std::string label = "3c n=" + std::to_string(n) + " seed=" + std::to_string(seed);
+      expect_equal(g, r.circles, centres_of(r.circles), seed, label + " packing");
+      std::vector<core::Point2> pos(in.positions.begin(), in.positions.end());
+      core::CircleEmbedding flat;
+      for (const auto& q : pos) flat.push_back({q.x, q.y, 0.0});
+      failed += expect_equal(in.graph, flat, pos, seed, label + " drawing");
+    }
+  EXPECT_GT(failed, 0u) << "greedy routing on sparse drawings must exercise the failures";
+}
