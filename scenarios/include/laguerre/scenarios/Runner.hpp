@@ -1,0 +1,148 @@
+#pragma once
+/// @file
+/// Runs a scenario: expands sweep points × repetitions into runs, gives each run its own seed, and
+/// executes them on worker threads. A run = build the topology → run the packing protocol in the
+/// simulator → route the pairs with every scheme → a RunRecord.
+///
+/// ## Seeds
+/// Let mix(x) be the SplitMix64 output function applied to x + 0x9E3779B97F4A7C15 (Steele, Lea and
+/// Flood 2014: z = x + γ; z = (z ^ z>>30)·0xBF58476D1CE4E5B9; z = (z ^ z>>27)·0x94D049BB133111EB;
+/// z ^ z>>31). Then
+///  - run seed        = mix(mix(mix(scenario seed) ^ point) ^ repetition) — the simulator's streams
+///    and the pair sample;
+///  - topology seed   = mix(mix(mix(scenario seed) ^ fnv1a64(canonical topology text)) ^ repetition),
+///    where the canonical text lists the generator and its parameters; sweep points that differ only
+///    outside `topology` therefore share their graphs (common random numbers: a comparison of network
+///    conditions or protocol settings is paired).
+/// Neither depends on --jobs or on the order in which runs finish.
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "laguerre/core/geometry/Circle.hpp"
+#include "laguerre/core/power/LocalPowerDiagram.hpp"
+#include "laguerre/scenarios/Scenario.hpp"
+#include "laguerre/scenarios/Topology.hpp"
+
+namespace laguerre::scenarios {
+
+/// SplitMix64's output function applied to x + 0x9E3779B97F4A7C15 (see the file comment).
+std::uint64_t splitmix64(std::uint64_t x);
+
+/// 64-bit FNV-1a hash of `text`.
+std::uint64_t fnv1a64(std::string_view text);
+
+/// The run seed of (scenario seed, point, repetition) (see the file comment).
+std::uint64_t derive_run_seed(std::uint64_t scenario_seed, std::size_t point, std::size_t repetition);
+
+/// The topology seed of (scenario seed, topology, repetition) (see the file comment).
+std::uint64_t derive_topology_seed(std::uint64_t scenario_seed, const TopologySpec& topology, std::size_t repetition);
+
+/// The canonical text of a topology: "generator;name=value;…" with parameters sorted by name.
+std::string canonical_text(const TopologySpec& topology);
+
+/// One planned run.
+struct RunPlan {
+  std::size_t point = 0;          ///< sweep point index
+  std::size_t repetition = 0;     ///< from 0
+  std::uint64_t seed = 0;         ///< run seed
+  std::uint64_t topology_seed = 0;  ///< topology seed
+};
+
+/// Every run of `scenario`, point-major (all repetitions of point 0, then point 1, …).
+std::vector<RunPlan> plan_runs(const Scenario& scenario);
+
+/// How a run ended.
+enum class RunStatus {
+  ok,             ///< the protocol converged and the pairs were routed
+  not_converged,  ///< iteration cap (routed anyway on the last layout)
+  node_failed,    ///< a node detected a failure and the run was abandoned (nothing routed)
+  unsupported,    ///< the topology could not be built or packed (see RunRecord::message)
+  error,          ///< anything else (see RunRecord::message)
+};
+
+/// Name of a status ("ok", "not_converged", "node_failed", "unsupported", "error").
+std::string_view to_string(RunStatus status);
+
+/// Routing results of one scheme in one run.
+struct SchemeResult {
+  core::Scheme scheme = core::Scheme::greedy_power;  ///< the scheme
+  std::size_t pairs = 0;                             ///< pairs routed
+  std::size_t delivered = 0;                         ///< pairs delivered
+  double delivery_rate = 0;                          ///< delivered / pairs (NaN without pairs)
+  double stretch_mean = 0;                           ///< mean hop stretch (NaN if none delivered)
+  double stretch_p95 = 0;                            ///< 95th percentile (nearest rank)
+  double stretch_max = 0;                            ///< largest
+  double hops_mean = 0;                              ///< mean hops of delivered pairs
+  std::string positions;                             ///< "packing" or "physical"
+};
+
+/// The result of one run.
+struct RunRecord {
+  RunPlan plan;                        ///< which run
+  RunStatus status = RunStatus::error; ///< how it ended
+  std::string message;                 ///< explanation for a status other than ok
+  std::string family;                  ///< generator name
+  std::string topology;                ///< topology name
+  std::string topology_note;           ///< the generator's report (e.g. a sensor field's repair), or ""
+  std::string kind;                    ///< "triangulated_disc" / "three_connected" ("" if not built)
+  std::size_t nodes = 0;               ///< vertices
+  std::size_t edges = 0;               ///< edges
+  std::uint32_t iterations = 0;        ///< protocol: Thurston steps to its stop
+  std::uint32_t rounds = 0;            ///< protocol: rounds
+  std::size_t holds_nodes = 0;         ///< nodes where LPD/GLPD holds at the end
+  std::uint64_t messages = 0;          ///< protocol messages
+  std::uint64_t bytes = 0;             ///< protocol bytes
+  double messages_per_node = 0;        ///< messages / nodes
+  std::uint64_t max_node_messages = 0; ///< most messages of one node
+  std::uint64_t retransmissions = 0;   ///< reliability layer retransmissions
+  double simulated_seconds = 0;        ///< simulated time of the protocol
+  std::uint64_t events = 0;            ///< simulator events
+  int exact_iterations = -1;           ///< iterations to an exact packing (core::pack), -1 if not asked or not reached
+  int core_lpd_iterations = -1;        ///< iterations to LPD/GLPD seen by the same core::pack run, -1 if not asked
+  std::vector<SchemeResult> routing;   ///< per scheme, in the scenario's order
+  double wall_seconds = 0;             ///< wall-clock time of the whole run
+};
+
+/// What pictures need from a run (kept only for the runs RunnerOptions::keep_artifacts selects).
+struct RunArtifacts {
+  Topology topology;                                 ///< the graph and its positions
+  core::CircleEmbedding circles;                     ///< the embedding routed on (packing)
+  std::vector<core::LocalCondition> local;           ///< per node, at the end
+  std::vector<std::vector<core::Vertex>> greedy_routes;  ///< sample routes, greedy power
+  std::vector<std::vector<core::Vertex>> gfg_routes;     ///< the same pairs, GFG (on the routing positions)
+  core::CircleEmbedding gfg_positions;               ///< where GFG routed (radius 0 circles or the packing)
+};
+
+/// Progress of run_scenario, reported after each finished run.
+struct RunProgress {
+  std::size_t done = 0;           ///< runs finished
+  std::size_t total = 0;          ///< runs planned
+  double elapsed_seconds = 0;     ///< since the start
+};
+
+/// Options of run_scenario.
+struct RunnerOptions {
+  unsigned jobs = 0;                                        ///< worker threads (0 = hardware threads)
+  std::function<void(const RunProgress&)> on_progress;      ///< called under a lock, any thread
+  std::function<bool(const RunPlan&)> keep_artifacts;       ///< which runs keep RunArtifacts
+};
+
+/// Results in plan order.
+struct ScenarioResults {
+  std::vector<RunRecord> records;                    ///< one per planned run, plan order
+  std::vector<std::optional<RunArtifacts>> artifacts;  ///< same indexing; set where kept
+  double wall_seconds = 0;                           ///< total wall-clock time
+};
+
+/// Executes one run. Never throws for a bad topology or a failing protocol (see RunStatus).
+RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifacts* artifacts = nullptr);
+
+/// Executes every run of `scenario` on `options.jobs` threads; the result does not depend on jobs.
+ScenarioResults run_scenario(const Scenario& scenario, const RunnerOptions& options = {});
+
+}  // namespace laguerre::scenarios

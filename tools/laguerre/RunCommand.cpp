@@ -1,0 +1,100 @@
+// `laguerre run SCENARIO.yaml`: every sweep point × repetition of a scenario, in parallel; a summary
+// table, results.json / results.csv and one picture per sweep point.
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "Commands.hpp"
+#include "RunPictures.hpp"
+#include "ScenarioCli.hpp"
+#include "laguerre/scenarios/Results.hpp"
+
+namespace laguerre::tools {
+
+namespace {
+namespace fs = std::filesystem;
+
+struct RunArgs {
+  std::string scenario;
+  std::string out;
+  unsigned jobs = 0;
+  bool force = false;
+  std::vector<std::string> overrides;
+};
+
+int run_run(const RunArgs& a) {
+  auto loaded = load_scenarios({a.scenario}, a.overrides);
+  if (!loaded) return 2;
+  const scenarios::Scenario& s = loaded->front();
+  const std::string dir = a.out.empty() ? (fs::path("out") / s.name).string() : a.out;
+  prepare_output_dir(dir, a.force, {"results.json", "results.csv"});
+  const scenarios::OutputSpec& outputs = s.points.front().config.outputs;
+  Progress progress(s.name);
+  scenarios::RunnerOptions options;
+  options.jobs = a.jobs;
+  options.on_progress = [&](const scenarios::RunProgress& p) { progress.update(p); };
+  options.keep_artifacts = [&](const scenarios::RunPlan& p) {
+    return p.repetition == 0 && s.points[p.point].config.outputs.pictures;
+  };
+  const scenarios::ScenarioResults results = scenarios::run_scenario(s, options);
+  progress.finish();
+
+  std::printf("scenario %s: %zu point(s) x %zu repetition(s) = %zu run(s) in %.2f s\n", s.name.c_str(), s.points.size(),
+              s.repetitions, results.records.size(), results.wall_seconds);
+  std::fputs(scenarios::summary_table(s, results.records).c_str(), stdout);
+  std::vector<std::string> written;
+  if (outputs.json) {
+    write_text_file((fs::path(dir) / "results.json").string(), scenarios::results_json(s, results.records));
+    written.push_back((fs::path(dir) / "results.json").string());
+  }
+  if (outputs.csv) {
+    write_text_file((fs::path(dir) / "results.csv").string(), scenarios::results_csv(s, results.records));
+    written.push_back((fs::path(dir) / "results.csv").string());
+  }
+  std::size_t pictures = 0, skipped = 0;
+  for (std::size_t i = 0; i < results.records.size(); ++i) {
+    if (!results.artifacts[i]) continue;
+    const auto& rec = results.records[i];
+    const auto& art = *results.artifacts[i];
+    if (art.topology.graph.num_vertices() > s.points[rec.plan.point].config.outputs.picture_max_nodes) {
+      ++skipped;
+      continue;
+    }
+    fs::create_directories(fs::path(dir) / "pictures");
+    char stem[64];
+    std::snprintf(stem, sizeof stem, "point-%03zu", rec.plan.point);
+    std::string title = s.name + " " + stem + ": " + rec.topology + ", " + std::to_string(rec.nodes) + " nodes, " +
+                        std::to_string(rec.iterations) + " iterations";
+    for (const auto& [k, v] : s.points[rec.plan.point].values) title += "  " + k + "=" + v;
+    const auto paths = render_run_picture(art, title, (fs::path(dir) / "pictures" / stem).string());
+    ++pictures;
+    if (pictures == 1) written.push_back(paths.back());
+  }
+  std::printf("\nwrote");
+  for (const auto& w : written) std::printf(" %s", w.c_str());
+  if (pictures) std::printf(" (and %zu picture(s) in %s, SVG and PNG)", pictures, (fs::path(dir) / "pictures").c_str());
+  if (skipped) std::printf(" (%zu picture(s) skipped: more than outputs.picture_max_nodes nodes)", skipped);
+  std::printf("\n");
+  for (const auto& r : results.records)
+    if (r.status != scenarios::RunStatus::ok) return 3;
+  return 0;
+}
+}  // namespace
+
+Action add_run_command(CLI::App& app) {
+  auto args = std::make_shared<RunArgs>();
+  CLI::App* cmd = app.add_subcommand("run", "Run a scenario file: every sweep point and repetition, with results and pictures.");
+  cmd->footer("The scenario schema is documented in scenarios/README.md. Each run's seed is derived from the\n"
+              "scenario's seed, the sweep point and the repetition, so results do not depend on --jobs.\n"
+              "Exit status: 0 every run ended ok, 3 some run did not (not converged, failed, unsupported), 2 bad input.");
+  cmd->add_option("scenario", args->scenario, "Scenario file (YAML)")->required();
+  cmd->add_option("-o,--output", args->out, "Result folder (default out/<scenario name>)");
+  cmd->add_option("--jobs,-j", args->jobs, "Worker threads (default: hardware threads)")->check(CLI::PositiveNumber);
+  cmd->add_flag("--force", args->force, "Replace the results in an existing result folder");
+  cmd->add_option("--set", args->overrides,
+                  "Override a key for every sweep point, e.g. --set topology.n=40 --set repetitions=1 (repeatable)");
+  return [args] { return run_run(*args); };
+}
+
+}  // namespace laguerre::tools

@@ -1,0 +1,70 @@
+#include "ScenarioCli.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+
+#include "laguerre/scenarios/ScenarioLoader.hpp"
+
+namespace laguerre::tools {
+
+namespace fs = std::filesystem;
+
+std::optional<std::vector<scenarios::Scenario>> load_scenarios(const std::vector<std::string>& files,
+                                                              const std::vector<std::string>& overrides) {
+  std::vector<scenarios::Scenario> out;
+  std::size_t problems = 0;
+  for (const std::string& f : files) {
+    try {
+      out.push_back(scenarios::load_scenario(f, {overrides}));
+    } catch (const scenarios::ScenarioError& e) {
+      for (const auto& issue : e.issues()) std::cerr << issue << '\n';
+      problems += e.issues().size();
+    }
+  }
+  if (problems == 0) return out;
+  std::cerr << "laguerre: " << problems << " problem(s) in the scenario file(s); nothing was run.\n";
+  return std::nullopt;
+}
+
+void prepare_output_dir(const std::string& dir, bool force, const std::vector<std::string>& managed) {
+  if (fs::exists(dir)) {
+    if (!force)
+      throw std::invalid_argument("Refusing to overwrite the result folder " + dir +
+                                  " (it exists); pass --force to replace its results or -o to write elsewhere.");
+    if (!fs::is_directory(dir)) throw std::invalid_argument(dir + " exists and is not a folder.");
+    for (const auto& m : managed) fs::remove(fs::path(dir) / m);
+    fs::remove_all(fs::path(dir) / "pictures");
+    fs::remove_all(fs::path(dir) / "charts");
+  }
+  fs::create_directories(dir);
+}
+
+Progress::Progress(std::string label) : label_(std::move(label)), tty_(::isatty(STDERR_FILENO) != 0) {}
+
+void Progress::update(const scenarios::RunProgress& p) {
+  if (!tty_) return;
+  const double frac = p.total ? static_cast<double>(p.done) / static_cast<double>(p.total) : 1.0;
+  const double eta = p.done ? p.elapsed_seconds * (1 - frac) / frac : 0.0;
+  std::fprintf(stderr, "\r%s: %zu/%zu runs (%3.0f%%), %.1f s elapsed, ETA %.1f s   ", label_.c_str(), p.done, p.total,
+               100 * frac, p.elapsed_seconds, eta);
+  std::fflush(stderr);
+  drawn_ = true;
+}
+
+void Progress::finish() {
+  if (drawn_) std::fprintf(stderr, "\n");
+  drawn_ = false;
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) throw std::runtime_error("Cannot write " + path + ".");
+}
+
+}  // namespace laguerre::tools
