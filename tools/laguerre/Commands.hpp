@@ -21,5 +21,13 @@ Action add_simulate_command(CLI::App& app);
 Action add_generate_command(CLI::App& app);
 /// `laguerre thesis-table …`: the experiment of thesis §5.4.1.
 Action add_thesis_table_command(CLI::App& app);
+/// `laguerre run SCENARIO.yaml …`: a scenario file's runs, results and pictures.
+Action add_run_command(CLI::App& app);
+/// `laguerre compare SCENARIO.yaml…`: routing schemes compared over scenario sweeps.
+Action add_compare_command(CLI::App& app);
+/// `laguerre diagram --kind K SITES …`: the diagrams of thesis Part I, JSON and pictures.
+Action add_diagram_command(CLI::App& app);
+/// `laguerre mesh DOMAIN …`: anisotropic meshing under a metric field.
+Action add_mesh_command(CLI::App& app);
 
 }  // namespace laguerre::tools

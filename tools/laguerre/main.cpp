@@ -6,6 +6,9 @@
 
 #include "Commands.hpp"
 #include "laguerre/core/graph/GraphError.hpp"
+#include "laguerre/core/meshing/Domain.hpp"
+#include "laguerre/core/meshing/Medit.hpp"
+#include "laguerre/core/meshing/MetricField.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"laguerre — greedy power routing over circle packings (Wormser 2008, Part IV).\n"
@@ -18,6 +21,10 @@ int main(int argc, char** argv) {
   Action table = add_thesis_table_command(app);
   Action generate = add_generate_command(app);
   Action simulate = add_simulate_command(app);
+  Action run = add_run_command(app);
+  Action compare = add_compare_command(app);
+  Action diagram = add_diagram_command(app);
+  Action mesh = add_mesh_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -29,7 +36,20 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("thesis-table")) return table();
     if (app.got_subcommand("generate")) return generate();
     if (app.got_subcommand("simulate")) return simulate();
+    if (app.got_subcommand("run")) return run();
+    if (app.got_subcommand("compare")) return compare();
+    if (app.got_subcommand("diagram")) return diagram();
+    if (app.got_subcommand("mesh")) return mesh();
   } catch (const laguerre::core::GraphInputError& e) {
+    std::cerr << "laguerre: " << e.what() << '\n';
+    return 2;
+  } catch (const laguerre::core::DomainError& e) {
+    std::cerr << "laguerre: " << e.what() << '\n';
+    return 2;
+  } catch (const laguerre::core::FieldError& e) {
+    std::cerr << "laguerre: " << e.what() << '\n';
+    return 2;
+  } catch (const laguerre::core::MeshInputError& e) {
     std::cerr << "laguerre: " << e.what() << '\n';
     return 2;
   } catch (const std::invalid_argument& e) {
