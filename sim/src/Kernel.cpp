@@ -26,7 +26,7 @@ HandlerId Kernel::add_handler(std::string name, HandlerFn fn, void* context) {
   if (handlers_.size() > 0xffff) {
     throw std::length_error("The kernel's handler table is full (65536 handlers).");
   }
-  handlers_.push_back(Handler{fn, context, std::move(name)});
+  handlers_.push_back(Handler{fn, context, std::move(name), nullptr, 0});
   return static_cast<HandlerId>(handlers_.size() - 1);
 }
 
@@ -98,6 +98,10 @@ bool Kernel::is_pending(EventHandle handle) const {
 //   3. FILTER   – discard the record if it was cancelled (lazy cancellation), restoring the caller's
 //                 payload otherwise and freeing its slot *before* dispatch, so a handler that cancels
 //                 its own (firing) handle gets not_pending.
+//      PREFETCH – a hint only: if the queue can name the event `prefetch_distance` places ahead
+//                 cheaply (Kernel::set_prefetch), start loading the state its handler will touch,
+//                 so that the cache miss overlaps the work of the events in between. Reads no
+//                 state that decides anything, so it cannot change the run.
 //   4. DISPATCH – run the handler to completion. Whatever it schedules receives sequence numbers
 //                 larger than every pending record, so among equal times it runs after what was
 //                 already pending (FIFO).
@@ -132,6 +136,12 @@ StopReason Kernel::run(const RunLimits& limits) {
       if (cancelled) {
         ++discarded_;
         continue;
+      }
+    }
+    if (const Event* ahead = queue_.peek(prefetch_distance)) {
+      const Handler& a = handlers_[ahead->handler];
+      if (a.prefetch_base != nullptr) {
+        __builtin_prefetch(a.prefetch_base + std::size_t{ahead->target} * a.prefetch_stride);
       }
     }
     // 4. DISPATCH

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,14 @@ inline std::vector<Lp> make_lps(std::uint32_t count, std::uint64_t seed) {
   return lps;
 }
 
+/// Seconds of CPU time used by this process so far (the machine may be shared: wall time would
+/// also count the time other processes hold the cores).
+inline double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 /// Command-line options common to both programs.
 struct Options {
   std::vector<std::uint32_t> sizes{10'000, 100'000, 1'000'000};
@@ -50,6 +59,7 @@ struct Options {
   int repeat = 1;
   std::string scheduler = "ns3::MapScheduler";  // ns-3 only
   std::string rng = "shared";                    // ns-3 only: "shared" (ours) or "ns3" (its own)
+  bool prefetch = true;                          // laguerre only: Kernel::set_prefetch hint on the LPs
 };
 
 inline Options parse(int argc, char** argv) {
@@ -65,6 +75,8 @@ inline Options parse(int argc, char** argv) {
       o.repeat = std::atoi(value);
     } else if (key == "--rng") {
       o.rng = value;
+    } else if (key == "--prefetch") {
+      o.prefetch = std::atoi(value) != 0;
     } else if (key == "--scheduler") {
       o.scheduler = value;
     } else if (key == "--lps") {

@@ -2,7 +2,8 @@
 // numbers as phold_laguerre (see phold_common.hpp). Built only with -DLAGUERRE_BENCH_NS3=ON.
 //   phold_ns3 --scheduler ns3::MapScheduler [--rng shared|ns3] [--lps 10000] [--events 10000000]
 //             [--seed 1] [--repeat 1]
-// Prints "ns3:<scheduler>[:ns3rng] <LPs> <events> <seconds> <events/s> <end time ns>", timing only
+// Prints "ns3:<scheduler>[:ns3rng] <LPs> <events> <seconds> <events/s> <end time ns> <CPU seconds>
+// <events per CPU second>", timing only
 // Simulator::Run. With --rng shared (the default) both programs draw identical numbers, so the
 // comparison isolates the event engines; --rng ns3 draws with ns-3's own RandomVariableStreams
 // (MRG32k3a; one uniform and one exponential stream for the run), as an ns-3 user would write it. Events are scheduled the idiomatic ns-3 way, Simulator::Schedule with a member
@@ -64,13 +65,15 @@ int main(int argc, char** argv) {
         }
       }
       const auto start = std::chrono::steady_clock::now();
+      const double cpu_start = phold::cpu_seconds();
       ns3::Simulator::Run();
+      const double cpu = phold::cpu_seconds() - cpu_start;
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::printf("ns3:%s%s %u %llu %.3f %.0f %lld\n", options.scheduler.c_str(),
-                  native ? ":ns3rng" : "", size,
-                  static_cast<unsigned long long>(model.processed), secs,
-                  static_cast<double>(model.processed) / secs,
-                  static_cast<long long>(ns3::Simulator::Now().GetNanoSeconds()));
+      const auto events = static_cast<double>(model.processed);
+      std::printf("ns3:%s%s %u %llu %.3f %.0f %lld %.3f %.0f\n", options.scheduler.c_str(),
+                  native ? ":ns3rng" : "", size, static_cast<unsigned long long>(model.processed), secs,
+                  events / secs, static_cast<long long>(ns3::Simulator::Now().GetNanoSeconds()), cpu,
+                  events / cpu);
       std::fflush(stdout);
       ns3::Simulator::Destroy();
     }

@@ -54,6 +54,57 @@ TEST(EventQueueTest, LadderMatchesTheReferenceHeap) {
   }
 }
 
+// Tiny bucket targets force every path of the two-rung ladder (coarse buckets split into the fine
+// rung, small ones taken whole, pushes into the fine rung and the bottom, short years that leave
+// events in the overflow) on small inputs.
+TEST(EventQueueTest, SmallLadderConfigurationsMatchTheReferenceHeap) {
+  for (std::uint64_t seed = 11; seed <= 13; ++seed) {
+    cross_check<BasicLadderEventQueue<1, 4, 2>>(seed, 1'000'000, 30'000);
+    cross_check<BasicLadderEventQueue<2, 16, 8>>(seed, 1'000, 30'000);
+    cross_check<BasicLadderEventQueue<4, 64, 1>>(seed, 3, 30'000);
+  }
+}
+
+// The PHOLD hold model (one pop, one push at now + d + Exp) at a large population, where years,
+// splits and the heap fallback of the bottom tier all occur; peek(k) names the k-th next event.
+TEST(EventQueueTest, LadderHoldModelAndPeekMatchTheReferenceHeap) {
+  LadderEventQueue ladder;
+  DaryEventHeap<2> reference;
+  RandomStream rng = RandomStream::of(3, StreamKind::user, 2);
+  std::uint64_t seq = 0;
+  for (std::uint32_t i = 0; i < 20'000; ++i) {
+    const Event e{static_cast<Time>(rng.exponential(1e9)), seq++, i, i, 0, 0};
+    ladder.push(e);
+    reference.push(e);
+  }
+  std::size_t peeked = 0;
+  for (int step = 0; step < 200'000; ++step) {
+    ASSERT_EQ(ladder.top().seq, reference.top().seq) << "step " << step;
+    if (step % 499 == 0) {
+      for (std::size_t k = 0; k < 6; ++k) {
+        const Event* ahead = ladder.peek(k);
+        if (ahead == nullptr) continue;
+        DaryEventHeap<2> copy = reference;
+        for (std::size_t j = 0; j < k; ++j) copy.pop();
+        ASSERT_EQ(ahead->seq, copy.top().seq) << "step " << step << " ahead " << k;
+        ++peeked;
+      }
+    }
+    const Time now = reference.top().time;
+    ladder.pop();
+    reference.pop();
+    // Bursts of same-time events (heap fallback of the bottom) now and then.
+    const int copies = step % 10'000 == 0 ? 200 : 1;
+    for (int c = 0; c < copies; ++c) {
+      const Time delay = copies == 1 ? static_cast<Time>(rng.exponential(1e9)) : 0;
+      const Event e{now + 100'000'000 + delay, seq++, 0, 0, 0, 0};
+      ladder.push(e);
+      reference.push(e);
+    }
+  }
+  EXPECT_GT(peeked, 1000u);  // the hint is usually available (6 places at each of 401 checks)
+}
+
 TEST(EventQueueTest, DaryHeapsMatchTheReferenceHeap) {
   cross_check<DaryEventHeap<4>>(5, 1000, 40'000);
   cross_check<DaryEventHeap<8>>(6, 2, 40'000);
