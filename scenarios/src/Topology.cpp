@@ -180,16 +180,31 @@ std::vector<GeneratorInfo> make_registry() {
   {
     GeneratorInfo g;
     g.name = "uniform-triangulation";
-    g.summary = "uniform random triangulation with n vertices, outer face the root face (Poulalhon–Schaeffer)";
+    g.summary = "uniform random triangulation with n vertices (Poulalhon–Schaeffer); outer face: the link of a "
+                "punctured vertex, or the root face";
     ParamSpec n = size_param(3);
     n.max = 1e8;
-    g.params = {n};
+    ParamSpec outer;
+    outer.name = "outer";
+    outer.type = ParamType::choice;
+    outer.help = "puncture: sample n + 1 vertices and remove the one of largest degree (its neighbours become the "
+                 "boundary); root-face: keep the sampler's triangular root face";
+    outer.choices = {"puncture", "root-face"};
+    outer.default_text = "puncture";
+    g.params = {n, outer};
     r.push_back(g);
   }
   {
     GeneratorInfo g;
     g.name = "uniform-three-connected";
-    g.summary = "uniform random 3-connected planar map with n vertices, outer face the root face (Fusy)";
+    g.summary = "uniform random 3-connected planar map with n vertices (Fusy); outer face: its largest face, or the "
+                "root face";
+    ParamSpec outer;
+    outer.name = "outer";
+    outer.type = ParamType::choice;
+    outer.help = "largest-face (the map's largest face) or root-face (the sampler's root face)";
+    outer.choices = {"largest-face", "root-face"};
+    outer.default_text = "largest-face";
     ParamSpec faces;
     faces.name = "faces";
     faces.type = ParamType::integer;
@@ -197,7 +212,7 @@ std::vector<GeneratorInfo> make_registry() {
     faces.min = 0;
     faces.max = 2e8;
     faces.default_text = "0";
-    g.params = {size_param(4), faces};
+    g.params = {size_param(4), faces, outer};
     g.check = [](const TopologyParams& p) {
       std::vector<ParamIssue> out;
       const std::int64_t n = p.integer("n", 4), f = p.integer("faces", 0);
@@ -342,12 +357,15 @@ Topology build_topology(std::string_view generator, const TopologyParams& params
                                                   static_cast<std::size_t>(params.integer("max_face_size", 8))),
                      "three-connected(n=" + std::to_string(n) + ")", generator);
     if (generator == "uniform-triangulation") {
-      core::GraphInput in{uniform_triangulation(n, seed), {}, "", true};
+      const bool puncture = params.text("outer", "puncture") == "puncture";
+      core::GraphInput in{puncture ? puncture_at_max_degree(uniform_triangulation(n + 1, seed)) : uniform_triangulation(n, seed),
+                          {}, "", true};
       return prepare(std::move(in), "uniform-triangulation(n=" + std::to_string(n) + ")", generator);
     }
     if (generator == "uniform-three-connected") {
-      core::GraphInput in{uniform_three_connected(n, seed, static_cast<std::size_t>(params.integer("faces", 0))), {}, "",
-                          true};
+      core::PlanarGraph map = uniform_three_connected(n, seed, static_cast<std::size_t>(params.integer("faces", 0)));
+      if (params.text("outer", "largest-face") == "largest-face") map = with_largest_outer_face(map);
+      core::GraphInput in{std::move(map), {}, "", true};
       return prepare(std::move(in), "uniform-three-connected(n=" + std::to_string(n) + ")", generator);
     }
     if (generator == "field") {

@@ -77,3 +77,41 @@ core::PlanarGraph uniform_triangulation(std::size_t n, std::uint64_t seed) {
 }
 
 }  // namespace laguerre::scenarios
+
+namespace laguerre::scenarios {
+
+core::PlanarGraph puncture_at_max_degree(const core::PlanarGraph& g) {
+  if (g.num_vertices() < 4) throw std::invalid_argument("puncturing needs at least 4 vertices");
+  core::Vertex hub = 0;
+  for (core::Vertex v = 1; v < g.num_vertices(); ++v)
+    if (g.degree(v) > g.degree(hub)) hub = v;
+  std::vector<std::vector<core::Vertex>> rotation;
+  std::vector<std::uint64_t> ids;
+  auto renumber = [hub](core::Vertex v) { return v > hub ? v - 1 : v; };
+  for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
+    if (v == hub) continue;
+    std::vector<core::Vertex> around;
+    for (core::Vertex w : g.neighbours(v))
+      if (w != hub) around.push_back(renumber(w));
+    rotation.push_back(std::move(around));
+    ids.push_back(g.id(v));
+  }
+  const core::PlanarGraph punctured = core::PlanarGraph::from_rotation(std::move(rotation), std::move(ids));
+  // The hub's link is now one face; pick the dart between two consecutive link vertices whose left
+  // face has the link's length.
+  const auto link = g.neighbours(hub);
+  for (const auto& [a, b] : {std::pair{link[0], link[1]}, std::pair{link[1], link[0]}}) {
+    const core::Dart d = punctured.find_dart(renumber(a), renumber(b));
+    if (punctured.face_darts(punctured.face_of(d)).size() == link.size()) return punctured.with_outer_dart(d);
+  }
+  throw std::logic_error("puncture_at_max_degree: the hub's link is not a face");
+}
+
+core::PlanarGraph with_largest_outer_face(const core::PlanarGraph& g) {
+  core::Face best = 0;
+  for (core::Face f = 1; f < g.num_faces(); ++f)
+    if (g.face_darts(f).size() > g.face_darts(best).size()) best = f;
+  return g.with_outer_dart(g.face_darts(best)[0]);
+}
+
+}  // namespace laguerre::scenarios

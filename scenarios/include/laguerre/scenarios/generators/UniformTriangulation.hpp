@@ -36,3 +36,20 @@ namespace laguerre::scenarios {
 core::PlanarGraph uniform_triangulation(std::size_t n, std::uint64_t seed);
 
 }  // namespace laguerre::scenarios
+
+namespace laguerre::scenarios {
+
+/// How a uniform random map becomes a disc for the packing: keep the root face as the outer face, or
+/// puncture the map at its vertex of largest degree (smallest index on ties), whose neighbours then form
+/// the outer boundary — a sensor field's boundary rather than three far-away corners. A punctured
+/// triangulation of n + 1 vertices is a triangulated disc of n vertices.
+enum class OuterRule { root_face, puncture, largest_face };
+
+/// `g` minus its vertex of largest degree, with that vertex's link as the outer face. Ids are kept.
+/// Throws std::invalid_argument if the result would have fewer than 3 vertices.
+core::PlanarGraph puncture_at_max_degree(const core::PlanarGraph& g);
+
+/// `g` with its largest face (smallest canonical dart on ties) as the outer face.
+core::PlanarGraph with_largest_outer_face(const core::PlanarGraph& g);
+
+}  // namespace laguerre::scenarios

@@ -1,0 +1,46 @@
+// How uniform maps become discs: puncturing at the largest-degree vertex, or the largest face outside.
+#include "laguerre/core/graph/GraphKind.hpp"
+#include "laguerre/scenarios/generators/UniformThreeConnected.hpp"
+#include "laguerre/scenarios/generators/UniformTriangulation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace laguerre::scenarios {
+namespace {
+
+TEST(OuterRule, PunctureLeavesATriangulatedDiscBoundedByTheHubsLink) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const core::PlanarGraph sphere = uniform_triangulation(51, seed);
+    std::uint32_t hub_degree = 0;
+    for (core::Vertex v = 0; v < sphere.num_vertices(); ++v) hub_degree = std::max(hub_degree, sphere.degree(v));
+    const core::PlanarGraph disc = puncture_at_max_degree(sphere);
+    ASSERT_TRUE(disc.is_valid());
+    EXPECT_EQ(disc.num_vertices(), 50u);
+    EXPECT_EQ(disc.num_edges(), sphere.num_edges() - hub_degree);
+    EXPECT_EQ(disc.face_size(disc.outer_face()), hub_degree);
+    for (core::Face f = 0; f < disc.num_faces(); ++f)
+      if (f != disc.outer_face()) {
+        EXPECT_EQ(disc.face_size(f), 3u);
+      }
+    core::GraphInput in{disc, {}, "punctured", true};
+    core::GraphKind kind{};
+    core::prepare_for_packing(in, &kind);
+    EXPECT_EQ(kind, core::GraphKind::triangulated_disc);
+  }
+  EXPECT_THROW(puncture_at_max_degree(uniform_triangulation(3, 1)), std::invalid_argument);
+}
+
+TEST(OuterRule, LargestFaceGoesOutside) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const core::PlanarGraph map = with_largest_outer_face(uniform_three_connected(50, seed));
+    ASSERT_TRUE(map.is_valid());
+    std::uint32_t largest = 0;
+    for (core::Face f = 0; f < map.num_faces(); ++f) largest = std::max(largest, map.face_size(f));
+    EXPECT_EQ(map.face_size(map.outer_face()), largest);
+  }
+}
+
+}  // namespace
+}  // namespace laguerre::scenarios
