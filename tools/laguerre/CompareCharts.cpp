@@ -5,6 +5,7 @@
 #include <map>
 #include <numbers>
 
+#include "Render.hpp"
 #include "RunPictures.hpp"
 
 namespace laguerre::tools {
@@ -168,7 +169,7 @@ std::vector<std::string> render_comparison_charts(const std::vector<scenarios::C
     const int cols = static_cast<int>(std::min<std::size_t>(3, panels.size()));
     const int rows_n = static_cast<int>((panels.size() + 2) / 3);
     const int pw = 460, ph = 320;
-    auto paths = write_svg_and_png(stem + (delivery ? "-delivery" : "-stretch"), cols * pw, rows_n * ph,
+    auto paths = render_svg_png(stem + (delivery ? "-delivery" : "-stretch"), cols * pw, rows_n * ph,
                                    [&](cairo_t* cr) { draw_chart(cr, panels, delivery, pw, ph, cols); });
     out.insert(out.end(), paths.begin(), paths.end());
   }

@@ -9,7 +9,6 @@
 //   apollonius   x y w            (additively weighted: |x − p| − w; see ApolloniusDiagram.hpp)
 //   anisotropic  x y a b c        (M = [[a, b], [b, c]] positive definite; see AnisotropicDiagram.hpp)
 // `--recognize CELLS-FILE` solves the inverse problem instead (cells format in Recognition.hpp).
-#include <cairo-svg.h>
 #include <cairo.h>
 
 #include <charconv>
@@ -22,6 +21,7 @@
 
 #include "Commands.hpp"
 #include "Common.hpp"
+#include "Render.hpp"
 #include "laguerre/core/diagrams/AnisotropicDiagram.hpp"
 #include "laguerre/core/diagrams/ApolloniusDiagram.hpp"
 #include "laguerre/core/diagrams/MinimizationDiagram.hpp"
@@ -214,31 +214,11 @@ void draw(cairo_t* cr, const Scene& s, int w, int h) {
   }
 }
 
-void check_cairo(cairo_status_t status, const std::string& path) {
-  if (status != CAIRO_STATUS_SUCCESS)
-    throw std::runtime_error("Cannot write picture " + path + ": " + cairo_status_to_string(status) + ".");
-}
-
-void render(const Scene& scene, const std::string& svg, const std::string& png, int size) {
+/// Writes STEM.svg and STEM.png of the scene, `size` pixels wide (height by the view's aspect).
+void render(const Scene& scene, const std::string& stem, int size) {
   const double aspect = scene.view.height() / scene.view.width();
   const int w = size, h = std::clamp(static_cast<int>(std::lround(size * aspect)), 50, 4 * size);
-  {
-    cairo_surface_t* s = cairo_svg_surface_create(svg.c_str(), w, h);
-    cairo_t* cr = cairo_create(s);
-    draw(cr, scene, w, h);
-    cairo_destroy(cr);
-    cairo_surface_finish(s);
-    const cairo_status_t st = cairo_surface_status(s);
-    cairo_surface_destroy(s);
-    check_cairo(st, svg);
-  }
-  cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h);
-  cairo_t* cr = cairo_create(s);
-  draw(cr, scene, w, h);
-  cairo_destroy(cr);
-  const cairo_status_t st = cairo_surface_write_to_png(s, png.c_str());
-  cairo_surface_destroy(s);
-  check_cairo(st, png);
+  render_svg_png(stem, w, h, [&](cairo_t* cr) { draw(cr, scene, w, h); });
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -558,7 +538,7 @@ int run_diagram(const DiagramArgs& a) {
     f << out.dump(1) << '\n';
     if (!f) throw std::runtime_error("Cannot write " + js + ".");
   }
-  render(scene, svg, png, a.size);
+  render(scene, stem.string(), a.size);
   std::cerr << "wrote " << js << ", " << svg << ", " << png << ": " << summary << '\n';
   return status;
 }

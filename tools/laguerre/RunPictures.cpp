@@ -1,7 +1,8 @@
 // Pictures of scenario runs (laguerre run): network, packing, power diagram, routes.
 #include "RunPictures.hpp"
 
-#include <cairo-svg.h>
+#include "Render.hpp"
+
 
 #include <algorithm>
 #include <cmath>
@@ -11,35 +12,6 @@
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 
 namespace laguerre::tools {
-
-std::vector<std::string> write_svg_and_png(const std::string& stem, int width, int height,
-                                           const std::function<void(cairo_t*)>& paint) {
-  const std::string svg = stem + ".svg", png = stem + ".png";
-  auto check = [](cairo_status_t st, const std::string& path) {
-    if (st != CAIRO_STATUS_SUCCESS)
-      throw std::runtime_error("Cannot write picture " + path + ": " + cairo_status_to_string(st) + ".");
-  };
-  {
-    cairo_surface_t* s = cairo_svg_surface_create(svg.c_str(), width, height);
-    cairo_t* cr = cairo_create(s);
-    paint(cr);
-    cairo_destroy(cr);
-    cairo_surface_finish(s);
-    const cairo_status_t st = cairo_surface_status(s);
-    cairo_surface_destroy(s);
-    check(st, svg);
-  }
-  {
-    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height);
-    cairo_t* cr = cairo_create(s);
-    paint(cr);
-    cairo_destroy(cr);
-    const cairo_status_t st = cairo_surface_write_to_png(s, png.c_str());
-    cairo_surface_destroy(s);
-    check(st, png);
-  }
-  return {svg, png};
-}
 
 namespace {
 
@@ -237,7 +209,7 @@ std::vector<std::string> render_run_picture(const scenarios::RunArtifacts& run, 
     cairo_line_to(cr, 2 * panel, top + panel);
     cairo_stroke(cr);
   };
-  return write_svg_and_png(stem, 2 * panel, top + 2 * panel, paint);
+  return render_svg_png(stem, 2 * panel, top + 2 * panel, paint);
 }
 
 }  // namespace laguerre::tools

@@ -13,10 +13,6 @@
 
 namespace laguerre::tools {
 
-/// Draws with `paint` on a width × height canvas and writes `stem.svg` and `stem.png`; returns the paths.
-std::vector<std::string> write_svg_and_png(const std::string& stem, int width, int height,
-                                           const std::function<void(cairo_t*)>& paint);
-
 /// One picture of a run, four panels of `panel` pixels: the network (physical positions if any, else
 /// the packing's centres), the final packing coloured by LPD/GLPD status, the power diagram (local
 /// power cells clipped to the unit disc) and sample routes, greedy power (red) vs GFG (blue), drawn on
