@@ -293,6 +293,11 @@ void parse_topology(Context& ctx, const YAML::Node& t, TopologySpec& out) {
         if (read_choice(c, v, path, p.choices, x)) out.params.set(p.name, x);
         break;
       }
+      case ParamType::text: {
+        std::string x;
+        if (read_text(c, v, path, "a text (" + p.help + ")", x)) out.params.set(p.name, x);
+        break;
+      }
       case ParamType::file: {
         std::string x;
         if (!read_text(c, v, path, "a file path", x)) break;

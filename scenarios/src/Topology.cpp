@@ -1,12 +1,16 @@
 // The topology registry: generator names → planar graphs ready for packing.
 #include "laguerre/scenarios/Topology.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
 #include "laguerre/core/graph/GraphError.hpp"
 #include "laguerre/core/graph/GraphIO.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
+#include "laguerre/core/meshing/Domain.hpp"
+#include "laguerre/core/meshing/MetricField.hpp"
+#include "laguerre/core/meshing/StarMesher.hpp"
 #include "laguerre/scenarios/fields/Deployment.hpp"
 #include "laguerre/scenarios/fields/Domain.hpp"
 #include "laguerre/scenarios/fields/FieldGraph.hpp"
@@ -225,6 +229,53 @@ std::vector<GeneratorInfo> make_registry() {
   }
   {
     GeneratorInfo g;
+    g.name = "mesh";
+    g.summary = "anisotropic mesh of a polygonal domain under a metric field (core::mesh_with_stars, thesis ch. 3); "
+                "vertices keep their physical positions";
+    ParamSpec domain;
+    domain.name = "domain";
+    domain.type = ParamType::file;
+    domain.help = "a domain file (core/meshing/Domain.hpp: outer, hole, segment), relative to the scenario file";
+    domain.default_text = "the unit square";
+    ParamSpec metric;
+    metric.name = "metric";
+    metric.type = ParamType::text;
+    metric.help = "a metric-field specification: uniform:H1:H2[:DEG], shock[:…], thesis[:…], expr:…, sizes:…, mesh:FILE";
+    metric.default_text = "uniform:0.1:0.1";
+    ParamSpec bound;
+    bound.name = "size_bound";
+    bound.type = ParamType::number;
+    bound.help = "largest circumradius in the metric";
+    bound.min = 1e-6;
+    bound.max = 1e6;
+    bound.default_text = "1";
+    ParamSpec cap;
+    cap.name = "max_vertices";
+    cap.type = ParamType::integer;
+    cap.help = "refuse meshes larger than this";
+    cap.min = 3;
+    cap.max = 1e7;
+    cap.default_text = "200000";
+    g.params = {domain, metric, bound, cap};
+    g.positions = true;
+    g.check = [](const TopologyParams& p) {
+      std::vector<ParamIssue> out;
+      try {
+        (void)core::parse_metric_field(p.text("metric", "uniform:0.1:0.1"));
+      } catch (const std::exception& e) {
+        out.push_back({"metric", "'" + p.text("metric", "") + "'", std::string("a metric field (") + e.what() + ")"});
+      }
+      if (p.has("domain")) try {
+          (void)core::read_domain(p.text("domain", ""));
+        } catch (const std::exception& e) {
+          out.push_back({"domain", "'" + p.text("domain", "") + "'", std::string("a valid domain (") + e.what() + ")"});
+        }
+      return out;
+    };
+    r.push_back(g);
+  }
+  {
+    GeneratorInfo g;
     g.name = "field";
     g.summary = "sensor field: n sensors deployed in a polygonal domain with holes, joined by a proximity graph "
                 "(restricted Delaunay, unit-disk, Gabriel, RNG or local Delaunay), repaired if unpackable";
@@ -367,6 +418,34 @@ Topology build_topology(std::string_view generator, const TopologyParams& params
       if (params.text("outer", "largest-face") == "largest-face") map = with_largest_outer_face(map);
       core::GraphInput in{std::move(map), {}, "", true};
       return prepare(std::move(in), "uniform-three-connected(n=" + std::to_string(n) + ")", generator);
+    }
+    if (generator == "mesh") {
+      const core::Domain domain =
+          params.has("domain") ? core::read_domain(params.text("domain", "")) : core::Domain::unit_square();
+      const auto field = core::parse_metric_field(params.text("metric", "uniform:0.1:0.1"));
+      core::StarMeshOptions options;
+      options.size_bound = params.number("size_bound", 1);
+      options.max_vertices = static_cast<std::size_t>(params.integer("max_vertices", 200000));
+      options.seed = seed;
+      const core::StarMeshResult mesh = core::mesh_with_stars(domain, *field, options);
+      if (!mesh.converged) throw TopologyError("mesh: the refinement did not converge (" + mesh.status + ")");
+      std::vector<std::uint64_t> ids(mesh.mesh.points.size());
+      std::vector<core::Point2> positions;
+      for (std::size_t i = 0; i < ids.size(); ++i) {
+        ids[i] = i;
+        positions.push_back({mesh.mesh.points[i][0], mesh.mesh.points[i][1]});
+      }
+      std::vector<std::pair<core::Vertex, core::Vertex>> edges;
+      for (const auto& t : mesh.mesh.triangles)
+        for (std::size_t k = 0; k < 3; ++k) {
+          const auto a = static_cast<core::Vertex>(t[k]), b = static_cast<core::Vertex>(t[(k + 1) % 3]);
+          edges.emplace_back(std::min(a, b), std::max(a, b));
+        }
+      std::sort(edges.begin(), edges.end());
+      edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+      const std::string name = "mesh(" + field->describe() + ", " + std::to_string(ids.size()) + " vertices)";
+      return prepare(core::graph_from_drawing(std::move(ids), std::move(positions), edges, name, false), name,
+                     generator);
     }
     if (generator == "field") {
       const Polygons polys = params.polygons("domain");

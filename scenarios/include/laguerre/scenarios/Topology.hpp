@@ -34,6 +34,7 @@ enum class ParamType {
   choice,    ///< one of `choices`
   file,      ///< a path to an existing file, relative to the scenario file's folder
   polygons,  ///< a list of polygons, each a list of at least 3 points [x, y]
+  text,      ///< a string, checked by the generator's `check` (e.g. a metric-field specification)
 };
 
 /// One parameter a generator accepts.
