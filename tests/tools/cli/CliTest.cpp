@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "CliRunner.hpp"
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -14,40 +16,10 @@
 namespace fs = std::filesystem;
 
 namespace {
-struct Outcome {
-  int status = -1;
-  std::string out;  // stdout and stderr together
-};
+using laguerre::cli_test::Outcome;
+using laguerre::cli_test::run;
 
-Outcome run(const std::string& args) {
-  const std::string cmd = std::string(LAGUERRE_EXE) + " " + args + " 2>&1";
-  Outcome r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  std::size_t got;
-  while ((got = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), got);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
-
-class Cli : public ::testing::Test {
-protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("laguerre-cli-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(path(name)) << text;
-    return path(name);
-  }
-  fs::path dir_;
-};
+class Cli : public laguerre::cli_test::ScratchDir {};
 
 const std::string example = std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/graphs/delaunay-60.txt";
 const std::string example3 = std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/graphs/three-connected-60.txt";

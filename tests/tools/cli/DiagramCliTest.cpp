@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "CliRunner.hpp"
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -16,40 +18,10 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace {
-struct Outcome {
-  int status = -1;
-  std::string out;  // stdout and stderr together
-};
+using laguerre::cli_test::Outcome;
+using laguerre::cli_test::run;
 
-Outcome run(const std::string& args, bool with_stderr = true) {
-  const std::string cmd = std::string(LAGUERRE_EXE) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
-  Outcome r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  std::size_t got;
-  while ((got = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), got);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
-
-class DiagramCli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("laguerre-diagram-cli-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(path(name)) << text;
-    return path(name);
-  }
-  fs::path dir_;
-};
+class DiagramCli : public laguerre::cli_test::ScratchDir {};
 
 std::string example(const std::string& name) {
   return std::string(LAGUERRE_SOURCE_DIR) + "/tools/examples/diagrams/" + name;

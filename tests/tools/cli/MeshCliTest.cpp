@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "CliRunner.hpp"
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -14,36 +16,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct MeshRun {
-  int status = -1;
-  std::string out;  // stdout and stderr together
-};
+using MeshRun = laguerre::cli_test::Outcome;
 
-MeshRun mesh(const std::string& args) {
-  const std::string cmd = std::string(LAGUERRE_EXE) + " mesh " + args + " 2>&1";
-  MeshRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  std::size_t got;
-  while ((got = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), got);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+MeshRun mesh(const std::string& args) { return laguerre::cli_test::run("mesh " + args); }
 
-class MeshCli : public ::testing::Test {
-protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("laguerre-mesh-cli-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
-};
+class MeshCli : public laguerre::cli_test::ScratchDir {};
 
 const std::string domains = std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/domains/";
 

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "CliRunner.hpp"
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -15,23 +17,9 @@
 namespace fs = std::filesystem;
 
 namespace {
-struct Result {
-  int status = -1;
-  std::string out;  // stdout and stderr together
-};
+using Result = laguerre::cli_test::Outcome;
 
-Result laguerre(const std::string& args) {
-  const std::string cmd = std::string(LAGUERRE_EXE) + " " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  std::size_t got;
-  while ((got = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), got);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+Result run_laguerre(const std::string& args) { return laguerre::cli_test::run(args); }
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);
@@ -44,22 +32,14 @@ const std::string source = LAGUERRE_SOURCE_DIR;
 const std::string scenarios = source + "/scenarios/";
 const std::string data = source + "/tests/data/scenarios/";
 
-class ScenarioCli : public ::testing::Test {
+class ScenarioCli : public laguerre::cli_test::ScratchDir {
 protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("laguerre-scen-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string out(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
+  std::string out(const std::string& name) const { return path(name); }
 };
 }  // namespace
 
 TEST_F(ScenarioCli, QuickstartWritesResultsAndPictures) {
-  const Result r = laguerre("run " + scenarios + "quickstart.yaml -o " + out("q"));
+  const Result r = run_laguerre("run " + scenarios + "quickstart.yaml -o " + out("q"));
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("greedy-power"), std::string::npos) << r.out;
   const auto doc = nlohmann::json::parse(slurp(dir_ / "q" / "results.json"));
@@ -81,21 +61,21 @@ TEST_F(ScenarioCli, QuickstartWritesResultsAndPictures) {
 }
 
 TEST_F(ScenarioCli, RefusesToOverwriteWithoutForce) {
-  ASSERT_EQ(laguerre("run " + scenarios + "quickstart.yaml -o " + out("q") + " --set topology.n=20").status, 0);
-  const Result again = laguerre("run " + scenarios + "quickstart.yaml -o " + out("q") + " --set topology.n=20");
+  ASSERT_EQ(run_laguerre("run " + scenarios + "quickstart.yaml -o " + out("q") + " --set topology.n=20").status, 0);
+  const Result again = run_laguerre("run " + scenarios + "quickstart.yaml -o " + out("q") + " --set topology.n=20");
   EXPECT_EQ(again.status, 2);
   EXPECT_NE(again.out.find("Refusing to overwrite the result folder"), std::string::npos) << again.out;
   EXPECT_NE(again.out.find("--force"), std::string::npos);
   std::ofstream(dir_ / "q" / "notes.txt") << "mine";
-  EXPECT_EQ(laguerre("run " + scenarios + "quickstart.yaml -o " + out("q") + " --set topology.n=20 --force").status, 0);
+  EXPECT_EQ(run_laguerre("run " + scenarios + "quickstart.yaml -o " + out("q") + " --set topology.n=20 --force").status, 0);
   EXPECT_TRUE(fs::exists(dir_ / "q" / "notes.txt"));  // --force replaces only what run writes
-  EXPECT_EQ(laguerre("compare " + scenarios + "quickstart.yaml -o " + out("q") + " --set topology.n=20").status, 2);
+  EXPECT_EQ(run_laguerre("compare " + scenarios + "quickstart.yaml -o " + out("q") + " --set topology.n=20").status, 2);
 }
 
 TEST_F(ScenarioCli, JobsDoNotChangeResults) {
   const std::string common = "run " + data + "good-sweep.yaml --set repetitions=1 ";
-  ASSERT_EQ(laguerre(common + "--jobs 1 -o " + out("a")).status, 0);
-  ASSERT_EQ(laguerre(common + "--jobs 2 -o " + out("b")).status, 0);
+  ASSERT_EQ(run_laguerre(common + "--jobs 1 -o " + out("a")).status, 0);
+  ASSERT_EQ(run_laguerre(common + "--jobs 2 -o " + out("b")).status, 0);
   auto strip = [](nlohmann::json d) {
     for (auto& run : d["runs"]) run.erase("wall_seconds");
     return d;
@@ -108,7 +88,7 @@ TEST_F(ScenarioCli, JobsDoNotChangeResults) {
 // The golden messages, through the program: stderr lists them all, exit status 2, nothing written.
 TEST_F(ScenarioCli, ValidationMessagesAndExitStatus) {
   for (const char* name : {"bad-types", "bad-keys"}) {
-    const Result r = laguerre("run " + data + name + ".yaml -o " + out(name));
+    const Result r = run_laguerre("run " + data + name + ".yaml -o " + out(name));
     EXPECT_EQ(r.status, 2) << name;
     std::istringstream expected(slurp(data + name + ".expected"));
     std::size_t count = 0;
@@ -120,7 +100,7 @@ TEST_F(ScenarioCli, ValidationMessagesAndExitStatus) {
     EXPECT_NE(r.out.find(std::to_string(count) + " problem(s)"), std::string::npos) << r.out;
     EXPECT_FALSE(fs::exists(out(name)));
   }
-  const Result set = laguerre("run " + scenarios + "quickstart.yaml -o " + out("x") + " --set topology.n=2");
+  const Result set = run_laguerre("run " + scenarios + "quickstart.yaml -o " + out("x") + " --set topology.n=2");
   EXPECT_EQ(set.status, 2);
   EXPECT_NE(set.out.find("--set topology.n=2: topology.n: found '2', expected an integer in [3, 10000000]"),
             std::string::npos)
@@ -128,14 +108,14 @@ TEST_F(ScenarioCli, ValidationMessagesAndExitStatus) {
 }
 
 TEST_F(ScenarioCli, UnsupportedTopologyExitsThree) {
-  const Result r = laguerre("run " + data + "unpackable.yaml -o " + out("u"));
+  const Result r = run_laguerre("run " + data + "unpackable.yaml -o " + out("u"));
   EXPECT_EQ(r.status, 3) << r.out;
   EXPECT_NE(r.out.find("unsupported"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(dir_ / "u" / "results.json"));
 }
 
 TEST_F(ScenarioCli, CompareWritesTablesAndCharts) {
-  const Result r = laguerre("compare " + data + "good-sweep.yaml --set repetitions=2 --set network.loss=0 -o " + out("c"));
+  const Result r = run_laguerre("compare " + data + "good-sweep.yaml --set repetitions=2 --set network.loss=0 -o " + out("c"));
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("95% CI"), std::string::npos) << r.out;
   const auto doc = nlohmann::json::parse(slurp(dir_ / "c" / "comparison.json"));
@@ -175,7 +155,7 @@ TEST_F(ScenarioCli, EveryExampleRunsSmall) {
   EXPECT_EQ(bundled, std::size(examples)) << "a bundled scenario has no test here";
   for (const auto& e : examples) {
     const std::string dir = out(fs::path(e.file).stem().string());
-    const Result r = laguerre("run " + scenarios + e.file + " " + e.overrides + " -o " + dir);
+    const Result r = run_laguerre("run " + scenarios + e.file + " " + e.overrides + " -o " + dir);
     // 0: every run ok; 3: some run ended otherwise (e.g. a sparse random field that cannot be packed).
     EXPECT_TRUE(r.status == 0 || (!e.all_ok && r.status == 3)) << e.file << " exit " << r.status << "\n" << r.out;
     const auto doc = nlohmann::json::parse(slurp(fs::path(dir) / "results.json"));
