@@ -672,7 +672,10 @@ Scenario load(const YAML::Node& doc, const std::string& source, const std::strin
       bool overridden = false;
       for (const auto& o : overrides) overridden = overridden || o.key == key;
       if (overridden) continue;  // --set fixes this key at every point
-      for (const auto& v : it->second) a.values.push_back(v);
+      // Copy the node first: iterating `it->second` directly would iterate a member of the temporary
+      // that yaml-cpp's iterator proxy returns, destroyed before the loop body runs (before C++23).
+      const YAML::Node list = it->second;
+      for (const auto& v : list) a.values.push_back(v);
       axes.push_back(std::move(a));
     }
   }
