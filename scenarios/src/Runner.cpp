@@ -128,7 +128,27 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
     setup.crashes = cfg.network.crashes;
     setup.retransmit_after = cfg.network.retransmit_after;
     setup.seed = plan.seed;
-    ProtocolOutcome po = run_packing_protocol(g, topo.positions, setup);
+    ProtocolOutcome po;
+    if (cfg.protocol.central) {
+      // The same Jacobi iteration, centrally (core::pack), possibly accelerated; no messages.
+      core::PackOptions opt;
+      opt.stop = core::StopRule::lpd;
+      opt.steps_per_check = cfg.protocol.steps_per_round;
+      opt.max_iterations = cfg.protocol.max_iterations;
+      opt.root = cfg.protocol.root;
+      opt.acceleration = cfg.protocol.acceleration;
+      const auto t0 = std::chrono::steady_clock::now();
+      core::PackResult pr = core::pack(g, opt);
+      po.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      po.circles = std::move(pr.circles);
+      po.local = std::move(pr.local);
+      po.iterations = static_cast<std::uint32_t>(pr.iterations);
+      po.rounds = static_cast<std::uint32_t>(pr.iterations / std::max(1, cfg.protocol.steps_per_round));
+      for (const core::LocalCondition lc : po.local) po.holds_nodes += lc == core::LocalCondition::holds;
+      po.converged_nodes = pr.status == core::PackStatus::converged ? n : po.holds_nodes;
+    } else {
+      po = run_packing_protocol(g, topo.positions, setup);
+    }
     r.iterations = po.iterations;
     r.rounds = po.rounds;
     r.holds_nodes = po.holds_nodes;

@@ -400,10 +400,23 @@ void parse_protocol(Context& ctx, const YAML::Node& n, ProtocolSpec& out) {
   Checker& c = ctx.c;
   if (!n.IsDefined()) return;
   if (!expect_map(c, n, "protocol")) return;
-  check_keys(c, n, "protocol", {"mode", "steps_per_round", "stop", "max_iterations", "root", "exact_reference"});
+  check_keys(c, n, "protocol",
+             {"mode", "steps_per_round", "stop", "max_iterations", "root", "exact_reference", "acceleration"});
   std::string s;
-  if (const YAML::Node v = lookup(n, "mode"); v.IsDefined() && read_choice(c, v, "protocol.mode", {"sync", "async"}, s))
+  if (const YAML::Node v = lookup(n, "mode");
+      v.IsDefined() && read_choice(c, v, "protocol.mode", {"sync", "async", "central"}, s)) {
     out.asynchronous = s == "async";
+    out.central = s == "central";
+  }
+  if (const YAML::Node v = lookup(n, "acceleration"); v.IsDefined()) {
+    if (read_choice(c, v, "protocol.acceleration", {"plain", "superstep", "anderson"}, s))
+      out.acceleration = s == "anderson"    ? core::Acceleration::anderson
+                         : s == "superstep" ? core::Acceleration::superstep
+                                            : core::Acceleration::plain;
+    if (!out.central && out.acceleration != core::Acceleration::plain)
+      c.report(v, "protocol.acceleration", "'" + s + "' with mode " + (out.asynchronous ? "async" : "sync"),
+               "plain, or mode central (the distributed protocol has no acceleration)");
+  }
   std::int64_t i = 0;
   if (const YAML::Node v = lookup(n, "steps_per_round");
       v.IsDefined() && read_integer(c, v, "protocol.steps_per_round", 1, 10000, i))

@@ -256,3 +256,32 @@ TEST(Comparison, RowsPerPointAndScheme) {
   EXPECT_EQ(rows1.at(0).ci_method, "wilson");
   EXPECT_NEAR(rows1[0].delivery_ci.low, wilson_interval(30, 30).low, 1e-12);
 }
+
+// Mode central runs core::pack instead of the simulated protocol: the synchronous protocol equals the
+// centralized iteration bit for bit, so iterations and routing are the same, with no messages.
+TEST(Runner, CentralModeEqualsTheSynchronousProtocol) {
+  const std::string base = "name: c\nseed: 3\nrepetitions: 3\ntopology: {generator: delaunay, n: 60}\n"
+                           "routing: {schemes: [greedy-power, gfg], pairs: 200}\n";
+  const ScenarioResults sync = run_scenario(from_text(base + "protocol: {mode: sync}\n"), {});
+  const ScenarioResults central = run_scenario(from_text(base + "protocol: {mode: central}\n"), {});
+  ASSERT_EQ(sync.records.size(), central.records.size());
+  for (std::size_t i = 0; i < sync.records.size(); ++i) {
+    const RunRecord &a = sync.records[i], &b = central.records[i];
+    ASSERT_EQ(a.status, RunStatus::ok) << a.message;
+    ASSERT_EQ(b.status, RunStatus::ok) << b.message;
+    EXPECT_EQ(a.iterations, b.iterations);
+    EXPECT_EQ(b.messages, 0u);
+    for (std::size_t k = 0; k < a.routing.size(); ++k) {
+      EXPECT_EQ(a.routing[k].delivered, b.routing[k].delivered);
+      EXPECT_EQ(a.routing[k].stretch_mean, b.routing[k].stretch_mean);
+    }
+  }
+  // Anderson mixing needs fewer sweeps and still ends with LPD everywhere.
+  const ScenarioResults fast =
+      run_scenario(from_text(base + "protocol: {mode: central, acceleration: anderson}\n"), {});
+  for (const RunRecord& r : fast.records) {
+    ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+    EXPECT_EQ(r.holds_nodes, r.nodes);
+  }
+  EXPECT_THROW(from_text(base + "protocol: {mode: sync, acceleration: anderson}\n"), ScenarioError);
+}

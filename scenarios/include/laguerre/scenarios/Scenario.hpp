@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "laguerre/core/packing/Accelerator.hpp"
 #include "laguerre/core/packing/Layout.hpp"
 #include "laguerre/core/routing/Routing.hpp"
 #include "laguerre/scenarios/NetworkModel.hpp"
@@ -47,6 +48,11 @@ enum class StopSpec {
 /// `protocol:` — the distributed packing protocol's parameters.
 struct ProtocolSpec {
   bool asynchronous = false;                   ///< mode: sync (default) or async
+  /// mode `central`: no simulation — core::pack runs the same Jacobi iteration centrally (with
+  /// `acceleration`) and the run routes on its result; messages and simulated time are then 0. For
+  /// routing questions on networks too large to simulate to convergence.
+  bool central = false;
+  core::Acceleration acceleration = core::Acceleration::plain;  ///< central mode only: plain, superstep, anderson
   int steps_per_round = 1;                     ///< N, Thurston steps per round
   StopSpec stop = StopSpec::lpd;               ///< stopping rule
   int max_iterations = 100000;                 ///< cap on Thurston steps
