@@ -9,7 +9,22 @@
 
 #include "laguerre/core/geometry/Predicates.hpp"
 
+#include <cmath>
+#include <initializer_list>
+#include <stdexcept>
+#include <string>
+
 namespace laguerre::core::detail {
+
+/// Throws std::domain_error naming `predicate` if any value is NaN or infinite. Called before the
+/// exact stage: GMP aborts the process (SIGFPE) when asked to convert a non-finite double, and a
+/// non-finite input has no exact answer anyway. An embedding with such values is reported, not routed.
+inline void require_finite(const char* predicate, std::initializer_list<double> values) {
+  for (double v : values)
+    if (!std::isfinite(v))
+      throw std::domain_error(std::string("exact predicate ") + predicate +
+                              ": an input coordinate or radius is NaN or infinite; the geometry cannot be decided");
+}
 
 /// Evaluates `f.template operator()<NT>()` first with NT = interval arithmetic; if any comparison
 /// inside is uncertain (CGAL throws Uncertain_conversion_exception), evaluates again with NT = exact

@@ -17,6 +17,7 @@ Sign orientation(Point2 a, Point2 b, Point2 c) {
   const double ux = b.x - a.x, uy = b.y - a.y, wx = c.x - a.x, wy = c.y - a.y;
   if (detail::in_range(ux) && detail::in_range(uy) && detail::in_range(wx) && detail::in_range(wy))
     if (const auto s = detail::certified_difference(ux * wy, uy * wx)) return *s;
+  detail::require_finite("orientation", {a.x, a.y, b.x, b.y, c.x, c.y});
   return filtered([&]<class NT>() {
     const NT abx = NT(b.x) - NT(a.x), aby = NT(b.y) - NT(a.y);
     const NT acx = NT(c.x) - NT(a.x), acy = NT(c.y) - NT(a.y);
@@ -29,6 +30,7 @@ Sign compare_power(Point2 q, const Circle& a, const Circle& b) {
   // carry the (possibly large) r² terms.
   if (a.r == b.r) return compare_distance(q, centre(a), centre(b));
   if (const auto s = detail::certified_sign(detail::approx_power(q, a), detail::approx_power(q, b))) return *s;
+  detail::require_finite("compare_power", {q.x, q.y, a.x, a.y, a.r, b.x, b.y, b.r});
   return filtered([&]<class NT>() {
     const NT ax = NT(q.x) - NT(a.x), ay = NT(q.y) - NT(a.y);
     const NT bx = NT(q.x) - NT(b.x), by = NT(q.y) - NT(b.y);
@@ -39,6 +41,7 @@ Sign compare_power(Point2 q, const Circle& a, const Circle& b) {
 
 Sign compare_distance(Point2 q, Point2 a, Point2 b) {
   if (const auto s = detail::certified_sign(detail::approx_distance(q, a), detail::approx_distance(q, b))) return *s;
+  detail::require_finite("compare_distance", {q.x, q.y, a.x, a.y, b.x, b.y});
   return filtered([&]<class NT>() {
     const NT ax = NT(q.x) - NT(a.x), ay = NT(q.y) - NT(a.y);
     const NT bx = NT(q.x) - NT(b.x), by = NT(q.y) - NT(b.y);
@@ -71,6 +74,7 @@ RadicalCentre<NT> radical_centre(const Circle& u, const Circle& a, const Circle&
 }  // namespace
 
 Sign radical_centre_power_side(const Circle& u, const Circle& a, const Circle& b, const Circle& t) {
+  detail::require_finite("radical_centre_power_side", {u.x, u.y, u.r, a.x, a.y, a.r, b.x, b.y, b.r, t.x, t.y, t.r});
   return filtered([&]<class NT>() {
     const auto c = radical_centre<NT>(u, a, b);
     const Sign sd = sign_of<NT>(c.d);
@@ -84,6 +88,7 @@ Sign radical_centre_power_side(const Circle& u, const Circle& a, const Circle& b
 }
 
 Sign radical_centre_outside_unit_disc(const Circle& u, const Circle& a, const Circle& b) {
+  detail::require_finite("radical_centre_outside_unit_disc", {u.x, u.y, u.r, a.x, a.y, a.r, b.x, b.y, b.r});
   return filtered([&]<class NT>() {
     const auto c = radical_centre<NT>(u, a, b);
     if (sign_of<NT>(c.d) == Sign::zero) return Sign::zero;
@@ -92,6 +97,9 @@ Sign radical_centre_outside_unit_disc(const Circle& u, const Circle& a, const Ci
 }
 
 bool segment_meets_power_cell(Point2 s0, Point2 s1, const Circle& site, const Circle* others, std::size_t count) {
+  detail::require_finite("segment_meets_power_cell", {s0.x, s0.y, s1.x, s1.y, site.x, site.y, site.r});
+  for (std::size_t i = 0; i < count; ++i)
+    detail::require_finite("segment_meets_power_cell", {others[i].x, others[i].y, others[i].r});
   return filtered([&]<class NT>() {
     auto pw = [](const NT& qx, const NT& qy, const Circle& c) -> NT {
       const NT dx = qx - NT(c.x), dy = qy - NT(c.y), r(c.r);
@@ -119,6 +127,7 @@ bool segment_meets_power_cell(Point2 s0, Point2 s1, const Circle& site, const Ci
 }
 
 Sign compare_deviation(Point2 v, Point2 t, Point2 a, Point2 b) {
+  detail::require_finite("compare_deviation", {v.x, v.y, t.x, t.y, a.x, a.y, b.x, b.y});
   return filtered([&]<class NT>() {
     const NT tx = NT(t.x) - NT(v.x), ty = NT(t.y) - NT(v.y);
     auto q = [&](Point2 p) -> NT {  // cos(angle)·|cos(angle)|·|t − v|², a monotone image of cos
@@ -149,6 +158,7 @@ bool segments_intersect(Point2 a, Point2 b, Point2 c, Point2 d) {
 }
 
 Sign compare_crossings_along(Point2 p, Point2 q, Point2 a1, Point2 b1, Point2 a2, Point2 b2) {
+  detail::require_finite("compare_crossings_along", {p.x, p.y, q.x, q.y, a1.x, a1.y, b1.x, b1.y, a2.x, a2.y, b2.x, b2.y});
   return filtered([&]<class NT>() {
     auto orient = [](Point2 a, Point2 b, Point2 c) -> NT {
       return (NT(b.x) - NT(a.x)) * (NT(c.y) - NT(a.y)) - (NT(b.y) - NT(a.y)) * (NT(c.x) - NT(a.x));

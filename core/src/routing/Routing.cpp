@@ -34,6 +34,7 @@ Sign dot_sign(Point2 p, Point2 a, Point2 b) {
   if (in_range(ax) && in_range(ay) && in_range(bx) && in_range(by)) {
     if (const auto s = detail::certified_difference(ax * bx, -(ay * by))) return *s;
   }
+  detail::require_finite("dot_sign", {p.x, p.y, a.x, a.y, b.x, b.y});
   return detail::filtered([&]<class NT>() {
     const NT ex = (NT(a.x) - NT(p.x)) * (NT(b.x) - NT(p.x)) + (NT(a.y) - NT(p.y)) * (NT(b.y) - NT(p.y));
     return detail::sign_of<NT>(ex);
@@ -181,6 +182,12 @@ void check_embedding(const PlanarGraph& g, const CircleEmbedding& phi) {
   if (phi.size() != g.num_vertices())
     throw std::invalid_argument("The circle embedding has " + std::to_string(phi.size()) + " circles for a graph of " +
                                 std::to_string(g.num_vertices()) + " vertices.");
+  // Routing decisions are exact on the stored doubles: a NaN or infinite circle (an unrepresentable
+  // layout) has no answer, so it is refused here with the vertex named rather than deep in a predicate.
+  for (Vertex v = 0; v < phi.size(); ++v)
+    if (!std::isfinite(phi[v].x) || !std::isfinite(phi[v].y) || !std::isfinite(phi[v].r))
+      throw std::invalid_argument("The circle of vertex " + std::to_string(g.id(v)) +
+                                  " is not finite (NaN or infinite): the embedding cannot be routed on.");
 }
 
 std::size_t saturating_mul(std::size_t a, std::size_t b) {
