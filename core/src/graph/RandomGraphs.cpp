@@ -1,5 +1,7 @@
 #include "laguerre/core/graph/RandomGraphs.hpp"
 
+#include "laguerre/core/random/SeededRandom.hpp"
+
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
@@ -19,24 +21,7 @@ namespace laguerre::core {
 
 namespace {
 
-/// Platform-independent draws from std::mt19937_64.
-class Random {
-public:
-  explicit Random(std::uint64_t seed) : engine_(seed) {}
-  /// Uniform double in [0, 1): the top 53 bits of one draw, scaled.
-  double uniform01() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
-  /// Uniform integer in [0, bound), bound > 0, by rejection (no modulo bias).
-  std::uint64_t below(std::uint64_t bound) {
-    constexpr std::uint64_t max = std::numeric_limits<std::uint64_t>::max();
-    const std::uint64_t limit = max - max % bound;  // a multiple of bound
-    std::uint64_t x = engine_();
-    while (x >= limit) x = engine_();
-    return x % bound;
-  }
-
-private:
-  std::mt19937_64 engine_;
-};
+using Random = SeededRandom;
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<Vertex, Kernel>;

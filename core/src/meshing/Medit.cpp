@@ -135,10 +135,8 @@ TriangleMesh read_medit_mesh(const std::string& path) {
         mesh.edges.push_back(e);
         mesh.edge_refs.push_back(static_cast<int>(t.integer("an edge reference")));
       }
-    } else if (key == "Corners" || key == "RequiredVertices") {
-      skip_records(t, t.count("a count"), 1);
-    } else if (key == "RequiredEdges" || key == "Ridges") {
-      skip_records(t, t.count("a count"), 1);
+    } else if (key == "Corners" || key == "RequiredVertices" || key == "RequiredEdges" || key == "Ridges") {
+      skip_records(t, t.count("a count"), 1);  // one index per record
     } else if (key == "Quadrilaterals") {
       skip_records(t, t.count("a quadrilateral count"), 5);
     } else {

@@ -560,10 +560,8 @@ std::string check_triangulation(const TriangleMesh& mesh, const Domain& domain) 
   }
   std::set<std::pair<std::size_t, std::size_t>> constraints;
   for (const auto& e : mesh.edges) constraints.insert({std::min(e[0], e[1]), std::max(e[0], e[1])});
-  std::size_t boundary_edges = 0;
   for (const auto& [e, count] : directed) {
     if (directed.count({e.second, e.first})) continue;  // interior edge, used once each way
-    ++boundary_edges;
     if (!constraints.count({std::min(e.first, e.second), std::max(e.first, e.second)}))
       return "edge " + std::to_string(e.first) + "–" + std::to_string(e.second) +
              " bounds a single triangle but is not a boundary subsegment (a hole in the mesh)";
@@ -571,7 +569,6 @@ std::string check_triangulation(const TriangleMesh& mesh, const Domain& domain) 
   const double expected = domain.area();
   if (std::abs(area - expected) > 1e-9 * std::abs(expected))
     return "the triangles cover an area of " + std::to_string(area) + " instead of " + std::to_string(expected);
-  (void)boundary_edges;
   return {};
 }
 

@@ -1,5 +1,7 @@
 #include "laguerre/scenarios/fields/Deployment.hpp"
 
+#include "laguerre/core/random/SeededRandom.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -15,24 +17,7 @@ using core::Point2;
 
 namespace {
 
-/// Platform-independent draws from std::mt19937_64.
-class FieldRandom {
-public:
-  explicit FieldRandom(std::uint64_t seed) : engine_(seed) {}
-  /// Uniform double in [0, 1): the top 53 bits of one draw, scaled.
-  double uniform01() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
-  /// Uniform integer in [0, bound), bound > 0, by rejection.
-  std::uint64_t below(std::uint64_t bound) {
-    constexpr std::uint64_t max = std::numeric_limits<std::uint64_t>::max();
-    const std::uint64_t limit = max - max % bound;
-    std::uint64_t x = engine_();
-    while (x >= limit) x = engine_();
-    return x % bound;
-  }
-
-private:
-  std::mt19937_64 engine_;
-};
+using FieldRandom = core::SeededRandom;
 
 /// Draw budget shared by the rejection loops.
 std::size_t draw_budget(std::size_t n) { return 1000 * n + 1000000; }

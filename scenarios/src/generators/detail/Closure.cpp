@@ -7,13 +7,6 @@
 
 namespace laguerre::scenarios::detail {
 
-std::vector<std::uint8_t> Random::binary_word(std::size_t size, std::size_t ones) {
-  std::vector<std::uint8_t> word(size, 0);
-  std::fill(word.begin(), word.begin() + static_cast<std::ptrdiff_t>(ones), std::uint8_t{1});
-  for (std::size_t i = size; i > 1; --i) std::swap(word[i - 1], word[below(i)]);
-  return word;
-}
-
 std::vector<std::size_t> cycle_lemma_starts(const std::vector<int>& steps, int k) {
   const std::size_t size = steps.size();
   // First visit of each level below 0 (levels are reached in order because steps are >= -1).

@@ -22,33 +22,13 @@
 #include <vector>
 
 #include "laguerre/core/graph/PlanarGraph.hpp"
+#include "laguerre/core/random/SeededRandom.hpp"
 
 namespace laguerre::scenarios::detail {
 
 using core::Vertex;
 
-/// Platform-independent draws from std::mt19937_64 (whose output sequence the standard fixes), never
-/// through the standard distributions, whose algorithms differ between standard libraries.
-class Random {
- public:
-  /// Seeds the engine.
-  explicit Random(std::uint64_t seed) : engine_(seed) {}
-  /// Uniform double in [0, 1): the top 53 bits of one draw, scaled.
-  double uniform01() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
-  /// Uniform integer in [0, bound), bound > 0, by rejection (no modulo bias).
-  std::uint64_t below(std::uint64_t bound) {
-    constexpr std::uint64_t max = std::numeric_limits<std::uint64_t>::max();
-    const std::uint64_t limit = max - max % bound;
-    std::uint64_t x = engine_();
-    while (x >= limit) x = engine_();
-    return x % bound;
-  }
-  /// A uniformly random 0/1 sequence of length `size` with exactly `ones` ones (Fisher–Yates).
-  std::vector<std::uint8_t> binary_word(std::size_t size, std::size_t ones);
-
- private:
-  std::mt19937_64 engine_;
-};
+using Random = core::SeededRandom;
 
 /// Cycle lemma. `steps` are the integer steps (each ≥ −1) of a cyclic walk of total −k (k ≥ 1). Returns
 /// the k starting positions p (0 ≤ p < size) from which the walk, read cyclically, first reaches −k at
