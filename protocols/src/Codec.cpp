@@ -59,7 +59,7 @@ bool read_bool(Reader& r, bool& ok) {
   return b == 1;
 }
 
-bool unit_interval(double x) { return x >= 0.0 && x <= 1.0; }  // false for NaN
+bool hyperbolic_radius(double h) { return h > 0.0; }  // (0, ∞]; false for NaN
 
 }  // namespace
 
@@ -99,7 +99,7 @@ std::string_view to_string(DecodeStatus s) {
 
 bool same_bits(const PlacedMsg& a, const PlacedMsg& b) {
   auto eq = [](double u, double v) { return std::bit_cast<std::uint64_t>(u) == std::bit_cast<std::uint64_t>(v); };
-  return a.round == b.round && eq(a.x, b.x) && eq(a.centre_re, b.centre_re) && eq(a.centre_im, b.centre_im) &&
+  return a.round == b.round && eq(a.h, b.h) && eq(a.centre_re, b.centre_re) && eq(a.centre_im, b.centre_im) &&
          eq(a.cx, b.cx) && eq(a.cy, b.cy) && eq(a.cr, b.cr);
 }
 
@@ -191,10 +191,10 @@ void encode(const Message& m, std::vector<std::byte>& out) {
           w.u64(msg.parent);
         } else if constexpr (std::is_same_v<T, RadiusMsg>) {
           w.u32(msg.step);
-          w.f64(msg.x);
+          w.f64(msg.h);
         } else if constexpr (std::is_same_v<T, PlacedMsg>) {
           w.u32(msg.round);
-          w.f64(msg.x);
+          w.f64(msg.h);
           w.f64(msg.centre_re);
           w.f64(msg.centre_im);
           w.f64(msg.cx);
@@ -333,21 +333,21 @@ DecodeStatus decode(std::span<const std::byte> bytes, Message& out) {
     case MessageType::radius: {
       RadiusMsg rm;
       rm.step = r.u32();
-      rm.x = r.f64();
-      ok = unit_interval(rm.x);
+      rm.h = r.f64();
+      ok = hyperbolic_radius(rm.h);
       m = rm;
       break;
     }
     case MessageType::placed: {
       PlacedMsg p;
       p.round = r.u32();
-      p.x = r.f64();
+      p.h = r.f64();
       p.centre_re = r.f64();
       p.centre_im = r.f64();
       p.cx = r.f64();
       p.cy = r.f64();
       p.cr = r.f64();
-      ok = unit_interval(p.x);
+      ok = hyperbolic_radius(p.h);
       m = p;
       break;
     }

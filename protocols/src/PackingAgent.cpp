@@ -1,3 +1,5 @@
+#include <limits>
+
 #include "PackingAgent.hpp"
 
 #include <algorithm>
@@ -18,7 +20,7 @@ PackingAgent::PackingAgent(AgentHost& host, std::size_t index, AgentSpec spec, P
   radius_.assign(deg_, {});
   placed_in_.assign(deg_, {});
   face_in_.assign(deg_, {});
-  star_x_.assign(deg_, 0.0);
+  star_h_.assign(deg_, std::numeric_limits<double>::infinity());
   check_circles_.assign(deg_, core::Circle{});
   // Intersection cosines of the star, as PackingComplex stores them: an edge of K is orthogonal iff
   // it touches a face vertex. Empty for a tangent-only star (the closed-form update applies).
@@ -28,10 +30,10 @@ PackingAgent::PackingAgent(AgentHost& host, std::size_t index, AgentSpec spec, P
       rim_.push_back(cos_rim(i));
     }
   }
-  x_ = know_.boundary ? 0.0 : core::x_of_radius(1.0);  // core::initial_radii
+  h_ = know_.boundary ? std::numeric_limits<double>::infinity() : 1.0;  // core::initial_radii
   // Asynchronous mode: every interior vertex starts from the same X (version 0); boundary
   // neighbours' entries are never read.
-  latest_x_.assign(deg_, core::x_of_radius(1.0));
+  latest_h_.assign(deg_, 1.0);
   latest_step_.assign(deg_, 0);
 }
 
@@ -48,7 +50,7 @@ VertexState PackingAgent::state() const {
   s.parent = parent_;
   s.steps = step_;
   s.round = round_;
-  s.x = x_;
+  s.h = h_;
   s.placement = placed_;
   s.local = local_;
   s.phase = phase_;
@@ -370,7 +372,7 @@ std::uint32_t PackingAgent::round_of_step(std::uint32_t s) const {
 }
 
 void PackingAgent::handle_async_radius(std::size_t i, const RadiusMsg& m) {
-  // m.step = the sender's update count after the update that produced m.x (its version). Neighbours
+  // m.step = the sender's update count after the update that produced m.h (its version). Neighbours
   // are at most one round ahead; a message of an earlier round may still arrive late (reordering) and
   // only refreshes the value if newer. Keep the newest value.
   const std::uint32_t r = m.step == 0 ? 0 : round_of_step(m.step);
@@ -381,7 +383,7 @@ void PackingAgent::handle_async_radius(std::size_t i, const RadiusMsg& m) {
   }
   if (m.step > latest_step_[i]) {
     latest_step_[i] = m.step;
-    latest_x_[i] = m.x;
+    latest_h_[i] = m.h;
   }
   if (r >= round_) ++arrivals_[r & 1];
   advance_steps();
@@ -397,10 +399,10 @@ void PackingAgent::advance_async_steps() {
   while (step_ < round_end_step_) {
     const std::uint32_t k = step_ - round_start_step_ + 1;
     if (k >= 2 && any_interior && arrivals_[round_ & 1] < k - 1) return;
-    for (std::size_t i = 0; i < deg_; ++i) star_x_[i] = interior_nbr(i) ? latest_x_[i] : 0.0;
-    x_ = core::star_updated_radius(x_, core::StarView{star_x_, spoke_, rim_}, params_.update);
+    for (std::size_t i = 0; i < deg_; ++i) star_h_[i] = interior_nbr(i) ? latest_h_[i] : std::numeric_limits<double>::infinity();
+    h_ = core::star_updated_radius(h_, core::StarView{star_h_, spoke_, rim_}, params_.update);
     ++step_;
-    encode(RadiusMsg{step_, x_}, buffer_);
+    encode(RadiusMsg{step_, h_}, buffer_);
     for (std::size_t i = 0; i < deg_; ++i)
       if (interior_nbr(i)) send_encoded(i);
   }
@@ -415,7 +417,7 @@ void PackingAgent::handle(std::size_t i, const RadiusMsg& m) {
     ++host_.counters().unexpected;
     return;
   }
-  radius_[i][m.step & 1] = Slot{m.step, m.x};
+  radius_[i][m.step & 1] = Slot{m.step, m.h};
   advance_steps();
 }
 
@@ -429,22 +431,22 @@ void PackingAgent::advance_steps() {
   while (step_ < round_end_step_) {
     if (!sent_step_) {
       sent_step_ = true;
-      encode(RadiusMsg{step_, x_}, buffer_);
+      encode(RadiusMsg{step_, h_}, buffer_);
       for (std::size_t i = 0; i < deg_; ++i)
         if (interior_nbr(i)) send_encoded(i);
     }
     const std::size_t slot = step_ & 1;
     for (std::size_t i = 0; i < deg_; ++i) {
       if (!interior_nbr(i)) {
-        star_x_[i] = 0.0;
+        star_h_[i] = std::numeric_limits<double>::infinity();
         continue;
       }
       if (radius_[i][slot].tag != step_) return;
-      star_x_[i] = radius_[i][slot].x;
+      star_h_[i] = radius_[i][slot].h;
     }
     // The Jacobi update on K: every neighbour value is from step t, the cosines are those of
     // PackingComplex (spoke_/rim_ empty iff tangent_only), as in core::thurston_sweep.
-    x_ = core::star_updated_radius(x_, core::StarView{star_x_, spoke_, rim_}, params_.update);
+    h_ = core::star_updated_radius(h_, core::StarView{star_h_, spoke_, rim_}, params_.update);
     ++step_;
     sent_step_ = false;
   }
@@ -456,7 +458,7 @@ void PackingAgent::handle(std::size_t i, const PlacedMsg& m) {
     ++host_.counters().unexpected;
     return;
   }
-  placed_in_[i][m.round & 1] = PlacedSlot{m.round, m.x, {{m.centre_re, m.centre_im}, {m.cx, m.cy, m.cr}}};
+  placed_in_[i][m.round & 1] = PlacedSlot{m.round, m.h, {{m.centre_re, m.centre_im}, {m.cx, m.cy, m.cr}}};
   if (params_.asynchronous && interior_nbr(i)) {
     // The sender's X after its last update of round m.round: version min(round·N, cap).
     const auto version = static_cast<std::uint32_t>(std::min<std::uint64_t>(
@@ -464,7 +466,7 @@ void PackingAgent::handle(std::size_t i, const PlacedMsg& m) {
         static_cast<std::uint64_t>(params_.max_iterations)));
     if (version > latest_step_[i]) {
       latest_step_[i] = version;
-      latest_x_[i] = m.x;
+      latest_h_[i] = m.h;
     }
   }
   if (phase_ == PackingPhase::rounds) advance_layout();
@@ -489,12 +491,12 @@ void PackingAgent::advance_layout() {
   const std::size_t slot = round_ & 1;
   auto heard = [&](std::size_t i) { return placed_in_[i][slot].tag == round_; };
   if (!placed_this_round_) {
-    const core::LayoutVertex me{x_, !know_.boundary};
+    const core::LayoutVertex me{h_, !know_.boundary};
     if (is_root_) {
-      placed_ = core::place_root(x_);
+      placed_ = core::place_root(h_);
     } else if (is_first_) {
       if (!heard(parent_index_)) return;
-      placed_ = core::place_first_neighbour(placed_in_[parent_index_][slot].x, me, polygon_ ? cos_spoke(parent_index_) : 1.0);
+      placed_ = core::place_first_neighbour(placed_in_[parent_index_][slot].h, me, polygon_ ? cos_spoke(parent_index_) : 1.0);
     } else {
       if (!heard(anchor_a_) || !heard(anchor_b_)) return;
       const PlacedSlot& a = placed_in_[anchor_a_][slot];
@@ -502,10 +504,10 @@ void PackingAgent::advance_layout() {
       // lay_out's cosines: 1 everywhere for a triangulation, else those of K, with the overlap formula.
       const core::FaceCosines c = polygon_ ? core::FaceCosines{cos_spoke(anchor_a_), cos_spoke(anchor_b_), cos_rim(anchor_a_), true}
                                            : core::FaceCosines{};
-      placed_ = core::place_in_face(me, {a.x, interior_nbr(anchor_a_)}, a.at, {b.x, interior_nbr(anchor_b_)}, b.at, c);
+      placed_ = core::place_in_face(me, {a.h, interior_nbr(anchor_a_)}, a.at, {b.h, interior_nbr(anchor_b_)}, b.at, c);
     }
     placed_this_round_ = true;
-    broadcast(PlacedMsg{round_, x_, placed_.centre.real(), placed_.centre.imag(), placed_.circle.x,
+    broadcast(PlacedMsg{round_, h_, placed_.centre.real(), placed_.centre.imag(), placed_.circle.x,
                         placed_.circle.y, placed_.circle.r});
   }
   if (!checked_this_round_) {

@@ -62,11 +62,11 @@ private:
 
   struct Slot {
     std::uint32_t tag = unknown;
-    double x = 0;
+    double h = 0;
   };
   struct PlacedSlot {
     std::uint32_t tag = unknown;
-    double x = 0;
+    double h = 0;
     core::PlacedCircle at;
   };
   struct FaceSlot {
@@ -173,15 +173,15 @@ private:
   std::uint32_t step_ = 0;
   std::uint32_t round_end_step_ = 0;
   std::uint32_t round_start_step_ = 0;
-  // Asynchronous mode: newest known X of each neighbour and its version (update count), and the
+  // Asynchronous mode: newest known radius h of each neighbour and its version (update count), and the
   // number of radius messages received per round (by parity).
-  std::vector<double> latest_x_;
+  std::vector<double> latest_h_;
   std::vector<std::uint32_t> latest_step_;
   std::array<std::uint32_t, 2> arrivals_{};
   bool sent_step_ = false;
-  double x_ = 0;
+  double h_ = 0;
   std::vector<std::array<Slot, 2>> radius_;
-  std::vector<double> star_x_, spoke_, rim_;
+  std::vector<double> star_h_, spoke_, rim_;
   std::vector<std::array<PlacedSlot, 2>> placed_in_;
   std::vector<std::array<FaceSlot, 2>> face_in_;  // per K-neighbour (used for face-vertex neighbours)
   bool placed_this_round_ = false;

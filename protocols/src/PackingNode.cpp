@@ -552,7 +552,7 @@ NodeId PackingNode::parent() const { return agents_[0]->state().parent; }
 std::size_t PackingNode::children() const { return agents_[0]->children(); }
 std::uint32_t PackingNode::steps() const { return agents_[0]->state().steps; }
 std::uint32_t PackingNode::round() const { return agents_[0]->state().round; }
-double PackingNode::x() const { return agents_[0]->state().x; }
+double PackingNode::h() const { return agents_[0]->state().h; }
 const core::PlacedCircle& PackingNode::placement() const { return agents_[0]->placement(); }
 core::LocalCondition PackingNode::local_condition() const { return agents_[0]->state().local; }
 bool PackingNode::polygon_faces() const { return agents_[0]->polygon(); }

@@ -36,7 +36,7 @@ inline LossyTotals expect_lossy_equals_core(const core::PlanarGraph& g, const Pa
       SCOPED_TRACE("vertex " + std::to_string(v));
       ASSERT_EQ(n.phase(), PackingPhase::finished);
       EXPECT_EQ(n.steps(), static_cast<std::uint32_t>(r.iterations));
-      EXPECT_EQ(bits(n.x()), bits(r.radii[v])) << n.x() << " vs " << r.radii[v];
+      EXPECT_EQ(bits(n.h()), bits(r.radii[v])) << n.h() << " vs " << r.radii[v];
       expect_same_circle(n.placement(), r.layout, v);
       EXPECT_EQ(n.local_condition(), r.local[v]);
       if (r.status == core::PackStatus::converged) {
@@ -61,7 +61,7 @@ inline LossyTotals expect_lossy_equals_core(const core::PlanarGraph& g, const Pa
         const VertexState st = h.hosted_face_state(j);
         if (st.id != fid) continue;
         found = true;
-        EXPECT_EQ(bits(st.x), bits(r.radii[fv]));
+        EXPECT_EQ(bits(st.h), bits(r.radii[fv]));
         expect_same_circle(st.placement, r.layout, fv);
       }
       EXPECT_TRUE(found);

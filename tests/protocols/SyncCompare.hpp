@@ -93,7 +93,7 @@ inline int expect_sync_equals_core(const core::PlanarGraph& g, const PackingPara
     EXPECT_EQ(n.parent(), v == root ? g.id(v) : ids[r.layout.parent[v]]);
     EXPECT_EQ(n.polygon_faces(), k.has_face_vertices());
     EXPECT_EQ(n.steps(), static_cast<std::uint32_t>(r.iterations));
-    EXPECT_EQ(bits(n.x()), bits(r.radii[v])) << n.x() << " vs " << r.radii[v];
+    EXPECT_EQ(bits(n.h()), bits(r.radii[v])) << n.h() << " vs " << r.radii[v];
     expect_same_circle(n.placement(), r.layout, v);
     EXPECT_EQ(n.local_condition(), r.local[v]) << to_string(n.local_condition()) << " vs " << to_string(r.local[v]);
     const auto& c = n.counters();
@@ -126,7 +126,7 @@ inline int expect_sync_equals_core(const core::PlanarGraph& g, const PackingPara
       EXPECT_EQ(st.wave, r.layout.wave[fv]);
       EXPECT_EQ(st.parent, ids[r.layout.parent[fv]]);
       EXPECT_EQ(st.steps, static_cast<std::uint32_t>(r.iterations));
-      EXPECT_EQ(bits(st.x), bits(r.radii[fv])) << st.x << " vs " << r.radii[fv];
+      EXPECT_EQ(bits(st.h), bits(r.radii[fv])) << st.h << " vs " << r.radii[fv];
       expect_same_circle(st.placement, r.layout, fv);
     }
     EXPECT_TRUE(found);

@@ -42,7 +42,7 @@ bool Accelerator::superstep(const PackingComplex& k, const Radii& before, Radii&
   delta.assign(n, 0.0);
   for (Vertex v = 0; v < n; ++v) {
     if (k.graph.is_boundary(v)) continue;
-    const double d = std::log(after[v]) - std::log(before[v]);
+    const double d = 2 * (before[v] - after[v]);  // Δy in y = log X = −2h
     delta[v] = d;
     norm_now += d * d;
     dot += d * previous_[v];
@@ -59,11 +59,11 @@ bool Accelerator::superstep(const PackingComplex& k, const Radii& before, Radii&
   // Keep every hyperbolic radius above half its value: y' = y + f Δ ≤ y / 2 where Δ > 0.
   for (Vertex v = 0; v < n; ++v) {
     const double d = previous_[v];
-    if (d > 0) factor = std::min(factor, (-0.5 * std::log(after[v])) / d);
+    if (d > 0) factor = std::min(factor, after[v] / d);
   }
   if (!(factor > 0)) return false;
   for (Vertex v = 0; v < n; ++v)
-    if (!k.graph.is_boundary(v)) after[v] = std::exp(std::log(after[v]) + factor * previous_[v]);
+    if (!k.graph.is_boundary(v)) after[v] = -0.5 * (-2 * after[v] + factor * previous_[v]);
   has_previous_ = false;
   ++jumps_;
   return true;
@@ -81,8 +81,8 @@ bool Accelerator::anderson(const PackingComplex& k, const Radii& before, Radii& 
   double norm = 0;
   for (std::size_t i = 0; i < ni; ++i) {
     const Vertex v = interior_[i];
-    g[i] = std::log(after[v]);
-    f[i] = g[i] - std::log(before[v]);
+    g[i] = -2 * after[v];
+    f[i] = g[i] + 2 * before[v];
     norm += f[i] * f[i];
   }
   norm = std::sqrt(norm);
@@ -134,9 +134,9 @@ bool Accelerator::anderson(const PackingComplex& k, const Radii& before, Radii& 
     y = std::min(y, 0.5 * g[i]);
     if (!std::isfinite(y)) return false;
     const Vertex v = interior_[i];
-    const double x = std::exp(y);
-    changed |= x != after[v];
-    after[v] = x;
+    const double h = -0.5 * y;
+    changed |= h != after[v];
+    after[v] = h;
   }
   if (changed) ++jumps_;
   return changed;

@@ -18,19 +18,23 @@ using Complex = std::complex<double>;
 Complex to_origin(Complex z, Complex c) { return (z - c) / (1.0 - std::conj(c) * z); }
 Complex from_origin(Complex z, Complex c) { return (z + c) / (1.0 + std::conj(c) * z); }
 
-// Euclidean radius of a hyperbolic circle of value X centred at the origin: tanh(h/2), e^{-h} = √X.
-double origin_radius(double X) {
-  const double e = std::sqrt(X);
-  return (1 - e) / (1 + e);
-}
+// Euclidean radius of a hyperbolic circle of radius h centred at the origin.
+double origin_radius(double h) { return std::tanh(h / 2); }
 
-// Euclidean distance from the origin of the centre of w when v sits at the origin: tanh(l/2) with
-// cosh l = L / (4√(XvXw)) (see HyperbolicTriangle.hpp).
-double centre_distance(double xv, double xw, double c) {
-  const double q = std::sqrt(xv * xw);
-  if (c == 1.0) return (1 - q) / (1 + q);
-  const double l = (1 + xv) * (1 + xw) + c * (1 - xv) * (1 - xw);
-  return std::sqrt((l - 4 * q) / (l + 4 * q));
+// Euclidean distance from the origin of the centre of w when v sits at the origin: tanh(l/2), where
+// cosh l = cosh h_v cosh h_w + c sinh h_v sinh h_w. With a = e^{-h_v}, b = e^{-h_w} and
+// L = 4ab cosh l (HyperbolicTriangle.hpp), tanh²(l/2) = (L − 4ab) / (L + 4ab) and
+//   L ∓ 4ab = (1+c)(1 ∓ ab)² + (1−c)(a ∓ b)²,
+// where 1 − ab = −expm1(−h_v − h_w) and a − b (through expm1 of h_v − h_w) keep small circles exact.
+double centre_distance(double hv, double hw, double c) {
+  if (c == 1.0) return std::tanh((hv + hw) / 2);
+  const double a = std::exp(-hv), b = std::exp(-hw);
+  const double p = -std::expm1(-(hv + hw));
+  const double m = hv <= hw ? -a * std::expm1(hv - hw) : b * std::expm1(hw - hv);
+  const double num = (1 + c) * p * p + (1 - c) * m * m;
+  const double sp = 1 + a * b, sm = a + b;
+  const double den = (1 + c) * sp * sp + (1 - c) * sm * sm;
+  return std::sqrt(num / den);
 }
 
 // Euclidean radius of the horocycle meeting the origin-centred circle of Euclidean radius s at an
@@ -68,21 +72,21 @@ Complex tangency_point(const Circle& a, const Circle& b) {
 }
 
 // Angle at x of the triangle (x, y, z) with edge cosines c_xy, c_xz, c_yz.
-double triangle_angle(double X, double Y, double Z, double cxy, double cxz, double cyz, bool overlap) {
-  if (!overlap) return tangent_angle(X, Y, Z);
-  return overlap_angle(X, Y, Z, cxy, cxz, cyz);
+double triangle_angle(double hx, double hy, double hz, double cxy, double cxz, double cyz, bool overlap) {
+  if (!overlap) return tangent_angle(lift(hx), lift(hy), lift(hz));
+  return overlap_angle(lift(hx), lift(hy), lift(hz), cxy, cxz, cyz);
 }
 
 // Place w in the frame where interior u (value xu, centre zu) is at the origin, at direction `dir`.
-PlacedCircle place_in_frame(double xu, LayoutVertex w, double cos_uw, double dir, Complex zu) {
+PlacedCircle place_in_frame(double hu, LayoutVertex w, double cos_uw, double dir, Complex zu) {
   const Complex e = std::polar(1.0, dir);
   PlacedCircle out;
   if (w.interior) {
-    const Complex z = from_origin(e * centre_distance(xu, w.x, cos_uw), zu);
+    const Complex z = from_origin(e * centre_distance(hu, w.h, cos_uw), zu);
     out.centre = z;
-    out.circle = euclidean_circle(z, origin_radius(w.x));
+    out.circle = euclidean_circle(z, origin_radius(w.h));
   } else {
-    const double rho = horocycle_radius(origin_radius(xu), cos_uw);
+    const double rho = horocycle_radius(origin_radius(hu), cos_uw);
     const Complex zeta = from_origin(e, zu);
     out.centre = zeta / std::abs(zeta);
     out.circle = horocycle_through(out.centre, from_origin(e * (1 - 2 * rho), zu));
@@ -102,9 +106,9 @@ PlacedCircle place_between_horocycles(LayoutVertex w, LayoutVertex a, const Plac
   Complex zw;      // local centre of w (or ideal point)
   double rw = 0;   // local Euclidean radius of w
   if (w.interior) {
-    const double s = origin_radius(w.x);
+    const double s = origin_radius(w.h);
     za = 1.0;
-    zb = std::polar(1.0, triangle_angle(w.x, a.x, b.x, c.wa, c.wb, c.ab, c.overlap));
+    zb = std::polar(1.0, triangle_angle(w.h, a.h, b.h, c.wa, c.wb, c.ab, c.overlap));
     const double ra = horocycle_radius(s, c.wa), rb = horocycle_radius(s, c.wb);
     ca = {(1 - ra) * za.real(), (1 - ra) * za.imag(), ra};
     cb = {(1 - rb) * zb.real(), (1 - rb) * zb.imag(), rb};
@@ -134,21 +138,21 @@ PlacedCircle place_between_horocycles(LayoutVertex w, LayoutVertex a, const Plac
 }
 }  // namespace
 
-PlacedCircle place_root(double x_root) { return {0.0, Circle{0, 0, origin_radius(x_root)}}; }
+PlacedCircle place_root(double h_root) { return {0.0, Circle{0, 0, origin_radius(h_root)}}; }
 
-PlacedCircle place_first_neighbour(double x_root, LayoutVertex w, double cos_root_w) {
-  return place_in_frame(x_root, w, cos_root_w, 0.0, 0.0);
+PlacedCircle place_first_neighbour(double h_root, LayoutVertex w, double cos_root_w) {
+  return place_in_frame(h_root, w, cos_root_w, 0.0, 0.0);
 }
 
 PlacedCircle place_in_face(LayoutVertex w, LayoutVertex a, const PlacedCircle& pa, LayoutVertex b,
                            const PlacedCircle& pb, const FaceCosines& c) {
   if (a.interior) {  // around a, (a, b, w) is ccw: w follows b
-    const double angle = triangle_angle(a.x, b.x, w.x, c.ab, c.wa, c.wb, c.overlap);
-    return place_in_frame(a.x, w, c.wa, direction(pa.centre, pb.centre) + angle, pa.centre);
+    const double angle = triangle_angle(a.h, b.h, w.h, c.ab, c.wa, c.wb, c.overlap);
+    return place_in_frame(a.h, w, c.wa, direction(pa.centre, pb.centre) + angle, pa.centre);
   }
   if (b.interior) {  // around b, (b, w, a) is ccw: w precedes a
-    const double angle = triangle_angle(b.x, w.x, a.x, c.wb, c.ab, c.wa, c.overlap);
-    return place_in_frame(b.x, w, c.wb, direction(pb.centre, pa.centre) - angle, pb.centre);
+    const double angle = triangle_angle(b.h, w.h, a.h, c.wb, c.ab, c.wa, c.overlap);
+    return place_in_frame(b.h, w, c.wb, direction(pb.centre, pa.centre) - angle, pb.centre);
   }
   return place_between_horocycles(w, a, pa, b, pb, c);
 }
@@ -186,7 +190,7 @@ Vertex choose_root(const PackingComplex& k, RootRule rule) {
   return best;
 }
 
-Layout lay_out(const PackingComplex& k, const Radii& X, Vertex root) {
+Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root) {
   const PlanarGraph& g = k.graph;
   const std::size_t n = g.num_vertices();
   Layout out;
@@ -198,7 +202,7 @@ Layout lay_out(const PackingComplex& k, const Radii& X, Vertex root) {
   const bool overlap = k.has_face_vertices();
   auto interior = [&](Vertex v) { return !g.is_boundary(v); };
   auto cos_of = [&](Vertex u, Vertex v) { return overlap ? k.cos_angle[g.find_dart(u, v)] : 1.0; };
-  auto vertex = [&](Vertex v) { return LayoutVertex{X[v], interior(v)}; };
+  auto vertex = [&](Vertex v) { return LayoutVertex{h[v], interior(v)}; };
   auto store = [&](Vertex v, const PlacedCircle& p) {
     out.centre[v] = p.centre;
     out.circles[v] = p.circle;
@@ -206,9 +210,9 @@ Layout lay_out(const PackingComplex& k, const Radii& X, Vertex root) {
 
   std::vector<Vertex> placed_now;
   if (root != none) {
-    store(root, place_root(X[root]));
+    store(root, place_root(h[root]));
     const Vertex first = g.neighbours(root)[0];
-    store(first, place_first_neighbour(X[root], vertex(first), cos_of(root, first)));
+    store(first, place_first_neighbour(h[root], vertex(first), cos_of(root, first)));
     out.parent[first] = root;
     placed_now = {root, first};
   } else {  // no interior vertex: three boundary circles of an inner face, symmetric

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/core/packing/Packer.hpp"
@@ -102,6 +104,8 @@ TEST(Packer, AccelerationsReachTheSamePackingInFewerSweeps) {
     ASSERT_EQ(fast.status, PackStatus::converged) << to_string(a);
     EXPECT_GT(fast.jumps, 0);
     EXPECT_LT(fast.iterations, plain.iterations / 2) << to_string(a);
-    for (std::size_t i = 0; i < plain.radii.size(); ++i) EXPECT_NEAR(fast.radii[i], plain.radii[i], 1e-7) << to_string(a);
+    for (std::size_t i = 0; i < plain.radii.size(); ++i)
+      if (std::isfinite(plain.radii[i])) EXPECT_NEAR(fast.radii[i], plain.radii[i], 1e-7) << to_string(a);
+      else EXPECT_EQ(fast.radii[i], plain.radii[i]);  // a horocycle stays one
   }
 }

@@ -18,11 +18,11 @@ std::vector<Message> samples() {
           StartMsg{3, 0xffffffffffffffffull},
           WaveMsg{0, false, 0},
           WaveMsg{12, true, 99},
-          RadiusMsg{5, 0.0},
+          RadiusMsg{5, std::numeric_limits<double>::infinity()},
           RadiusMsg{0x01020304, 0.1353352832366127},
-          RadiusMsg{1, 1.0},
+          RadiusMsg{1, 5e-324},
           PlacedMsg{2, 0.25, -0.0, 1e-300, nan, -inf, 5e-324},
-          PlacedMsg{0, 0.0, 0.5, -0.5, 0.1, 0.2, 0.3},
+          PlacedMsg{0, std::numeric_limits<double>::infinity(), 0.5, -0.5, 0.1, 0.2, 0.3},
           ReportMsg{4, true},
           ReportMsg{4, false},
           DecisionMsg{9, Verdict::next},
@@ -49,7 +49,7 @@ bool same(const Message& a, const Message& b) {
   if (const auto* f = std::get_if<FaceCirclesMsg>(&a)) return same_bits(*f, std::get<FaceCirclesMsg>(b));
   if (const auto* r = std::get_if<RadiusMsg>(&a))
     return r->step == std::get<RadiusMsg>(b).step &&
-           std::bit_cast<std::uint64_t>(r->x) == std::bit_cast<std::uint64_t>(std::get<RadiusMsg>(b).x);
+           std::bit_cast<std::uint64_t>(r->h) == std::bit_cast<std::uint64_t>(std::get<RadiusMsg>(b).h);
   return std::visit(
       [&](const auto& x) {
         using T = std::decay_t<decltype(x)>;
@@ -99,8 +99,10 @@ TEST(Codec, RejectsHeadersItDoesNotKnow) {
   std::vector<std::byte> b = encode(ReportMsg{1, true});
   EXPECT_EQ(decode(std::span<const std::byte>{}, out), DecodeStatus::truncated);
   EXPECT_EQ(decode(std::span(b).first(1), out), DecodeStatus::truncated);
-  b[0] = std::byte{2};
-  EXPECT_EQ(decode(b, out), DecodeStatus::bad_version);
+  for (int v : {0, wire_version - 1, wire_version + 1, 255}) {  // version 1 carried X instead of h
+    b[0] = static_cast<std::byte>(v);
+    EXPECT_EQ(decode(b, out), DecodeStatus::bad_version) << v;
+  }
   b[0] = std::byte{wire_version};
   for (int t : {0, max_message_type + 1, 200, 255}) {
     b[1] = static_cast<std::byte>(t);
@@ -124,7 +126,7 @@ TEST(Codec, RejectsOutOfRangeFields) {
   EXPECT_EQ(decode(with(ReportMsg{1, true}, 6, 0xff), out), DecodeStatus::out_of_range);
   EXPECT_EQ(decode(with(DecisionMsg{1, Verdict::cap}, 6, 3), out), DecodeStatus::out_of_range);
   EXPECT_EQ(decode(encode(StartMsg{5, 5}), out), DecodeStatus::out_of_range);
-  for (double x : {-0.5, 1.5, std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::infinity()}) {
+  for (double x : {-0.5, 0.0, -0.0, std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::infinity()}) {
     EXPECT_EQ(decode(encode(RadiusMsg{1, x}), out), DecodeStatus::out_of_range) << x;
     EXPECT_EQ(decode(encode(PlacedMsg{1, x, 0, 0, 0, 0, 0}), out), DecodeStatus::out_of_range) << x;
   }

@@ -55,7 +55,7 @@ TEST(PackingNode, MalformedAndForeignMessagesAreCountedNotTrusted) {
   DequeHost host(g, PackingParams{});
   PackingNode& n = host.node(0);
   n.on_start();
-  const std::byte junk[3] = {std::byte{1}, std::byte{5}, std::byte{0}};
+  const std::byte junk[3] = {std::byte{wire_version}, std::byte{5}, std::byte{0}};
   n.on_message(g.id(g.neighbours(0)[0]), junk);
   EXPECT_EQ(n.counters().decode[static_cast<std::size_t>(DecodeStatus::truncated)], 1u);
   const std::vector<std::byte> ok = encode(DepthMsg{0, false});

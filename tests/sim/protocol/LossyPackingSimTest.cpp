@@ -72,7 +72,7 @@ void expect_equals_core(const core::PlanarGraph& g, int steps, double loss, doub
     SCOPED_TRACE("vertex " + std::to_string(v));
     ASSERT_EQ(n.outcome(), PackingOutcome::converged);
     EXPECT_EQ(n.steps(), static_cast<std::uint32_t>(core_result.iterations));
-    EXPECT_EQ(bits(n.x()), bits(core_result.radii[v]));
+    EXPECT_EQ(bits(n.h()), bits(core_result.radii[v]));
     EXPECT_EQ(bits(n.placement().circle.x), bits(core_result.circles[v].x));
     EXPECT_EQ(bits(n.placement().circle.y), bits(core_result.circles[v].y));
     EXPECT_EQ(bits(n.placement().circle.r), bits(core_result.circles[v].r));
@@ -142,5 +142,5 @@ TEST(LossyPackingSim, LossyRunsAreDeterministicPerSeedAndDifferAcrossSeeds) {
   EXPECT_EQ(a.report.simulated_time, b.report.simulated_time);
   EXPECT_NE(a.host->simulator().trace().hash(), c.host->simulator().trace().hash());
   for (core::Vertex v = 0; v < g.num_vertices(); ++v)  // the packing itself does not depend on the seed
-    EXPECT_EQ(bits(a.node(v).x()), bits(c.node(v).x()));
+    EXPECT_EQ(bits(a.node(v).h()), bits(c.node(v).h()));
 }

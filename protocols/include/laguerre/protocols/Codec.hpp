@@ -6,7 +6,7 @@
 ///
 /// Wire format (all integers little-endian, every field fixed-size, no padding):
 ///
-///     byte 0      version (wire_version = 1)
+///     byte 0      version (wire_version = 2; version 1 carried X = e^{-2h} instead of h)
 ///     byte 1      MessageType
 ///     bytes 2…    the type's fields, in declaration order:
 ///                   u8 / u32 / u64  unsigned integers, 1 / 4 / 8 bytes, little-endian
@@ -45,7 +45,7 @@
 namespace laguerre::protocols {
 
 /// Version of the wire format written into byte 0.
-inline constexpr std::uint8_t wire_version = 1;
+inline constexpr std::uint8_t wire_version = 2;
 
 /// Message types (byte 1 of every message).
 enum class MessageType : std::uint8_t {
@@ -106,20 +106,20 @@ struct WaveMsg {
   friend bool operator==(const WaveMsg&, const WaveMsg&) = default;
 };
 
-/// The sender's X = e^{-2h} at Thurston step `step` (before the step's update). Fields: u32 step,
-/// f64 x ∈ [0, 1].
+/// The sender's hyperbolic radius h at Thurston step `step` (before the step's update). Fields:
+/// u32 step, f64 h ∈ (0, ∞] (∞: a horocycle).
 struct RadiusMsg {
   std::uint32_t step = 0;  ///< global step number (= sweeps done so far)
-  double x = 0;            ///< X value
+  double h = 0;            ///< hyperbolic radius
   friend bool operator==(const RadiusMsg&, const RadiusMsg&) = default;
 };
 
-/// The sender's circle in the layout of round `round`. Fields: u32 round, f64 x ∈ [0, 1], f64 centre
+/// The sender's circle in the layout of round `round`. Fields: u32 round, f64 h ∈ (0, ∞], f64 centre
 /// (real, imaginary), f64 circle (x, y, r). Centre and circle are not range-checked: before
 /// convergence a layout may legitimately hold NaNs or infinities, which the checks then reject.
 struct PlacedMsg {
   std::uint32_t round = 0;  ///< round number (0 = the check before any sweep)
-  double x = 0;             ///< the sender's X in this round
+  double h = 0;             ///< the sender's hyperbolic radius in this round
   double centre_re = 0;     ///< hyperbolic centre or ideal point, real part
   double centre_im = 0;     ///< hyperbolic centre or ideal point, imaginary part
   double cx = 0;            ///< Euclidean circle centre abscissa

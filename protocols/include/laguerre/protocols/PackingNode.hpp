@@ -293,7 +293,7 @@ struct VertexState {
   NodeId parent = 0;                ///< parent in the layout tree (its own id for the root)
   std::uint32_t steps = 0;          ///< Thurston steps done
   std::uint32_t round = 0;          ///< current round
-  double x = 0;                     ///< current X = e^{-2h}
+  double h = 0;                     ///< current hyperbolic radius (∞ on the boundary)
   core::PlacedCircle placement;     ///< placement in the latest layout
   core::LocalCondition local = core::LocalCondition::unrepresentable;  ///< latest local check
   PackingPhase phase = PackingPhase::idle;  ///< phase
@@ -359,8 +359,8 @@ public:
   std::uint32_t steps() const;
   /// Current round (the number of the last or current layout).
   std::uint32_t round() const;
-  /// Current X = e^{-2h}.
-  double x() const;
+  /// Current hyperbolic radius (∞ on the boundary).
+  double h() const;
   /// This node's placement in the latest layout.
   const core::PlacedCircle& placement() const;
   /// The local LPD/GLPD outcome in the latest layout.

@@ -43,7 +43,7 @@ struct Layout {
 /// Chooses the layout root by `rule`; `none` if no vertex of G is interior.
 Vertex choose_root(const PackingComplex& k, RootRule rule);
 
-/// Lays out the circles with radii X as a synchronous wave from `root` (thesis §5.3.1 step 3).
+/// Lays out the circles with hyperbolic radii h as a synchronous wave from `root` (thesis §5.3.1 step 3).
 ///
 /// Round 0 places `root` at the origin and its first neighbour on the positive real axis. In round
 /// r ≥ 1 every unplaced vertex w that has two placed neighbours a, b with (w, a, b) an inner face
@@ -54,7 +54,7 @@ Vertex choose_root(const PackingComplex& k, RootRule rule);
 /// `place_first_neighbour` or `place_in_face` (Placement.hpp), with the parent chosen by
 /// `parent_is_first_anchor`.
 /// Before convergence the sweep accumulates inconsistency; that is expected.
-Layout lay_out(const PackingComplex& k, const Radii& X, Vertex root);
+Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root);
 
 /// Tangency error of edge u–v in a layout: | |p(u) − p(v)| − (σ(u) + σ(v)) | / min(σ(u), σ(v)).
 double tangency_error(const CircleEmbedding& c, Vertex u, Vertex v);

@@ -67,7 +67,7 @@ struct PackResult {
   std::vector<LocalCondition> local;  ///< LPD/GLPD outcome per vertex of G at the end
   std::size_t local_ok = 0;           ///< number of vertices where it holds
   Layout layout;                      ///< the final layout of the whole complex
-  Radii radii;                        ///< final X = e^{-2h} per vertex of the complex
+  Radii radii;                        ///< final hyperbolic radius h per vertex of the complex (∞ on the boundary)
 };
 
 /// Observer of a packing run (Boost.Graph-style visitor); the default does nothing.

@@ -13,9 +13,9 @@
 
 namespace laguerre::core {
 
-/// A vertex as the layout sees it: its value X = e^{-2h} and whether it is interior.
+/// A vertex as the layout sees it: its hyperbolic radius and whether it is interior.
 struct LayoutVertex {
-  double x = 0;          ///< X = e^{-2h} (0 for a boundary vertex: a horocycle)
+  double h = 0;          ///< hyperbolic radius (∞ for a boundary vertex: a horocycle)
   bool interior = false; ///< interior vertex (a hyperbolic circle) or boundary vertex (a horocycle)
 };
 
@@ -35,12 +35,12 @@ struct FaceCosines {
   bool overlap = false;
 };
 
-/// The root's circle: centred at the origin. Requires an interior root (x ∈ (0, 1)).
-PlacedCircle place_root(double x_root);
+/// The root's circle: centred at the origin. Requires an interior root (h ∈ (0, ∞)).
+PlacedCircle place_root(double h_root);
 
 /// The root's first neighbour w, on the positive real axis, with edge cosine `cos_root_w`
 /// (1 unless the complex has face vertices).
-PlacedCircle place_first_neighbour(double x_root, LayoutVertex w, double cos_root_w);
+PlacedCircle place_first_neighbour(double h_root, LayoutVertex w, double cos_root_w);
 
 /// Places w in the inner face (w, a, b) (counter-clockwise) from the placed a and b: rotates about a
 /// when a is interior, else about b when b is interior, else (two horocycles) by the Möbius map that
