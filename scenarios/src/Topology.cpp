@@ -12,7 +12,6 @@
 #include "laguerre/core/meshing/MetricField.hpp"
 #include "laguerre/core/meshing/StarMesher.hpp"
 #include "laguerre/scenarios/fields/Deployment.hpp"
-#include "laguerre/scenarios/fields/Domain.hpp"
 #include "laguerre/scenarios/fields/FieldGraph.hpp"
 #include "laguerre/scenarios/generators/UniformThreeConnected.hpp"
 #include "laguerre/scenarios/generators/UniformTriangulation.hpp"
@@ -256,7 +255,13 @@ std::vector<GeneratorInfo> make_registry() {
     cap.min = 3;
     cap.max = 1e7;
     cap.default_text = "200000";
-    g.params = {domain, metric, bound, cap};
+    ParamSpec corners;
+    corners.name = "refine_corners";
+    corners.type = ParamType::boolean;
+    corners.help = "refine every boundary corner left with a single triangle (core::StarMeshOptions::no_lonely_corners), "
+                   "so that a mesh of a domain with holes is 3-connected (its holes inner faces)";
+    corners.default_text = "true";
+    g.params = {domain, metric, bound, cap, corners};
     g.positions = true;
     g.check = [](const TopologyParams& p) {
       std::vector<ParamIssue> out;
@@ -342,9 +347,8 @@ std::vector<GeneratorInfo> make_registry() {
         out.push_back({"radius", "nothing", "a radius > 0 for graph " + graph_type});
       if (p.has("domain")) {
         try {
-          Polygons polys = p.polygons("domain");
-          Polygon outer = polys.front();
-          (void)Domain(outer, std::vector<Polygon>(polys.begin() + 1, polys.end()));
+          const Polygons polys = p.polygons("domain");
+          (void)core::Domain(polys.front(), Polygons(polys.begin() + 1, polys.end()));
         } catch (const std::exception& e) {
           out.push_back({"domain", "an invalid domain (" + std::string(e.what()) + ")",
                          "a simple outer polygon and disjoint simple holes strictly inside it"});
@@ -427,6 +431,7 @@ Topology build_topology(std::string_view generator, const TopologyParams& params
       options.size_bound = params.number("size_bound", 1);
       options.max_vertices = static_cast<std::size_t>(params.integer("max_vertices", 200000));
       options.seed = seed;
+      options.no_lonely_corners = params.boolean("refine_corners", true);
       const core::StarMeshResult mesh = core::mesh_with_stars(domain, *field, options);
       if (!mesh.converged) throw TopologyError("mesh: the refinement did not converge (" + mesh.status + ")");
       std::vector<std::uint64_t> ids(mesh.mesh.points.size());
@@ -444,14 +449,17 @@ Topology build_topology(std::string_view generator, const TopologyParams& params
       std::sort(edges.begin(), edges.end());
       edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
       const std::string name = "mesh(" + field->describe() + ", " + std::to_string(ids.size()) + " vertices)";
-      return prepare(core::graph_from_drawing(std::move(ids), std::move(positions), edges, name, false), name,
-                     generator);
+      // The drawing's unbounded face (the outer boundary) is the outer face: holes stay inner faces.
+      Topology t = prepare(core::graph_from_drawing(std::move(ids), std::move(positions), edges, name, false), name,
+                           generator);
+      if (options.no_lonely_corners)
+        t.note = name + ": " + std::to_string(mesh.stats.corners) + " lonely corner(s) refined";
+      return t;
     }
     if (generator == "field") {
       const Polygons polys = params.polygons("domain");
-      const Domain domain = polys.empty()
-                                ? Domain::rectangle(0, 0, 1, 1)
-                                : Domain(polys.front(), std::vector<Polygon>(polys.begin() + 1, polys.end()));
+      const core::Domain domain = polys.empty() ? core::Domain::unit_square()
+                                                : core::Domain(polys.front(), Polygons(polys.begin() + 1, polys.end()));
       std::vector<core::Point2> points;
       if (params.text("deployment", "uniform") == "clustered") {
         ClusterOptions co;
