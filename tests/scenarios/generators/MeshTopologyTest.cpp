@@ -1,5 +1,6 @@
 // The `mesh` topology of a domain with holes: the corner rule makes it a 3-connected network whose
-// outer face is the outer boundary and whose holes are inner faces; without the rule it is refused.
+// outer face is the outer boundary and whose holes are inner faces; without the rule it is refused
+// (naming the separating pair) unless a repair policy applies.
 #include "laguerre/scenarios/Topology.hpp"
 
 #include <gtest/gtest.h>
@@ -51,9 +52,17 @@ TEST(MeshTopology, WithoutTheCornerRuleTheSeparatingPairIsNamed) {
     (void)build_topology("mesh", p, 7, 0);
     FAIL() << "a mesh with lonely corners was accepted";
   } catch (const TopologyError& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot be packed"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("disconnects it"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("is neither a triangulated disc"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("disconnects it; choose repair"), std::string::npos) << e.what();
   }
+  // The field's repair policies apply: the 3-connected core drops the lonely corners, the holes stay.
+  p.set("repair", std::string("three-connected-core"));
+  const Topology t = build_topology("mesh", p, 7, 0);
+  EXPECT_EQ(t.kind, core::GraphKind::three_connected);
+  EXPECT_NE(t.note.find("repair removed 3 points"), std::string::npos) << t.note;
+  std::size_t larger = 0;
+  for (core::Face f = 0; f < t.graph.num_faces(); ++f) larger += f != t.graph.outer_face() && t.graph.face_size(f) > 3;
+  EXPECT_GE(larger, 1u);
 }
 
 }  // namespace
