@@ -12,7 +12,6 @@
 #include "laguerre/core/meshing/MetricField.hpp"
 #include "laguerre/core/meshing/StarMesher.hpp"
 #include "laguerre/scenarios/fields/Deployment.hpp"
-#include "laguerre/scenarios/fields/Domain.hpp"
 #include "laguerre/scenarios/fields/FieldGraph.hpp"
 #include "laguerre/scenarios/generators/UniformThreeConnected.hpp"
 #include "laguerre/scenarios/generators/UniformTriangulation.hpp"
@@ -256,7 +255,19 @@ std::vector<GeneratorInfo> make_registry() {
     cap.min = 3;
     cap.max = 1e7;
     cap.default_text = "200000";
-    g.params = {domain, metric, bound, cap};
+    ParamSpec corners;
+    corners.name = "refine_corners";
+    corners.type = ParamType::boolean;
+    corners.help = "refine every boundary corner left with a single triangle (core::StarMeshOptions::no_lonely_corners), "
+                   "so that a mesh of a domain with holes is 3-connected (its holes inner faces)";
+    corners.default_text = "true";
+    ParamSpec repair;
+    repair.name = "repair";
+    repair.type = ParamType::choice;
+    repair.help = "what to do with a mesh that is neither a triangulated disc nor 3-connected (as for field)";
+    repair.choices = {"fail", "largest-block", "three-connected-core", "triangulate-faces"};
+    repair.default_text = "fail";
+    g.params = {domain, metric, bound, cap, corners, repair};
     g.positions = true;
     g.check = [](const TopologyParams& p) {
       std::vector<ParamIssue> out;
@@ -342,9 +353,8 @@ std::vector<GeneratorInfo> make_registry() {
         out.push_back({"radius", "nothing", "a radius > 0 for graph " + graph_type});
       if (p.has("domain")) {
         try {
-          Polygons polys = p.polygons("domain");
-          Polygon outer = polys.front();
-          (void)Domain(outer, std::vector<Polygon>(polys.begin() + 1, polys.end()));
+          const Polygons polys = p.polygons("domain");
+          (void)core::Domain(polys.front(), Polygons(polys.begin() + 1, polys.end()));
         } catch (const std::exception& e) {
           out.push_back({"domain", "an invalid domain (" + std::string(e.what()) + ")",
                          "a simple outer polygon and disjoint simple holes strictly inside it"});
@@ -427,15 +437,12 @@ Topology build_topology(std::string_view generator, const TopologyParams& params
       options.size_bound = params.number("size_bound", 1);
       options.max_vertices = static_cast<std::size_t>(params.integer("max_vertices", 200000));
       options.seed = seed;
+      options.no_lonely_corners = params.boolean("refine_corners", true);
       const core::StarMeshResult mesh = core::mesh_with_stars(domain, *field, options);
       if (!mesh.converged) throw TopologyError("mesh: the refinement did not converge (" + mesh.status + ")");
-      std::vector<std::uint64_t> ids(mesh.mesh.points.size());
       std::vector<core::Point2> positions;
-      for (std::size_t i = 0; i < ids.size(); ++i) {
-        ids[i] = i;
-        positions.push_back({mesh.mesh.points[i][0], mesh.mesh.points[i][1]});
-      }
-      std::vector<std::pair<core::Vertex, core::Vertex>> edges;
+      for (const auto& p : mesh.mesh.points) positions.push_back({p[0], p[1]});
+      EdgeList edges;
       for (const auto& t : mesh.mesh.triangles)
         for (std::size_t k = 0; k < 3; ++k) {
           const auto a = static_cast<core::Vertex>(t[k]), b = static_cast<core::Vertex>(t[(k + 1) % 3]);
@@ -443,15 +450,25 @@ Topology build_topology(std::string_view generator, const TopologyParams& params
         }
       std::sort(edges.begin(), edges.end());
       edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-      const std::string name = "mesh(" + field->describe() + ", " + std::to_string(ids.size()) + " vertices)";
-      return prepare(core::graph_from_drawing(std::move(ids), std::move(positions), edges, name, false), name,
-                     generator);
+      const std::string name = "mesh(" + field->describe() + ", " + std::to_string(positions.size()) + " vertices)";
+      // The report and repair of sensor fields (vertex ids = mesh indices). The drawing's unbounded face
+      // (the outer boundary) is the outer face, so holes stay inner faces. The mesh is plane by construction.
+      FieldGraph fg = field_graph_from_edges(positions, edges, parse_repair_policy(params.text("repair", "fail")), name,
+                                             "mesh", false);
+      Topology t;
+      t.graph = std::move(fg.input.graph);
+      t.kind = fg.kind;
+      t.positions = std::move(fg.input.positions);
+      t.name = name;
+      t.family = std::string(generator);
+      t.note = fg.report.summary(name);
+      if (options.no_lonely_corners) t.note += "; " + std::to_string(mesh.stats.corners) + " lonely corner(s) refined";
+      return t;
     }
     if (generator == "field") {
       const Polygons polys = params.polygons("domain");
-      const Domain domain = polys.empty()
-                                ? Domain::rectangle(0, 0, 1, 1)
-                                : Domain(polys.front(), std::vector<Polygon>(polys.begin() + 1, polys.end()));
+      const core::Domain domain = polys.empty() ? core::Domain::unit_square()
+                                                : core::Domain(polys.front(), Polygons(polys.begin() + 1, polys.end()));
       std::vector<core::Point2> points;
       if (params.text("deployment", "uniform") == "clustered") {
         ClusterOptions co;

@@ -12,6 +12,7 @@
 namespace {
 
 using namespace laguerre::scenarios;
+using laguerre::core::Domain;
 
 /// The unit square with two square holes (area 0.92).
 const Domain& domain() {

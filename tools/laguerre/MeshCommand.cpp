@@ -126,7 +126,8 @@ int run_mesh(MeshArgs& a) {
         {"distortion_bound", a.options.distortion_bound},
         {"picking_ratio", a.options.picking_ratio},
         {"max_vertices", a.options.max_vertices},
-        {"seed", a.options.seed}}},
+        {"seed", a.options.seed},
+        {"no_lonely_corners", a.options.no_lonely_corners}}},
       {"rules",
        {{"encroachment", r.stats.encroachment},
         {"distortion", r.stats.distortion},
@@ -134,6 +135,7 @@ int run_mesh(MeshArgs& a) {
         {"shape", r.stats.shape},
         {"inconsistency", r.stats.inconsistency},
         {"snapped", r.stats.snapped},
+        {"corners", r.stats.corners},
         {"star_updates", r.stats.star_updates},
         {"consistency_sweeps", r.stats.consistency_sweeps}}},
       {"quality",
@@ -158,9 +160,11 @@ int run_mesh(MeshArgs& a) {
     std::printf("status       %s; %s\n", r.status.c_str(), valid.empty() ? "valid triangulation of the domain" : valid.c_str());
     std::printf("size         %zu vertices, %zu triangles in %.2f s (%.0f vertices/s)\n", r.mesh.points.size(),
                 r.mesh.triangles.size(), seconds, static_cast<double>(r.mesh.points.size()) / seconds);
-    std::printf("rules        encroachment %zu, distortion %zu, size %zu, shape %zu, inconsistency %zu (snapped %zu)\n",
+    std::printf("rules        encroachment %zu, distortion %zu, size %zu, shape %zu, inconsistency %zu (snapped %zu)",
                 r.stats.encroachment, r.stats.distortion, r.stats.size, r.stats.shape, r.stats.inconsistency,
                 r.stats.snapped);
+    if (a.options.no_lonely_corners) std::printf(", lonely corners %zu", r.stats.corners);
+    std::printf("\n");
     std::printf("quality      %-16s %8s %8s %8s %8s %8s\n", "(in the metric)", "min", "p5", "mean", "p95", "max");
     auto row = [](const char* name, const core::QualitySummary& s) {
       std::printf("             %-16s %8.3f %8.3f %8.3f %8.3f %8.3f\n", name, s.min, s.p5, s.mean, s.p95, s.max);
@@ -200,6 +204,8 @@ Action add_mesh_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 0.5))->capture_default_str();
   cmd->add_option("--max-vertices", args->options.max_vertices, "Stop beyond this many vertices")->capture_default_str();
   cmd->add_option("--seed", args->options.seed, "Seed of the picking")->capture_default_str();
+  cmd->add_flag("--no-lonely-corners", args->options.no_lonely_corners,
+                "Refine every boundary corner left with a single triangle (rule 6, core/meshing/StarMesher.hpp)");
   cmd->add_option("-o,--out", args->out, "Output path stem (default out/mesh/<domain>)");
   cmd->add_flag("--force", args->force, "Overwrite existing outputs");
   cmd->add_flag("--json", args->json, "Print the JSON report instead of the table");

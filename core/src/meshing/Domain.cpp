@@ -96,6 +96,22 @@ std::vector<std::array<Point2, 2>> edges_of(const std::vector<Point2>& poly) {
   return edges;
 }
 
+/// Whether the closed segment [p, q] meets the open triangle abc (counter-clockwise). By the separating
+/// axis theorem for convex polygons they are disjoint iff one of the four edge lines weakly separates
+/// them: the segment lies in the closed right side of a triangle edge, or the triangle in one closed
+/// side of line pq. Exact.
+bool segment_meets_open_triangle(Point2 a, Point2 b, Point2 c, Point2 p, Point2 q) {
+  const Point2 t[3] = {a, b, c};
+  for (int i = 0; i < 3; ++i) {
+    const Point2 x = t[i], y = t[(i + 1) % 3];
+    if (orientation(x, y, p) != Sign::positive && orientation(x, y, q) != Sign::positive) return false;
+  }
+  const Sign sa = orientation(p, q, a), sb = orientation(p, q, b), sc = orientation(p, q, c);
+  if (sa != Sign::negative && sb != Sign::negative && sc != Sign::negative) return false;
+  if (sa != Sign::positive && sb != Sign::positive && sc != Sign::positive) return false;
+  return true;
+}
+
 }  // namespace
 
 Domain::Domain(std::vector<Point2> outer, std::vector<std::vector<Point2>> holes,
@@ -158,6 +174,11 @@ Domain::Domain(std::vector<Point2> outer, std::vector<std::vector<Point2>> holes
 
 Domain Domain::unit_square() { return Domain({{0, 0}, {1, 0}, {1, 1}, {0, 1}}); }
 
+Domain Domain::rectangle(double xmin, double ymin, double xmax, double ymax) {
+  if (!(xmin < xmax) || !(ymin < ymax)) throw DomainError("a rectangle needs xmin < xmax and ymin < ymax");
+  return Domain({{xmin, ymin}, {xmax, ymin}, {xmax, ymax}, {xmin, ymax}});
+}
+
 std::vector<std::array<Point2, 2>> Domain::constraints() const {
   std::vector<std::array<Point2, 2>> all = edges_of(outer_);
   for (const auto& hole : holes_)
@@ -192,6 +213,29 @@ std::array<double, 4> Domain::bounding_box() const {
     box[3] = std::max(box[3], p.y);
   }
   return box;
+}
+
+bool Domain::triangle_inside(Point2 a, Point2 b, Point2 c) const {
+  if (orientation(a, b, c) != Sign::positive)
+    throw std::invalid_argument("Domain::triangle_inside needs a counter-clockwise triangle.");
+  const double x0 = std::min({a.x, b.x, c.x}), y0 = std::min({a.y, b.y, c.y});
+  const double x1 = std::max({a.x, b.x, c.x}), y1 = std::max({a.y, b.y, c.y});
+  const auto meets = [&](Point2 p, Point2 q) {
+    if (std::max(p.x, q.x) <= x0 || std::min(p.x, q.x) >= x1 || std::max(p.y, q.y) <= y0 || std::min(p.y, q.y) >= y1)
+      return false;  // the open triangle lies strictly inside its box
+    return segment_meets_open_triangle(a, b, c, p, q);
+  };
+  for (const auto& e : constraints())
+    if (meets(e[0], e[1])) return false;
+  // No boundary point in the open triangle: it lies wholly inside or wholly outside; a vertex strictly
+  // inside the domain decides (the domain contains a neighbourhood of it, which meets the triangle).
+  for (const Point2 v : {a, b, c}) {
+    const DomainSide side = locate(v);
+    if (side == DomainSide::inside) return true;
+    if (side == DomainSide::outside) return false;  // a vertex strictly outside: the open triangle is too
+  }
+  throw std::invalid_argument(
+      "Domain::triangle_inside needs a vertex strictly inside the domain; all three are on its boundary.");
 }
 
 Domain read_domain(const std::string& path) {

@@ -157,6 +157,7 @@ public:
         continue;
       }
       if (!consistency_sweep()) {
+        if (options_.no_lonely_corners && refine_lonely_corners()) continue;
         result.converged = true;
         result.status = "converged";
         break;
@@ -470,31 +471,93 @@ private:
     const Point2 p{t->cx + (f.m11 * ux - f.m01 * uy) / det, t->cy + (-f.m10 * ux + f.m00 * uy) / det};
     const Point2 g{(points_[r.v].x + points_[r.a].x + points_[r.b].x) / 3,
                    (points_[r.v].y + points_[r.a].y + points_[r.b].y) / 3};
-    // Insert or snap: a point encroaching a subsegment, or outside Ω, splits a subsegment instead.
-    std::vector<Index> hit;
-    if (p.x >= box_[0] && p.x <= box_[2] && p.y >= box_[1] && p.y <= box_[3])
-      for (Index s : subs_grid_.at(subs_grid_.ix(p.x), subs_grid_.iy(p.y)))
-        if (subs_[s].alive && encroaches(s, p)) hit.push_back(s);
-    if (hit.empty() && domain_.locate(p) != DomainSide::inside) {
-      // The subsegment crossed on the way from the triangle to p.
-      for (std::size_t s = 0; s < subs_.size() && hit.empty(); ++s)
-        if (subs_[s].alive && segments_intersect(g, p, points_[subs_[s].a], points_[subs_[s].b]))
-          hit.push_back(static_cast<Index>(s));
-      if (hit.empty()) return;  // cannot happen for a triangle inside Ω; skip rather than loop
-    }
-    if (!hit.empty()) {
-      ++stats_.snapped;
-      for (Index s : hit)
-        if (subs_[s].alive) split(s);
-      return;
-    }
+    const double hint = 3 * t->radius;
+    if (place(p, g, hint) != Placement::inserted) return;
     switch (r.rule) {
       case 2: ++stats_.distortion; break;
       case 3: ++stats_.size; break;
       case 4: ++stats_.shape; break;
       default: ++stats_.inconsistency; break;
     }
-    add_site(p, 3 * t->radius);
+  }
+
+  /// What `place` did with a refinement point.
+  enum class Placement { skipped, snapped, inserted };
+
+  /// Insert or snap: a point encroaching a subsegment, or outside Ω, splits a subsegment instead (those
+  /// it encroaches, or the one crossed on the way from `from`, a point of Ω, to p); else p is inserted
+  /// with star query hint `hint`.
+  Placement place(Point2 p, Point2 from, double hint) {
+    std::vector<Index> hit;
+    if (p.x >= box_[0] && p.x <= box_[2] && p.y >= box_[1] && p.y <= box_[3])
+      for (Index s : subs_grid_.at(subs_grid_.ix(p.x), subs_grid_.iy(p.y)))
+        if (subs_[s].alive && encroaches(s, p)) hit.push_back(s);
+    if (hit.empty() && domain_.locate(p) != DomainSide::inside) {
+      for (std::size_t s = 0; s < subs_.size() && hit.empty(); ++s)
+        if (subs_[s].alive && segments_intersect(from, p, points_[subs_[s].a], points_[subs_[s].b]))
+          hit.push_back(static_cast<Index>(s));
+      if (hit.empty()) return Placement::skipped;  // cannot happen for a triangle inside Ω; skip rather than loop
+    }
+    if (!hit.empty()) {
+      ++stats_.snapped;
+      for (Index s : hit)
+        if (subs_[s].alive) split(s);
+      return Placement::snapped;
+    }
+    add_site(p, hint);
+    return Placement::inserted;
+  }
+
+  // --- rule 6: lonely corners ------------------------------------------------------------------------
+
+  /// Applies rule 6 (StarMesher.hpp) to every site whose star is a single triangle; false if there is
+  /// none or nothing could be done.
+  bool refine_lonely_corners() {
+    std::vector<std::pair<Index, StarTriangle>> lonely;  // copies: insertions reallocate stars_
+    for (Index v = 0; v < stars_.size(); ++v)
+      if (stars_[v].triangles.size() == 1) lonely.emplace_back(v, stars_[v].triangles.front());
+    bool changed = false;
+    for (const auto& [v, t] : lonely) changed = refine_corner(v, t) || changed;
+    return changed;
+  }
+
+  /// Rule 6 at the corner v of its only triangle (v, t.a, t.b).
+  bool refine_corner(Index v, const StarTriangle& t) {
+    const Point2 p = points_[v];
+    const Matrix2& f = roots_[v];
+    const auto stretch = [&](double x, double y) {
+      const double dx = x - p.x, dy = y - p.y;
+      return std::array<double, 2>{f.m00 * dx + f.m01 * dy, f.m10 * dx + f.m11 * dy};
+    };
+    const auto sa = stretch(points_[t.a].x, points_[t.a].y), sb = stretch(points_[t.b].x, points_[t.b].y);
+    const auto so = stretch(t.cx, t.cy);
+    const double la = std::hypot(sa[0], sa[1]), lb = std::hypot(sb[0], sb[1]);
+    double dx = sa[0] / la + sb[0] / lb, dy = sa[1] / la + sb[1] / lb;
+    const double ld = std::hypot(dx, dy);
+    if (!(ld > 0)) return false;  // a flat corner cannot bound a single triangle
+    dx /= ld, dy /= ld;
+    const double cos_half = (sa[0] * dx + sa[1] * dy) / la;
+    const double lower = std::max(la, lb) * cos_half;   // outside both diametral balls from here on
+    const double upper = 2 * (so[0] * dx + so[1] * dy);  // inside the circumcircle up to here
+    ++stats_.corners;
+    if (lower > 0 && lower < upper * (1 - 1e-6)) {
+      const double r = std::sqrt(lower * upper);
+      const double ux = r * dx, uy = r * dy;
+      const double det = f.m00 * f.m11 - f.m01 * f.m10;
+      const Point2 q{p.x + (f.m11 * ux - f.m01 * uy) / det, p.y + (-f.m10 * ux + f.m00 * uy) / det};
+      const Point2 g{(p.x + points_[t.a].x + points_[t.b].x) / 3, (p.y + points_[t.a].y + points_[t.b].y) / 3};
+      return place(q, g, 3 * t.radius) != Placement::skipped;
+    }
+    // A sharp corner with unequal subsegments: split the longer one (then the shorter, if it is not one).
+    const Index first = la >= lb ? t.a : t.b, second = la >= lb ? t.b : t.a;
+    for (const Index w : {first, second})
+      for (std::size_t s = 0; s < subs_.size(); ++s)
+        if (subs_[s].alive && ((subs_[s].a == v && subs_[s].b == w) || (subs_[s].a == w && subs_[s].b == v))) {
+          split(static_cast<Index>(s));
+          return true;
+        }
+    --stats_.corners;
+    return false;
   }
 
   // --- output --------------------------------------------------------------------------------------

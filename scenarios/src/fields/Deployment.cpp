@@ -29,12 +29,12 @@ std::size_t draw_budget(std::size_t n) { return 1000 * n + 1000000; }
 }
 
 /// Uniform point of the domain's bounding box, kept iff strictly inside; `budget` counts draws.
-bool draw_uniform(const Domain& domain, FieldRandom& random, Point2& out, std::size_t& budget) {
-  const Domain::Box& b = domain.bounds();
+bool draw_uniform(const core::Domain& domain, FieldRandom& random, Point2& out, std::size_t& budget) {
+  const auto [xmin, ymin, xmax, ymax] = domain.bounding_box();
   while (budget > 0) {
     --budget;
-    const Point2 p{b.xmin + (b.xmax - b.xmin) * random.uniform01(), b.ymin + (b.ymax - b.ymin) * random.uniform01()};
-    if (domain.locate(p) == Domain::Location::inside) {
+    const Point2 p{xmin + (xmax - xmin) * random.uniform01(), ymin + (ymax - ymin) * random.uniform01()};
+    if (domain.locate(p) == core::DomainSide::inside) {
       out = p;
       return true;
     }
@@ -62,7 +62,7 @@ void make_distinct(std::vector<Point2>& points, Draw&& draw) {
 
 }  // namespace
 
-std::vector<Point2> deploy_uniform(const Domain& domain, std::size_t n, std::uint64_t seed) {
+std::vector<Point2> deploy_uniform(const core::Domain& domain, std::size_t n, std::uint64_t seed) {
   if (n == 0) throw std::invalid_argument("a deployment needs at least one point.");
   FieldRandom random(seed);
   std::size_t budget = draw_budget(n);
@@ -77,7 +77,7 @@ std::vector<Point2> deploy_uniform(const Domain& domain, std::size_t n, std::uin
   return points;
 }
 
-std::vector<Point2> deploy_clustered(const Domain& domain, std::size_t n, const ClusterOptions& options,
+std::vector<Point2> deploy_clustered(const core::Domain& domain, std::size_t n, const ClusterOptions& options,
                                      std::uint64_t seed) {
   if (n == 0) throw std::invalid_argument("a deployment needs at least one point.");
   if (options.clusters == 0) throw std::invalid_argument("a clustered deployment needs at least one cluster.");
@@ -104,7 +104,7 @@ std::vector<Point2> deploy_clustered(const Domain& domain, std::size_t n, const 
       const Point2 parent = parents[random.below(parents.size())];
       const Point2 d = offset();
       const Point2 p{parent.x + d.x, parent.y + d.y};
-      if (domain.locate(p) == Domain::Location::inside) return p;
+      if (domain.locate(p) == core::DomainSide::inside) return p;
     }
     hopeless(n, accepted, "clustered");
   };

@@ -303,13 +303,13 @@ std::string FieldGraphReport::summary(std::string_view name) const {
   return s;
 }
 
-double radius_for_mean_degree(const Domain& domain, std::size_t n, double degree) {
+double radius_for_mean_degree(const core::Domain& domain, std::size_t n, double degree) {
   if (n == 0 || !(degree > 0) || !std::isfinite(degree))
     throw std::invalid_argument("radius_for_mean_degree needs n > 0 and a positive finite degree.");
   return std::sqrt(degree * domain.area() / (3.141592653589793 * static_cast<double>(n)));
 }
 
-EdgeList field_edges(const Domain& domain, std::span<const Point2> points, const FieldGraphOptions& options) {
+EdgeList field_edges(const core::Domain& domain, std::span<const Point2> points, const FieldGraphOptions& options) {
   switch (options.type) {
     case FieldGraphType::delaunay: return restricted_delaunay_edges(domain, points);
     case FieldGraphType::unit_disk: return unit_disk_edges(points, options.radius);
@@ -320,7 +320,7 @@ EdgeList field_edges(const Domain& domain, std::span<const Point2> points, const
   throw std::invalid_argument("unknown field graph type.");
 }
 
-FieldGraph build_field_graph(const Domain& domain, std::span<const Point2> points, const FieldGraphOptions& options) {
+FieldGraph build_field_graph(const core::Domain& domain, std::span<const Point2> points, const FieldGraphOptions& options) {
   const EdgeList edges = field_edges(domain, points, options);
   std::string name(to_string(options.type));
   if (options.type != FieldGraphType::delaunay) {

@@ -180,9 +180,9 @@ EdgeList delaunay_edges(std::span<const Point2> points) {
   return edges;
 }
 
-EdgeList restricted_delaunay_edges(const Domain& domain, std::span<const Point2> points) {
+EdgeList restricted_delaunay_edges(const core::Domain& domain, std::span<const Point2> points) {
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (domain.locate(points[i]) != Domain::Location::inside)
+    if (domain.locate(points[i]) != core::DomainSide::inside)
       throw std::invalid_argument("point " + std::to_string(i) + " is not strictly inside the domain.");
   EdgeList edges;
   for (const auto& t : core::delaunay_triangles(points))

@@ -134,5 +134,64 @@ TEST(Domain, ReadsTheFileFormatAndReportsLines) {
   std::filesystem::remove_all(dir);
 }
 
+// The cases below come from the sensor-field copy of Domain (scenarios/fields), merged into this one.
+
+TEST(Domain, RejectsBadHolesAndRectangles) {
+  const std::vector<Point2> square4{{0, 0}, {4, 0}, {4, 4}, {0, 4}}, square9{{0, 0}, {9, 0}, {9, 9}, {0, 9}};
+  const auto sq = [](double x0, double y0, double x1, double y1) {
+    return std::vector<Point2>{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  };
+  EXPECT_NE(error_of([&] { Domain(square4, {sq(5, 5, 6, 6)}); }).find("hole 1 is not strictly inside the outer boundary"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { Domain(square4, {sq(1, 1, 2, 2), sq(3, 3, 5, 5)}); }).find("hole 2 is not strictly inside"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { Domain(square4, {sq(0, 1, 1, 2)}); }).find("hole 1 is not strictly inside"),  // on the edge
+            std::string::npos);
+  EXPECT_NE(error_of([&] { Domain(square9, {sq(1, 1, 5, 5), sq(2, 2, 3, 3)}); }).find("hole 2 and hole 1 are nested"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { Domain(square9, {sq(1, 1, 3, 3), sq(3, 1, 5, 3)}); }).find("hole 2 meets hole 1"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { Domain({{0, 0}, {1, 0}, {1, std::nan("")}}); }).find("non-finite"), std::string::npos);
+  EXPECT_NE(error_of([] { Domain({{0, 0}, {3, 0}, {2, 0}, {2, 2}}); }).find("folds back"), std::string::npos);  // a spike
+  EXPECT_EQ(error_of([&] { Domain(square4, {sq(1, 1, 2, 2), sq(2.5, 2.5, 3, 3)}); }), "no error");
+  EXPECT_NE(error_of([] { Domain::rectangle(1, 0, 1, 2); }).find("xmin < xmax"), std::string::npos);
+  const Domain r = Domain::rectangle(-1, 0, 2, 0.5);
+  EXPECT_DOUBLE_EQ(r.area(), 1.5);
+  EXPECT_EQ(r.bounding_box(), (std::array<double, 4>{-1, 0, 2, 0.5}));
+}
+
+TEST(Domain, LocatesAHairAroundAHoleEdge) {
+  const Domain d({{0, 0}, {4, 0}, {4, 4}, {0, 4}}, {{{1, 1}, {2, 1}, {2, 2}, {1, 2}}});
+  EXPECT_EQ(d.locate({1.5, 2}), DomainSide::boundary);
+  EXPECT_EQ(d.locate({1, 1}), DomainSide::boundary);  // hole corner
+  EXPECT_EQ(d.locate({1.5, std::nextafter(2.0, 0.0)}), DomainSide::outside);
+  EXPECT_EQ(d.locate({1.5, std::nextafter(2.0, 3.0)}), DomainSide::inside);
+  // Rays towards +x through the hole's corners (1, 1) and (2, 1), and along its edge y = 2.
+  EXPECT_EQ(d.locate({0.5, 1}), DomainSide::inside);
+  EXPECT_EQ(d.locate({0.5, 2}), DomainSide::inside);
+  EXPECT_EQ(d.locate({5, 1}), DomainSide::outside);
+}
+
+TEST(Domain, TriangleInside) {
+  const Domain d({{0, 0}, {4, 0}, {4, 4}, {0, 4}}, {{{1, 1}, {2, 1}, {2, 2}, {1, 2}}});
+  EXPECT_TRUE(d.triangle_inside({0.5, 0.5}, {3.5, 0.5}, {3.5, 0.9}));
+  EXPECT_FALSE(d.triangle_inside({0.5, 0.5}, {3.5, 0.5}, {3.5, 3.5}));  // cuts through the hole
+  EXPECT_FALSE(d.triangle_inside({0.5, 0.5}, {3.5, 0.5}, {1.5, 1.5}));  // a vertex in the hole
+  EXPECT_FALSE(d.triangle_inside({0.5, 1.5}, {1.5, 0.5}, {2.5, 1.5}));  // pokes into the hole
+  EXPECT_TRUE(d.triangle_inside({0.5, 0.5}, {1, 0.5}, {1, 1}));         // touches the hole's corner only
+  EXPECT_THROW((void)d.triangle_inside({0.5, 0.5}, {1, 1}, {1, 0.5}), std::invalid_argument);  // clockwise
+  const Domain l({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}});  // an L: a reflex corner at (1, 1)
+  EXPECT_THROW((void)l.triangle_inside({0, 0}, {2, 0}, {2, 1}), std::invalid_argument);  // all on the boundary
+  EXPECT_FALSE(l.triangle_inside({1.6, 0.6}, {0.6, 1.6}, {0.5, 0.5}));  // the reflex corner is inside it
+  EXPECT_FALSE(l.triangle_inside({1.5, 0.5}, {1.5, 1.5}, {0.5, 1.5}));  // a vertex outside
+  EXPECT_FALSE(l.triangle_inside({1.5, 0.5}, {1.9, 0.9}, {1.2, 1.3}));  // a vertex outside
+  EXPECT_TRUE(l.triangle_inside({1.5, 0.5}, {0.5, 1.5}, {0.5, 0.5}));
+  // A constraint segment is a wall: a triangle across it is refused, one beside it kept.
+  const Domain w({{0, 0}, {2, 0}, {2, 2}, {0, 2}}, {}, {{Point2{1, 0.5}, Point2{1, 1.5}}});
+  EXPECT_FALSE(w.triangle_inside({0.5, 1}, {1.5, 0.9}, {1.5, 1.1}));
+  EXPECT_TRUE(w.triangle_inside({0.2, 0.2}, {0.8, 0.2}, {0.8, 1.8}));
+  EXPECT_TRUE(w.triangle_inside({0.5, 0.2}, {1, 0.5}, {0.5, 1}));  // touches the wall's end only
+}
+
 }  // namespace
 }  // namespace laguerre::core

@@ -8,6 +8,7 @@
 #include "laguerre/scenarios/fields/FieldGraph.hpp"
 
 using namespace laguerre::scenarios;
+using laguerre::core::Domain;
 using laguerre::core::Point2;
 using laguerre::core::Vertex;
 namespace core = laguerre::core;

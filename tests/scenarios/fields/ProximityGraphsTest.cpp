@@ -13,6 +13,7 @@
 #include "laguerre/scenarios/fields/ProximityGraphs.hpp"
 
 using namespace laguerre::scenarios;
+using laguerre::core::Domain;
 using laguerre::core::Point2;
 using laguerre::core::Sign;
 using laguerre::core::Vertex;
@@ -226,7 +227,7 @@ TEST(ProximityGraphs, RestrictedDelaunayKeepsOnlyTrianglesInsideTheDomain) {
   const EdgeList edges = restricted_delaunay_edges(domain, p);
   // No edge meets the boundary (the points are strictly inside, so meeting means crossing).
   std::vector<std::pair<Point2, Point2>> boundary;
-  const auto add = [&](const Polygon& poly) {
+  const auto add = [&](const std::vector<Point2>& poly) {
     for (std::size_t i = 0; i < poly.size(); ++i) boundary.emplace_back(poly[i], poly[(i + 1) % poly.size()]);
   };
   add(domain.outer());

@@ -149,6 +149,7 @@ TEST_F(ScenarioCli, EveryExampleRunsSmall) {
       {"large.yaml", "--set topology.n=300", true},
       {"comparison.yaml", "--set repetitions=1 --set topology.n=30", false},
       {"mesh-field.yaml", "--set repetitions=1 --set topology.metric=uniform:0.25:0.25", true},
+      {"mesh-holes.yaml", "--set repetitions=1 --set topology.metric=uniform:0.25:0.25", true},
   };
   std::size_t bundled = 0;
   for (const auto& e : fs::directory_iterator(scenarios)) bundled += e.path().extension() == ".yaml";

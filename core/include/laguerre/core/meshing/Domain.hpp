@@ -40,7 +40,8 @@ public:
 /// Where a point lies with respect to a domain.
 enum class DomainSide { outside, boundary, inside };
 
-/// A polygonal domain with holes and constraint segments.
+/// A polygonal domain with holes and constraint segments: what the mesher refines (core/meshing) and
+/// where sensor fields are deployed (scenarios/fields).
 class Domain {
 public:
   /// Builds and validates a domain; throws DomainError naming the offending polygon and edge.
@@ -49,6 +50,9 @@ public:
 
   /// The unit square [0, 1]².
   static Domain unit_square();
+
+  /// The rectangle [xmin, xmax] × [ymin, ymax], no holes; DomainError unless xmin < xmax and ymin < ymax.
+  static Domain rectangle(double xmin, double ymin, double xmax, double ymax);
 
   /// The outer boundary, counter-clockwise.
   const std::vector<Point2>& outer() const { return outer_; }
@@ -66,8 +70,16 @@ public:
   /// Area of the domain (outer area minus hole areas), in doubles.
   double area() const;
 
-  /// Bounding box {xmin, ymin, xmax, ymax}.
+  /// Bounding box {xmin, ymin, xmax, ymax} of the outer boundary.
   std::array<double, 4> bounding_box() const;
+
+  /// Whether the open triangle abc lies inside the domain and meets no constraint: no point of the
+  /// boundary (outer or holes) and no point of a constraint segment is in its interior (a segment is a
+  /// wall for this test, e.g. no sensor link across it). Precondition: a, b, c counter-clockwise and at
+  /// least one of them strictly inside (std::invalid_argument otherwise). Exact: a boundary edge or
+  /// segment meets the open triangle unless a triangle edge line or the segment's own line weakly
+  /// separates them (separating axes). Cost O(edges + segments).
+  bool triangle_inside(Point2 a, Point2 b, Point2 c) const;
 
 private:
   std::vector<Point2> outer_;

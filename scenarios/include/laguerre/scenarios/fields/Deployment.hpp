@@ -1,27 +1,28 @@
 #pragma once
 /// @file
-/// Random deployments of sensors in a polygonal domain: uniform and clustered.
+/// Random deployments of sensors in a polygonal domain (core::Domain, core/meshing/Domain.hpp): uniform
+/// and clustered.
 ///
 /// Both are deterministic for given arguments on every platform: they draw from std::mt19937_64 (whose
 /// output the C++ standard fixes) through our own mapping to doubles (the top 53 bits times 2^-53) and
 /// to integers (rejection, no modulo bias), never through the standard distributions. The Gaussian
 /// cluster shape also uses std::log and std::sqrt (Marsaglia's polar method): sqrt is correctly
 /// rounded by IEEE 754, log is within one ulp in glibc; the disc shape uses only + and ×.
-/// Every returned point is strictly inside the domain (Domain::locate, exact) and the points are
+/// Every returned point is strictly inside the domain (core::Domain::locate, exact) and the points are
 /// pairwise distinct (a repeated point is redrawn).
 
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
-#include "laguerre/scenarios/fields/Domain.hpp"
+#include "laguerre/core/meshing/Domain.hpp"
 
 namespace laguerre::scenarios {
 
 /// n points uniformly distributed in the domain, by rejection from its bounding box: a draw is kept
 /// iff it lies strictly inside. Throws std::invalid_argument if n is 0 or if the acceptance rate is
 /// hopeless (fewer than n accepted after 1000 n + 10^6 draws: the domain is a sliver of its box).
-std::vector<core::Point2> deploy_uniform(const Domain& domain, std::size_t n, std::uint64_t seed);
+std::vector<core::Point2> deploy_uniform(const core::Domain& domain, std::size_t n, std::uint64_t seed);
 
 /// Shape of a cluster around its parent.
 enum class ClusterShape {
@@ -42,7 +43,7 @@ struct ClusterOptions {
 /// its boundary) is redrawn, parent included. Parents are not part of the result. Throws
 /// std::invalid_argument for n = 0, clusters = 0, spread ≤ 0 or not finite, or if fewer than n points
 /// are accepted after 1000 n + 10^6 draws.
-std::vector<core::Point2> deploy_clustered(const Domain& domain, std::size_t n, const ClusterOptions& options,
+std::vector<core::Point2> deploy_clustered(const core::Domain& domain, std::size_t n, const ClusterOptions& options,
                                            std::uint64_t seed);
 
 }  // namespace laguerre::scenarios

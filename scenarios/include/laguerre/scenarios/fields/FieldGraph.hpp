@@ -50,7 +50,7 @@
 
 #include "laguerre/core/graph/GraphIO.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
-#include "laguerre/scenarios/fields/Domain.hpp"
+#include "laguerre/core/meshing/Domain.hpp"
 #include "laguerre/scenarios/fields/ProximityGraphs.hpp"
 
 namespace laguerre::scenarios {
@@ -131,15 +131,15 @@ private:
 
 /// The radius R at which n uniform points in the domain have mean unit-disk degree `degree`, ignoring
 /// boundary effects: n π R² / area = degree. Throws std::invalid_argument unless n > 0 and degree > 0.
-double radius_for_mean_degree(const Domain& domain, std::size_t n, double degree);
+double radius_for_mean_degree(const core::Domain& domain, std::size_t n, double degree);
 
 /// The edges of the construction `options` asks for (no report, no repair). Throws
 /// std::invalid_argument on bad parameters (radius, hops) or points outside the domain (delaunay).
-EdgeList field_edges(const Domain& domain, std::span<const core::Point2> points, const FieldGraphOptions& options);
+EdgeList field_edges(const core::Domain& domain, std::span<const core::Point2> points, const FieldGraphOptions& options);
 
 /// Builds the construction, reports on it and applies the repair policy. Throws FieldGraphError (see
 /// the file comment), std::invalid_argument on bad parameters.
-FieldGraph build_field_graph(const Domain& domain, std::span<const core::Point2> points,
+FieldGraph build_field_graph(const core::Domain& domain, std::span<const core::Point2> points,
                              const FieldGraphOptions& options);
 
 /// The report and repair part alone, for edges computed elsewhere: `edges` must form a plane

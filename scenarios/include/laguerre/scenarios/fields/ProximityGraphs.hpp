@@ -26,7 +26,8 @@
 ///    of u's closed UDG neighbourhood (a k-localized triangle is one of them for k ≥ 1); points are
 ///    assumed in general position (no four cocircular), as in the paper.
 ///  - restricted Delaunay: the triangles of the Delaunay triangulation of the points whose interior lies
-///    inside the domain (no boundary point of the domain in the open triangle, Domain::triangle_inside),
+///    inside the domain (no boundary point of the domain in the open triangle, core::Domain::triangle_inside;
+///    constraint segments of the domain, if any, count as walls),
 ///    and their edges. Points must lie strictly inside the domain.
 
 #include <cstddef>
@@ -36,7 +37,7 @@
 
 #include "laguerre/core/geometry/Predicates.hpp"
 #include "laguerre/core/graph/PlanarGraph.hpp"
-#include "laguerre/scenarios/fields/Domain.hpp"
+#include "laguerre/core/meshing/Domain.hpp"
 
 namespace laguerre::scenarios {
 
@@ -48,7 +49,7 @@ EdgeList delaunay_edges(std::span<const core::Point2> points);
 
 /// Edges of the Delaunay triangulation restricted to the domain (see the file comment). Throws
 /// std::invalid_argument if a point is not strictly inside the domain.
-EdgeList restricted_delaunay_edges(const Domain& domain, std::span<const core::Point2> points);
+EdgeList restricted_delaunay_edges(const core::Domain& domain, std::span<const core::Point2> points);
 
 /// Edges of the unit-disk graph UDG(R), R > 0 finite.
 EdgeList unit_disk_edges(std::span<const core::Point2> points, double radius);
