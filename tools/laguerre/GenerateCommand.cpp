@@ -7,6 +7,7 @@
 #include "Commands.hpp"
 #include "Common.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
+#include "laguerre/scenarios/Topology.hpp"
 
 namespace laguerre::tools {
 
@@ -36,12 +37,25 @@ std::string write_coords(const core::GraphInput& in) {
   return os.str();
 }
 
+bool uniform_family(const std::string& family) { return family.rfind("uniform-", 0) == 0; }
+
+// The uniform samplers of scenarios/ (the scenario generators of the same name, default parameters:
+// punctured triangulations, 3-connected maps with their largest face outside), with the outer face
+// the packing uses; they have no positions.
 core::GraphInput make(const GenerateArgs& a, std::uint64_t seed) {
+  if (uniform_family(a.family)) {
+    scenarios::TopologyParams params;
+    params.set("n", static_cast<std::int64_t>(a.size));
+    scenarios::Topology t = scenarios::build_topology(a.family, params, seed);
+    return core::GraphInput{std::move(t.graph), {}, t.name + " seed " + std::to_string(seed)};
+  }
   return a.family == "delaunay" ? core::random_delaunay_triangulation(a.size, seed)
                                 : core::random_three_connected(a.size, seed);
 }
 
 int run_generate(const GenerateArgs& a) {
+  if (uniform_family(a.family) && a.format == "coords")
+    throw std::invalid_argument("family " + a.family + " has no vertex positions; use --format edges or planar_code.");
   if (a.count != 1 && a.format != "planar_code")
     throw std::invalid_argument("--count greater than 1 needs --format planar_code (the only multi-graph format).");
   std::string text;
@@ -66,9 +80,11 @@ int run_generate(const GenerateArgs& a) {
 
 Action add_generate_command(CLI::App& app) {
   auto args = std::make_shared<GenerateArgs>();
-  CLI::App* cmd = app.add_subcommand("generate", "Write a random planar graph (interim families, see RandomGraphs.hpp).");
-  cmd->add_option("family", args->family, "delaunay (triangulated disc) or three-connected")
-      ->required()->check(CLI::IsMember({"delaunay", "three-connected"}));
+  CLI::App* cmd = app.add_subcommand("generate", "Write a random planar graph (RandomGraphs.hpp, or the uniform samplers of scenarios/).");
+  cmd->add_option("family", args->family,
+                  "delaunay (triangulated disc), three-connected, uniform-triangulation (Poulalhon-Schaeffer, punctured) "
+                  "or uniform-three-connected (Fusy, largest face outside); the uniform ones have no positions")
+      ->required()->check(CLI::IsMember({"delaunay", "three-connected", "uniform-triangulation", "uniform-three-connected"}));
   cmd->add_option("--size,-n", args->size, "Number of vertices")->check(CLI::Range(4, 100000000))->capture_default_str();
   cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str();
   cmd->add_option("--format", args->format, "coords (with positions), edges or planar_code (binary)")

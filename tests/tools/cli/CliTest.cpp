@@ -116,6 +116,24 @@ TEST_F(Cli, GenerateIsDeterministic) {
   EXPECT_NE(a.out, c.out);
 }
 
+TEST_F(Cli, GenerateUniformFamiliesThatPack) {
+  // The scenario samplers through `generate`, written as edge lists with their outer face, then
+  // packed to LPD/GLPD: the way to reproduce one graph of a scenario run outside it.
+  for (const char* family : {"uniform-triangulation", "uniform-three-connected"}) {
+    const std::string file = path(std::string(family) + ".txt");
+    const Outcome g = run(std::string("generate ") + family + " -n 40 --seed 3 --format edges -o " + file);
+    ASSERT_EQ(g.status, 0) << g.out;
+    EXPECT_EQ(run(std::string("generate ") + family + " -n 40 --seed 3 --format edges").out,
+              run(std::string("generate ") + family + " -n 40 --seed 3 --format edges").out);
+    const Outcome p = run("pack " + file + " --no-picture -o " + path(family));
+    EXPECT_EQ(p.status, 0) << p.out;
+    EXPECT_NE(p.out.find("40 / 40"), std::string::npos) << p.out;
+  }
+  const Outcome coords = run("generate uniform-triangulation -n 40 --format coords");
+  EXPECT_EQ(coords.status, 2);
+  EXPECT_NE(coords.out.find("no vertex positions"), std::string::npos) << coords.out;
+}
+
 TEST_F(Cli, PlanarCodeFilesWithSeveralGraphs) {
   const std::string pc = std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/graphs/three-connected-40x5.pc";
   for (int i = 1; i <= 5; ++i) {
