@@ -409,10 +409,8 @@ void parse_protocol(Context& ctx, const YAML::Node& n, ProtocolSpec& out) {
     out.central = s == "central";
   }
   if (const YAML::Node v = lookup(n, "acceleration"); v.IsDefined()) {
-    if (read_choice(c, v, "protocol.acceleration", {"plain", "superstep", "anderson"}, s))
-      out.acceleration = s == "anderson"    ? core::Acceleration::anderson
-                         : s == "superstep" ? core::Acceleration::superstep
-                                            : core::Acceleration::plain;
+    if (read_choice(c, v, "protocol.acceleration", {"plain", "superstep", "anderson", "newton"}, s))
+      out.acceleration = core::parse_acceleration(s);
     if (!out.central && out.acceleration != core::Acceleration::plain)
       c.report(v, "protocol.acceleration", "'" + s + "' with mode " + (out.asynchronous ? "async" : "sync"),
                "plain, or mode central (the distributed protocol has no acceleration)");

@@ -166,8 +166,10 @@ Action add_pack_command(CLI::App& app) {
   cmd->add_option("--epsilon", args->epsilon, "Angle-sum tolerance for --stop angle (radians)")->capture_default_str();
   cmd->add_option("-o,--out", args->out, "Output path stem (writes STEM.json, STEM.svg, STEM.png); default GRAPHNAME-packing");
   cmd->add_flag("--force", args->force, "Overwrite existing output files");
-  cmd->add_option("--accelerate", args->accelerate, "Sweep acceleration: plain, superstep (Collins-Stephenson) or anderson")
-      ->check(CLI::IsMember({"plain", "superstep", "anderson"}))->capture_default_str();
+  cmd->add_option("--accelerate", args->accelerate,
+                  "Sweep acceleration: plain, superstep (Collins-Stephenson), anderson, or newton (damped Newton steps "
+                  "on the angle sums instead of sweeps; an iteration is then a Newton step)")
+      ->check(CLI::IsMember({"plain", "superstep", "anderson", "newton"}))->capture_default_str();
   cmd->add_flag("--json", args->json_stdout, "Print the embedding JSON on standard output instead of writing STEM.json");
   cmd->add_flag("--no-picture", args->no_picture, "Do not draw the SVG/PNG picture");
   return [args] { return run_pack(*args); };

@@ -176,8 +176,10 @@ Action add_thesis_table_command(CLI::App& app) {
   cmd->add_option("--sweep", args->sweep, "jacobi or gauss-seidel")->check(CLI::IsMember({"jacobi", "gauss-seidel"}))->capture_default_str();
   cmd->add_option("--max-iterations", args->max_iterations, "Cap on sweeps per run")->capture_default_str();
   cmd->add_flag("--json", args->json, "Machine-readable output");
-  cmd->add_option("--accelerate", args->accelerate, "Sweep acceleration: plain, superstep (Collins-Stephenson) or anderson")
-      ->check(CLI::IsMember({"plain", "superstep", "anderson"}))->capture_default_str();
+  cmd->add_option("--accelerate", args->accelerate,
+                  "Sweep acceleration: plain, superstep (Collins-Stephenson), anderson, or newton (damped Newton steps "
+                  "on the angle sums instead of sweeps; an iteration is then a Newton step)")
+      ->check(CLI::IsMember({"plain", "superstep", "anderson", "newton"}))->capture_default_str();
   return [args] { return run_table(*args); };
 }
 

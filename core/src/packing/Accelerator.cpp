@@ -14,20 +14,22 @@ std::string_view to_string(Acceleration a) {
     case Acceleration::plain: return "plain";
     case Acceleration::superstep: return "superstep";
     case Acceleration::anderson: return "anderson";
+    case Acceleration::newton: return "newton";
   }
   return "?";
 }
 
 Acceleration parse_acceleration(std::string_view name) {
-  for (Acceleration a : {Acceleration::plain, Acceleration::superstep, Acceleration::anderson})
+  for (Acceleration a : {Acceleration::plain, Acceleration::superstep, Acceleration::anderson, Acceleration::newton})
     if (to_string(a) == name) return a;
   throw std::invalid_argument("Unknown acceleration '" + std::string(name) +
-                              "'; expected one of plain, superstep, anderson.");
+                              "'; expected one of plain, superstep, anderson, newton.");
 }
 
 bool Accelerator::after_sweep(const PackingComplex& k, const Radii& before, Radii& after) {
   switch (kind_) {
-    case Acceleration::plain: return false;
+    case Acceleration::plain:
+    case Acceleration::newton: return false;  // pack() takes Newton steps instead of sweeps
     case Acceleration::superstep: return superstep(k, before, after);
     case Acceleration::anderson: return anderson(k, before, after);
   }

@@ -1,6 +1,7 @@
 #include "laguerre/core/packing/Packer.hpp"
 
 #include "laguerre/core/packing/Accelerator.hpp"
+#include "laguerre/core/packing/Newton.hpp"
 
 #include <cmath>
 #include <limits>
@@ -96,12 +97,19 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
 
   int it = 0;
   Accelerator accelerator(options.acceleration);
-  const bool accelerate = options.acceleration != Acceleration::plain;
+  const bool newton = options.acceleration == Acceleration::newton;
+  const bool accelerate = options.acceleration != Acceleration::plain && !newton;
   Radii previous;
   bool done = check(0);
   while (!done && it < options.max_iterations) {
     const int steps = std::min(options.steps_per_check, options.max_iterations - it);
     for (int s = 0; s < steps; ++s) {
+      if (newton) {  // a Newton step, or a plain sweep where Newton cannot improve (rounding level)
+        if (newton_step(k, result.radii).improved) {
+          ++result.jumps;
+          continue;
+        }
+      }
       if (accelerate) previous = result.radii;
       thurston_sweep(k, result.radii, options.sweep, options.update, scratch);
       if (accelerate) accelerator.after_sweep(k, previous, result.radii);
@@ -110,7 +118,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     done = check(it);
   }
   result.iterations = it;
-  result.jumps = accelerator.jumps();
+  if (!newton) result.jumps = accelerator.jumps();
   result.status = done ? PackStatus::converged : PackStatus::iteration_cap;
   // Never claim anything on circles the doubles cannot carry.
   if (result.layout.precision == Precision::unrepresentable) result.status = PackStatus::precision_loss;

@@ -115,6 +115,14 @@ double angle_sum(const PackingComplex& k, const Radii& h, Vertex v) {
   return angle_sum_lifted(k, lift_all(h), v, h[v]);
 }
 
+std::vector<double> angle_sums(const PackingComplex& k, const Radii& h) {
+  const std::vector<Lift> lifts = lift_all(h);
+  std::vector<double> out(h.size(), 0.0);
+  for (Vertex v = 0; v < h.size(); ++v)
+    if (!k.graph.is_boundary(v)) out[v] = angle_sum_lifted(k, lifts, v, h[v]);
+  return out;
+}
+
 double angle_error(const PackingComplex& k, const Radii& h) {
   const std::vector<Lift> lifts = lift_all(h);
   double err = 0;

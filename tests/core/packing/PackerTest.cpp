@@ -4,6 +4,7 @@
 
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
+#include "laguerre/core/packing/Newton.hpp"
 #include "laguerre/core/packing/Packer.hpp"
 
 using namespace laguerre::core;
@@ -108,4 +109,50 @@ TEST(Packer, AccelerationsReachTheSamePackingInFewerSweeps) {
       if (std::isfinite(plain.radii[i])) EXPECT_NEAR(fast.radii[i], plain.radii[i], 1e-7) << to_string(a);
       else EXPECT_EQ(fast.radii[i], plain.radii[i]);  // a horocycle stays one
   }
+}
+
+TEST(Packer, NewtonReachesThePackingOfThurstonsIterationInFewSteps) {
+  // Newton's method solves the same equations θ(v) = 2π: same packing as plain sweeps to rounding,
+  // quadratic convergence (a few tens of steps at most), on triangulations and on G′ of 3-connected
+  // graphs, and every step it takes decreases the residual.
+  EXPECT_EQ(parse_acceleration("newton"), Acceleration::newton);
+  for (const PlanarGraph& g : {delaunay(300, 5), three_connected(300, 6)}) {
+    PackOptions opt;
+    opt.stop = StopRule::angle;
+    opt.angle_epsilon = 1e-11;
+    const PackResult plain = pack(g, opt);
+    ASSERT_EQ(plain.status, PackStatus::converged);
+    opt.acceleration = Acceleration::newton;
+    const PackResult fast = pack(g, opt);
+    ASSERT_EQ(fast.status, PackStatus::converged);
+    EXPECT_LE(fast.iterations, 30);
+    EXPECT_GE(fast.jumps, fast.iterations - 2);  // nearly every iteration is an improving Newton step
+    EXPECT_LT(20 * fast.iterations, plain.iterations);
+    for (std::size_t i = 0; i < plain.radii.size(); ++i)
+      if (std::isfinite(plain.radii[i])) EXPECT_NEAR(fast.radii[i] / plain.radii[i], 1.0, 1e-8);
+      else EXPECT_EQ(fast.radii[i], plain.radii[i]);
+    // Stopped at LPD/GLPD instead, Newton's layout passes the same exact local checks.
+    opt.stop = StopRule::lpd;
+    const PackResult lpd = pack(g, opt);
+    ASSERT_EQ(lpd.status, PackStatus::converged);
+    EXPECT_EQ(lpd.local_ok, g.num_vertices());
+  }
+}
+
+TEST(Packer, NewtonStepNeverIncreasesTheAngleError) {
+  const PlanarGraph g = three_connected(200, 9);
+  const PackingComplex k = PackingComplex::from_graph(g);
+  Radii h = initial_radii(k);
+  double previous = angle_error(k, h);
+  for (int s = 0; s < 40; ++s) {
+    const Radii before = h;
+    const NewtonStep step = newton_step(k, h);
+    EXPECT_EQ(step.error_before, previous);
+    if (!step.improved) {
+      EXPECT_EQ(h, before);  // a failed step changes nothing
+      break;
+    }
+    previous = step.error_after;
+  }
+  EXPECT_LT(previous, 1e-10);
 }

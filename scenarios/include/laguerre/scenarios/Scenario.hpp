@@ -52,7 +52,7 @@ struct ProtocolSpec {
   /// `acceleration`) and the run routes on its result; messages and simulated time are then 0. For
   /// routing questions on networks too large to simulate to convergence.
   bool central = false;
-  core::Acceleration acceleration = core::Acceleration::plain;  ///< central mode only: plain, superstep, anderson
+  core::Acceleration acceleration = core::Acceleration::plain;  ///< central mode only: plain, superstep, anderson, newton
   int steps_per_round = 1;                     ///< N, Thurston steps per round
   StopSpec stop = StopSpec::lpd;               ///< stopping rule
   int max_iterations = 100000;                 ///< cap on Thurston steps

@@ -15,10 +15,11 @@ namespace laguerre::core {
 enum class Acceleration {
   plain,       ///< plain Thurston sweeps
   superstep,   ///< Collins & Stephenson's geometric extrapolation along a stable error direction
-  anderson     ///< Anderson mixing of the last few sweeps (AA(m), type II)
+  anderson,    ///< Anderson mixing of the last few sweeps (AA(m), type II)
+  newton       ///< not a sweep: damped Newton steps on the angle sums (Newton.hpp; centralized only)
 };
 
-/// Name of an acceleration ("plain", "superstep", "anderson").
+/// Name of an acceleration ("plain", "superstep", "anderson", "newton").
 std::string_view to_string(Acceleration a);
 /// Parses an acceleration name; throws std::invalid_argument listing the valid names.
 Acceleration parse_acceleration(std::string_view name);

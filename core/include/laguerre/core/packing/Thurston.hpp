@@ -36,6 +36,9 @@ Radii initial_radii(const PackingComplex& k);
 /// Angle sum θ(v) at an interior vertex v for radii `h`.
 double angle_sum(const PackingComplex& k, const Radii& h, Vertex v);
 
+/// Angle sums θ(v) of every vertex (0 on the boundary), lifting each radius once.
+std::vector<double> angle_sums(const PackingComplex& k, const Radii& h);
+
 /// Largest |θ(v) − 2π| over interior vertices.
 double angle_error(const PackingComplex& k, const Radii& h);
 
