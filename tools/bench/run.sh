@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the Release preset and prints the packing benchmark table.
 #   tools/bench/run.sh [--quick|--huge]   (--quick: sizes up to 10^4, about a minute;
-#                                          --huge: 10^6 vertices to LPD, most of an hour)
+#                                          --huge: 10^6 vertices to LPD: Newton, then Anderson (hours))
 # The default run takes about 5 minutes (the 10^4 plain and 10^5 whole runs dominate).
 set -euo pipefail
 cd "$(dirname "$0")/../.."

@@ -147,7 +147,16 @@ TEST_F(ScenarioCli, EveryExampleRunsSmall) {
       {"field-with-holes.yaml", "--set repetitions=1 --set topology.n=150", false},
       {"lossy.yaml", "--set repetitions=1 --set topology.n=30", true},
       {"large.yaml", "--set topology.n=300", true},
-      {"comparison.yaml", "--set repetitions=1 --set topology.n=30", false},
+      {"comparison.yaml",
+       "--set repetitions=1 --set 'sweep.topology=[{generator: uniform-triangulation, n: 30}, {generator: "
+       "uniform-three-connected, n: 30}, {generator: field, n: 60, graph: local-delaunay, radius: 0.3, repair: "
+       "three-connected-core}]'",
+       false},
+      {"comparison-5000.yaml",
+       "--set repetitions=1 --set 'sweep.topology=[{generator: uniform-triangulation, n: 300}, {generator: "
+       "uniform-three-connected, n: 300}, {generator: field, n: 300, graph: local-delaunay, radius: 0.13, repair: "
+       "three-connected-core}]'",
+       true},
       {"mesh-field.yaml", "--set repetitions=1 --set topology.metric=uniform:0.25:0.25", true},
       {"mesh-holes.yaml", "--set repetitions=1 --set topology.metric=uniform:0.25:0.25", true},
   };
