@@ -34,14 +34,20 @@ std::size_t colour_of(const std::string& scheme) {
 
 std::vector<Panel> panels_of(const std::vector<scenarios::ComparisonRow>& rows, bool delivery) {
   std::vector<Panel> panels;
+  // One panel per family × network condition, across scenario files: `compare a.yaml b.yaml` with
+  // the same families at different sizes draws one curve per scheme over all the sizes.
   std::map<std::string, std::size_t> index;
+  std::vector<std::vector<std::string>> sources;  // scenario names per panel, first-seen order
   for (const auto& r : rows) {
-    const std::string key = r.scenario + " | " + r.family + " | " + r.network;
+    const std::string key = r.family + " | " + r.network;
     if (!index.count(key)) {
       index[key] = panels.size();
-      panels.push_back({r.family + ", " + r.network + " (" + r.scenario + ")", {}});
+      panels.push_back({r.family + ", " + r.network, {}});
+      sources.emplace_back();
     }
-    Panel& p = panels[index[key]];
+    const std::size_t k = index[key];
+    if (std::find(sources[k].begin(), sources[k].end(), r.scenario) == sources[k].end()) sources[k].push_back(r.scenario);
+    Panel& p = panels[k];
     auto it = std::find_if(p.series.begin(), p.series.end(), [&](const Series& s) { return s.scheme == r.scheme; });
     if (it == p.series.end()) {
       p.series.push_back({r.scheme, {}, {}, {}, {}});
@@ -59,6 +65,24 @@ std::vector<Panel> panels_of(const std::vector<scenarios::ComparisonRow>& rows, 
     it->y.push_back(y);
     it->lo.push_back(delivery ? r.delivery_ci.low : y);
     it->hi.push_back(delivery ? r.delivery_ci.high : y);
+  }
+  for (std::size_t k = 0; k < panels.size(); ++k) {
+    std::string names;
+    for (const std::string& n : sources[k]) names += (names.empty() ? "" : " + ") + n;
+    panels[k].title += " (" + names + ")";
+    for (Series& ser : panels[k].series) {  // points in increasing size, whatever file they came from
+      std::vector<std::size_t> order(ser.x.size());
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return ser.x[a] < ser.x[b]; });
+      Series sorted{ser.scheme, {}, {}, {}, {}};
+      for (std::size_t i : order) {
+        sorted.x.push_back(ser.x[i]);
+        sorted.y.push_back(ser.y[i]);
+        sorted.lo.push_back(ser.lo[i]);
+        sorted.hi.push_back(ser.hi[i]);
+      }
+      ser = std::move(sorted);
+    }
   }
   return panels;
 }
