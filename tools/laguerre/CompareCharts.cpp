@@ -95,7 +95,7 @@ void draw_chart(cairo_t* cr, const std::vector<Panel>& panels, bool delivery, in
     const Panel& p = panels[k];
     const double ox = static_cast<double>(static_cast<int>(k) % cols * pw), oy = static_cast<double>(static_cast<int>(k) / cols * ph);
     const double l = ox + 60, r = ox + pw - 20, t = oy + 40, b = oy + ph - 50;
-    double x0 = 1e300, x1 = -1e300, y0 = delivery ? 0.0 : 1.0, y1 = delivery ? 1.0 : 1.0;
+    double x0 = 1e300, x1 = -1e300, y0 = 1.0, y1 = 1.0;
     for (const auto& s : p.series)
       for (std::size_t i = 0; i < s.x.size(); ++i) {
         x0 = std::min(x0, s.x[i]);
@@ -107,6 +107,9 @@ void draw_chart(cairo_t* cr, const std::vector<Panel>& panels, bool delivery, in
       x0 = 0;
       x1 = 1;
     }
+    // Delivery: from a multiple of 5% below the lowest interval bound (at most 90%) to 100%, so that
+    // differences of a few per cent between schemes stay visible.
+    if (delivery) y0 = std::clamp(std::floor((y0 - 0.01) * 20) / 20, 0.0, 0.9);
     const bool logx = x0 > 0 && x1 / x0 >= 10;
     auto fx = [&](double x) {
       if (x1 == x0) return (l + r) / 2;
@@ -131,7 +134,7 @@ void draw_chart(cairo_t* cr, const std::vector<Panel>& panels, bool delivery, in
     char buf[64];
     for (int i = 0; i <= 4; ++i) {
       const double y = y0 + (y1 - y0) * i / 4.0;
-      std::snprintf(buf, sizeof buf, delivery ? "%.0f%%" : "%.2f", delivery ? 100 * y : y);
+      std::snprintf(buf, sizeof buf, delivery ? (y1 - y0 < 0.4 ? "%.1f%%" : "%.0f%%") : "%.2f", delivery ? 100 * y : y);
       cairo_move_to(cr, l - 45, fy(y) + 4);
       cairo_show_text(cr, buf);
     }
