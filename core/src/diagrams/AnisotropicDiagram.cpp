@@ -166,9 +166,11 @@ std::vector<Point2> intersect_conics(const Conic& c1, const Conic& c2, Point2 ce
         } else {
           const double disc = B * B - 4 * A * C;
           if (disc < -1e-12 * B * B) return {};
-          const double sq = std::sqrt(std::max(disc, 0.0));
-          ts.push_back((-B + sq) / (2 * A));
-          if (sq > 0) ts.push_back((-B - sq) / (2 * A));
+          // The stable form (no cancellation when A is tiny, the line nearly meeting a nearly-linear
+          // conic: one root near, one far away).
+          const double sq = std::sqrt(std::max(disc, 0.0)), q = -0.5 * (B + (B >= 0 ? sq : -sq));
+          if (q != 0) ts.push_back(C / q);
+          if (sq > 0 || q == 0) ts.push_back(q / A);
         }
       }
       const double c = std::cos(theta), sn = std::sin(theta);

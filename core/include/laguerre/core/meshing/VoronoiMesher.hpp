@@ -34,7 +34,8 @@
 ///   2. a subsegment is not an edge of a triangle of T and its dual Voronoi edge is a complete ellipse
 ///      (a free constraint endpoint): conditionally insert the second intersection of the bisector
 ///      conic with the support line of e (the midpoint of e when that intersection does not exist or is
-///      outside Ω: numerically a missed vertex);
+///      outside Ω: numerically a missed vertex; a half of such a split that goes missing again is not
+///      split further, the run then ends `stuck`, instead of doubling the missing pieces every round);
 ///   3. a Voronoi vertex v of label abc is badly shaped, β(v) = r(v)/δ(abc) > B with r(v) = d_a(a, v) and
 ///      δ the shortest edge, the length of (x, y) being min(d_x(x, y), d_y(x, y)): conditionally insert v;
 ///   4. a triangle is dual to several Voronoi vertices: conditionally insert the one farthest from its
