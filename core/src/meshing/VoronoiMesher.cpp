@@ -91,6 +91,12 @@ Along along(const AnisotropicSite& a, const AnisotropicSite& b, const Anisotropi
   return out;
 }
 
+double point_segment_distance(Point2 x, Point2 p, Point2 q) {
+  const double ux = q.x - p.x, uy = q.y - p.y, l2 = ux * ux + uy * uy;
+  const double t = l2 > 0 ? std::clamp(((x.x - p.x) * ux + (x.y - p.y) * uy) / l2, 0.0, 1.0) : 0.0;
+  return std::hypot(x.x - p.x - t * ux, x.y - p.y - t * uy);
+}
+
 bool same_position(const AnisotropicSite& s, Point2 p) { return s.x == p.x && s.y == p.y; }
 
 double edge_length(const AnisotropicSite& x, const AnisotropicSite& y) {
@@ -295,10 +301,21 @@ private:
     vertices_.clear();
     triangles_.clear();
     edges_.clear();
+    const auto constraints = domain_.constraints();
     for (const AnisotropicVertex& v : diagram.vertices) {
-      if (domain_.locate(v.position) == DomainSide::outside) continue;
       const auto& [a, b, c] = v.sites;
       const double r2 = anisotropic_distance(v.position, sites_[a]);
+      if (domain_.locate(v.position) == DomainSide::outside) {
+        // A vertex on ∂Ω (the centre of a triangle with a right angle in the metric, common with
+        // symmetric inputs) may be computed just outside: keep it when within `boundary_tolerance` of
+        // the boundary relative to its Euclidean radius.
+        const AnisotropicSite& s = sites_[a];
+        const double lambda_max = (s.a + s.c) / 2 + std::hypot((s.a - s.c) / 2, s.b);
+        const double tol = options_.boundary_tolerance * std::sqrt(r2 / lambda_max);
+        bool near = false;
+        for (const auto& [p, q] : constraints) near = near || point_segment_distance(v.position, p, q) <= tol;
+        if (!near) continue;
+      }
       vertices_.push_back({v.sites, v.position, r2, radius_edge_ratio(sites_[a], sites_[b], sites_[c], v.position)});
     }
     // diagram.vertices is sorted by label: group consecutive vertices.

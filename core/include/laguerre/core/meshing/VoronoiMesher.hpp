@@ -14,8 +14,9 @@
 /// Primitives (§2.6–2.7).
 ///   - Voronoi vertices: `anisotropic_diagram` of all sites (candidate triangles from the regular
 ///     triangulation in R⁵, conic intersections, kept if no regular-complex neighbour is closer); a
-///     vertex is kept when the Domain's exact point location puts it in the closed domain. T is the set
-///     of labels of the kept vertices (the dual triangles).
+///     vertex is kept when the Domain's exact point location puts it in the closed domain, or when it is
+///     within `boundary_tolerance` × its Euclidean radius of ∂Ω (a vertex on the boundary, computed just
+///     outside by rounding). T is the set of labels of the kept vertices (the dual triangles).
 ///   - Encroachment: e = (a, b) is encroached by p when Vor(p) meets [a, b] in the diagram of {a, b, p}.
 ///     Along z(t) = a + t(b − a), d_a² = t²L_a, d_b² = (1 − t)²L_b and d_p² are quadratics, so this is
 ///     max_{t∈[0,1]} (min(d_a², d_b²) − d_p²)(t) > 0, evaluated piecewise on either side of the midpoint
@@ -103,6 +104,7 @@ struct VoronoiMeshOptions {
   std::size_t max_vertices = 20000;     ///< stop (status max_vertices) beyond this many sites
   double diagram_tolerance = 1e-9;      ///< AnisotropicOptions::tolerance of the vertex filter
   double encroachment_tolerance = 1e-10;  ///< relative margin of the encroachment test
+  double boundary_tolerance = 1e-9;     ///< a vertex this close to ∂Ω (relative to its radius) counts as on it
   std::vector<Point2> extra_sites;      ///< sites added to the initial constraint endpoints (inside Ω)
   std::function<void(const VoronoiRound&)> on_round;  ///< called after every round, optional
 };
