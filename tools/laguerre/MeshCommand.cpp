@@ -30,6 +30,7 @@ struct MeshArgs {
   std::string out;
   core::StarMeshOptions options;
   double shape_bound = 1.0;  ///< B of the voronoi algorithm
+  bool corner_shells = true;  ///< voronoi: concentric shells at acute input corners
   CLI::Option* max_vertices_option = nullptr;
   bool force = false;
   bool json = false;
@@ -125,6 +126,7 @@ MeshOutcome run_voronoi(const core::Domain& domain, const core::MetricField& fie
   core::VoronoiMeshOptions v;
   v.shape_bound = a.shape_bound;
   v.size_bound = a.options.size_bound;
+  v.corner_shells = a.corner_shells;
   // The star mesher's default cap (10⁶) is far beyond what whole-diagram rounds reach in minutes.
   v.max_vertices = a.max_vertices_option && a.max_vertices_option->count() ? a.options.max_vertices : 20000;
   if (tty)
@@ -144,7 +146,8 @@ MeshOutcome run_voronoi(const core::Domain& domain, const core::MetricField& fie
                 r.stats.encroached, r.stats.ellipse, r.stats.bad_shape, r.stats.duplicate, r.stats.overlap,
                 r.stats.size, r.stats.redirected, r.stats.rounds);
   o.rules_line = line;
-  o.options = {{"shape_bound", v.shape_bound}, {"size_bound", v.size_bound}, {"max_vertices", v.max_vertices},
+  o.options = {{"shape_bound", v.shape_bound},     {"size_bound", v.size_bound},
+               {"corner_shells", v.corner_shells}, {"max_vertices", v.max_vertices},
                {"status", core::to_string(r.status)}};
   double worst = 0;
   for (double b : r.shape) worst = std::max(worst, b);
@@ -264,6 +267,8 @@ Action add_mesh_command(CLI::App& app) {
           ->capture_default_str();
   cmd->add_option("--seed", args->options.seed, "Seed of the picking")->capture_default_str();
   cmd->add_option("-o,--out", args->out, "Output path stem (default out/mesh/<domain>)");
+  cmd->add_flag("!--no-corner-shells", args->corner_shells,
+                "voronoi: split at breakpoints also at acute input corners (the thesis rule, which cascades there)");
   cmd->add_flag("--force", args->force, "Overwrite existing outputs");
   cmd->add_flag("--json", args->json, "Print the JSON report instead of the table");
   cmd->add_flag("!--no-picture", args->picture, "Skip the SVG/PNG picture");

@@ -144,6 +144,7 @@ struct Subsegment {
   Index a, b;
   bool alive = true;
   bool fallback = false;  ///< a half of a rule-2 midpoint split (not explained by an ellipse)
+  bool shell_a = false, shell_b = false;  ///< a (b) is an acute input corner of this constraint (corner_shells)
 };
 
 /// A Voronoi vertex inside Ω.
@@ -282,12 +283,65 @@ private:
       }
       subs_.push_back({site_of(from), site_of(b)});
     }
+    if (options_.corner_shells) mark_acute_corners();
     for (const Point2& p : options_.extra_sites) {
       if (domain_.locate(p) != DomainSide::inside)
         throw std::invalid_argument("extra site (" + std::to_string(p.x) + ", " + std::to_string(p.y) +
                                     ") is not strictly inside the domain.");
       site_of(p);
     }
+  }
+
+  /// Corners where two constraints meet at less than 90° in the corner's metric (either side: the
+  /// diagram sees across holes): their subsegments are split on concentric shells around the corner.
+  void mark_acute_corners() {
+    std::map<Index, std::vector<std::pair<Index, bool>>> at;  // corner → (subsegment, corner is its a)
+    for (Index s = 0; s < subs_.size(); ++s) {
+      at[subs_[s].a].push_back({s, true});
+      at[subs_[s].b].push_back({s, false});
+    }
+    for (const auto& [c, list] : at) {
+      const AnisotropicSite& m = sites_[c];
+      for (std::size_t i = 0; i < list.size(); ++i)
+        for (std::size_t j = i + 1; j < list.size(); ++j) {
+          const Index ei = list[i].second ? subs_[list[i].first].b : subs_[list[i].first].a;
+          const Index ej = list[j].second ? subs_[list[j].first].b : subs_[list[j].first].a;
+          const double ux = sites_[ei].x - m.x, uy = sites_[ei].y - m.y, wx = sites_[ej].x - m.x, wy = sites_[ej].y - m.y;
+          if (form(m, ux, uy, wx, wy) <= 0) continue;  // at least 90° in M_c
+          for (const auto& [s, is_a] : {list[i], list[j]}) (is_a ? subs_[s].shell_a : subs_[s].shell_b) = true;
+          acute_.push_back({c, ei, ej});
+        }
+    }
+  }
+
+  /// Where subsegment s is split, given its breakpoint t: on a shell (the power of two of the corner's
+  /// metric length nearest to half the subsegment) when one end is an acute corner, at the midpoint when
+  /// both are, at the breakpoint otherwise (thesis §2.7).
+  double split_parameter(Index s, double t) const {
+    const Subsegment& sub = subs_[s];
+    if (sub.shell_a == sub.shell_b) return sub.shell_a ? midpoint_parameter(sites_[sub.a], sites_[sub.b]) : t;
+    const AnisotropicSite& c = sites_[sub.shell_a ? sub.a : sub.b];
+    const AnisotropicSite& o = sites_[sub.shell_a ? sub.b : sub.a];
+    const double length = std::sqrt(sq_length(c, o.x - c.x, o.y - c.y));
+    const double shell = std::exp2(std::round(std::log2(length / 2)));
+    const double from_c = std::clamp(shell / length, 0.25, 0.75);
+    return sub.shell_a ? from_c : 1 - from_c;
+  }
+
+  /// A triangle whose angle at an acute input corner is that input angle (its two other vertices on the
+  /// two constraints): no refinement can improve it, rule 3 leaves it (corner_shells).
+  bool at_acute_corner(const std::array<Index, 3>& label) const {
+    for (const auto& [c, e1, e2] : acute_)
+      for (int k = 0; k < 3; ++k) {
+        if (label[static_cast<std::size_t>(k)] != c) continue;
+        const Index p = label[static_cast<std::size_t>((k + 1) % 3)], q = label[static_cast<std::size_t>((k + 2) % 3)];
+        auto on = [&](Index x, Index e) {
+          return orientation(point(c), point(e), point(x)) == Sign::zero &&
+                 (point(x).x - point(c).x) * (point(e).x - point(c).x) + (point(x).y - point(c).y) * (point(e).y - point(c).y) > 0;
+        };
+        if ((on(p, e1) && on(q, e2)) || (on(p, e2) && on(q, e1))) return true;
+      }
+    return false;
   }
 
   // --- the diagram ---------------------------------------------------------------------------------
@@ -390,7 +444,8 @@ private:
       Request q;
       q.rule = 1;
       q.priority = along(a, b, a).r2_mid;
-      q.point = {a.x + *t * (b.x - a.x), a.y + *t * (b.y - a.y)};
+      const double ts = split_parameter(s, *t);
+      q.point = {a.x + ts * (b.x - a.x), a.y + ts * (b.y - a.y)};
       q.site = site_with_metric(field_, q.point);
       q.split = s;
       q.segments.push_back({a, b});
@@ -433,7 +488,7 @@ private:
       } else {
         // Numerically a missed vertex: the midpoint of e (a conditional insertion there is redirected
         // to the breakpoint of e in the diagram with the midpoint added, the midpoint itself).
-        const double t = midpoint_parameter(a, b);
+        const double t = split_parameter(s, midpoint_parameter(a, b));
         q.point = {a.x + t * ux, a.y + t * uy};
         q.site = site_with_metric(field_, q.point);
         q.split = s;
@@ -456,7 +511,7 @@ private:
     if (size_rule && !(options_.size_bound > 0 && std::isfinite(options_.size_bound))) return out;
     for (const Vertex& v : vertices_) {
       const bool bad = size_rule ? std::sqrt(v.r2) > options_.size_bound : v.beta > options_.shape_bound;
-      if (!bad) continue;
+      if (!bad || (!size_rule && !acute_.empty() && at_acute_corner(v.label))) continue;
       Request q;
       q.rule = rule;
       q.priority = size_rule ? v.r2 : v.beta;
@@ -570,7 +625,7 @@ private:
     }
     const AnisotropicSite &a = sites_[subs_[hit].a], &b = sites_[subs_[hit].b];
     const auto t = breakpoint_parameter(a, b, {q.site}, options_.encroachment_tolerance);
-    const double tb = t ? *t : midpoint_parameter(a, b);
+    const double tb = split_parameter(hit, t ? *t : midpoint_parameter(a, b));
     q.point = {a.x + tb * (b.x - a.x), a.y + tb * (b.y - a.y)};
     q.site = site_with_metric(field_, q.point);
     q.split = hit;
@@ -644,8 +699,9 @@ private:
       Subsegment& s = subs_[q.split];
       s.alive = false;
       const Index a = s.a, b = s.b;
-      subs_.push_back({a, v, true, q.fallback});
-      subs_.push_back({v, b, true, q.fallback});
+      const bool shell_a = s.shell_a, shell_b = s.shell_b;  // s is invalidated by push_back
+      subs_.push_back({a, v, true, q.fallback, shell_a, false});
+      subs_.push_back({v, b, true, q.fallback, false, shell_b});
     }
   }
 
@@ -710,6 +766,7 @@ private:
   const VoronoiMeshOptions& options_;
   std::vector<AnisotropicSite> sites_;
   std::vector<Subsegment> subs_;
+  std::vector<std::array<Index, 3>> acute_;  ///< acute input corners: (corner, far end 1, far end 2)
   mutable std::vector<char> encroached_;  ///< per subsegment, found encroached by this round's rule 1
   std::vector<Vertex> vertices_;
   std::vector<Triangle> triangles_;

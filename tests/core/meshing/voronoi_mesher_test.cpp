@@ -256,6 +256,27 @@ TEST(VoronoiMesher, ThesisField) {
   EXPECT_GT(sized.mesh.points.size(), 2 * pure.mesh.points.size());
 }
 
+TEST(VoronoiMesher, SharpHoleCornersUseShells) {
+  // A hole with a 20° corner: without shells the breakpoints of its two sides cascade into the corner.
+  const Domain d({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{{0.3, 0.4}, {0.7, 0.4}, {0.3, 0.4 + 0.4 * std::tan(20 * M_PI / 180)}}});
+  const auto field = parse_metric_field("uniform:0.1:0.1");
+  VoronoiMeshOptions o;
+  o.size_bound = 1;
+  const VoronoiMeshResult r = mesh_with_voronoi(d, *field, o);
+  ASSERT_TRUE(r.converged()) << r.message;
+  EXPECT_EQ(check_triangulation(r.mesh, d), "");
+  // β ≤ B except at the triangle(s) at the 20° corner (0.7, 0.4).
+  for (std::size_t i = 0; i < r.mesh.triangles.size(); ++i) {
+    if (r.shape[i] <= o.shape_bound) continue;
+    bool at_corner = false;
+    for (std::size_t v : r.mesh.triangles[i]) at_corner = at_corner || (r.mesh.points[v][0] == 0.7 && r.mesh.points[v][1] == 0.4);
+    EXPECT_TRUE(at_corner) << "triangle " << i << " β = " << r.shape[i];
+  }
+  o.corner_shells = false;
+  o.max_vertices = 400;
+  EXPECT_FALSE(mesh_with_voronoi(d, *field, o).converged());
+}
+
 TEST(VoronoiMesher, Deterministic) {
   const Domain d = Domain::unit_square();
   const auto field = parse_metric_field("thesis:0.15:4:0.2:0.5");

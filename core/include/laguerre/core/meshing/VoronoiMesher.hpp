@@ -72,6 +72,16 @@
 /// Termination (§2.8) needs K⁴ ≥ (γ² − 1)(1 + γ)⁶ − 1 between neighbours and input angles that are not
 /// acute in the metric; otherwise the refinement may not stop, which `max_vertices` turns into the
 /// status `max_vertices`.
+///
+/// Acute input corners (an extension, `corner_shells`, on by default; not in the thesis). Where two
+/// constraints meet at less than 90° in the corner's metric M_c — on either side: the diagram is that of
+/// the whole plane, so a hole's sharp corner counts too — breakpoints cascade into the corner (each
+/// side's new site encroaches the other side's subsegment). As in Ruppert's concentric shells, a
+/// subsegment with one such corner c as an endpoint is split instead at the M_c-length from c that is
+/// the power of two nearest half its length (a subsegment with two, at its midpoint), so that the sites of
+/// both sides sit at equal distances from c and do not encroach each other; and rule 3 leaves a
+/// triangle whose angle at c is the input angle (its other vertices on the two constraints), which no
+/// refinement can improve. Those triangles are the only ones that may end with β > B.
 
 #include "laguerre/core/diagrams/AnisotropicDiagram.hpp"
 #include "laguerre/core/meshing/Domain.hpp"
@@ -105,6 +115,7 @@ struct VoronoiMeshOptions {
   double diagram_tolerance = 1e-9;      ///< AnisotropicOptions::tolerance of the vertex filter
   double encroachment_tolerance = 1e-10;  ///< relative margin of the encroachment test
   double boundary_tolerance = 1e-9;     ///< a vertex this close to ∂Ω (relative to its radius) counts as on it
+  bool corner_shells = true;            ///< acute input corners: shell splits and no rule 3 there (see above)
   std::vector<Point2> extra_sites;      ///< sites added to the initial constraint endpoints (inside Ω)
   std::function<void(const VoronoiRound&)> on_round;  ///< called after every round, optional
 };
