@@ -16,6 +16,7 @@
 #include "laguerre/core/meshing/Domain.hpp"
 #include "laguerre/core/meshing/MeshQuality.hpp"
 #include "laguerre/core/meshing/StarMesher.hpp"
+#include "laguerre/core/meshing/VoronoiMesher.hpp"
 #include "laguerre/core/meshing/Vtk.hpp"
 
 namespace laguerre::tools {
@@ -28,6 +29,9 @@ struct MeshArgs {
   std::string algorithm = "stars";
   std::string out;
   core::StarMeshOptions options;
+  double shape_bound = 1.0;  ///< B of the voronoi algorithm
+  bool corner_shells = true;  ///< voronoi: concentric shells at acute input corners
+  CLI::Option* max_vertices_option = nullptr;
   bool force = false;
   bool json = false;
   bool picture = true;
@@ -82,11 +86,81 @@ void draw_mesh(cairo_t* cr, const core::TriangleMesh& mesh, const core::MeshQual
   cairo_show_text(cr, title.c_str());
 }
 
+/// What either mesher returns, for the common report.
+struct MeshOutcome {
+  core::TriangleMesh mesh;
+  std::vector<core::Metric> metrics;
+  bool converged = false;
+  std::string status;
+  nlohmann::json rules;      ///< per-rule counts
+  std::string rules_line;    ///< the same, one line for the table
+  nlohmann::json options;    ///< the algorithm's parameters
+};
+
+MeshOutcome run_stars(const core::Domain& domain, const core::MetricField& field, const MeshArgs& a) {
+  const core::StarMeshResult r = core::mesh_with_stars(domain, field, a.options);
+  MeshOutcome o{r.mesh, r.metrics, r.converged, r.status, {}, {}, {}};
+  o.rules = {{"encroachment", r.stats.encroachment}, {"distortion", r.stats.distortion},
+             {"size", r.stats.size},                 {"shape", r.stats.shape},
+             {"inconsistency", r.stats.inconsistency}, {"snapped", r.stats.snapped},
+             {"corners", r.stats.corners},
+             {"star_updates", r.stats.star_updates}, {"consistency_sweeps", r.stats.consistency_sweeps}};
+  char line[256];
+  std::snprintf(line, sizeof line, "encroachment %zu, distortion %zu, size %zu, shape %zu, inconsistency %zu (snapped %zu)",
+                r.stats.encroachment, r.stats.distortion, r.stats.size, r.stats.shape, r.stats.inconsistency,
+                r.stats.snapped);
+  o.rules_line = line;
+  if (a.options.no_lonely_corners) o.rules_line += ", lonely corners " + std::to_string(r.stats.corners);
+  o.options = {{"size_bound", a.options.size_bound},
+               {"radius_edge_bound", a.options.radius_edge_bound},
+               {"distortion_bound", a.options.distortion_bound},
+               {"picking_ratio", a.options.picking_ratio},
+               {"max_vertices", a.options.max_vertices},
+               {"seed", a.options.seed},
+               {"no_lonely_corners", a.options.no_lonely_corners}};
+  return o;
+}
+
+MeshOutcome run_voronoi(const core::Domain& domain, const core::MetricField& field, const MeshArgs& a, bool tty) {
+  if (!(a.shape_bound >= 0.58 && a.shape_bound <= 100))
+    throw std::invalid_argument("--shape-bound must be between 0.58 and 100 (an equilateral triangle has a radius-edge "
+                                "ratio of 1/sqrt(3) = 0.577, so a smaller bound cannot be met); got " +
+                                std::to_string(a.shape_bound) + ".");
+  core::VoronoiMeshOptions v;
+  v.shape_bound = a.shape_bound;
+  v.size_bound = a.options.size_bound;
+  v.corner_shells = a.corner_shells;
+  // The star mesher's default cap (10⁶) is far beyond what whole-diagram rounds reach in minutes.
+  v.max_vertices = a.max_vertices_option && a.max_vertices_option->count() ? a.options.max_vertices : 20000;
+  if (tty)
+    v.on_round = [](const core::VoronoiRound& r) {
+      std::cerr << "\rmeshing: round " << r.round << ", " << r.sites << " vertices" << std::flush;
+    };
+  const core::VoronoiMeshResult r = core::mesh_with_voronoi(domain, field, v);
+  MeshOutcome o{r.mesh, r.metrics, r.converged(), r.message, {}, {}, {}};
+  o.rules = {{"encroached", r.stats.encroached}, {"ellipse", r.stats.ellipse},     {"bad_shape", r.stats.bad_shape},
+             {"duplicate", r.stats.duplicate},   {"overlap", r.stats.overlap},     {"size", r.stats.size},
+             {"redirected", r.stats.redirected}, {"rounds", r.stats.rounds},
+             {"diagram_seconds", r.stats.diagram_seconds}};
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "1 encroached %zu, 2 ellipse %zu, 3 bad shape %zu, 4 duplicate %zu, 5 overlap %zu, 6 size %zu "
+                "(redirected to breakpoints %zu; %zu rounds)",
+                r.stats.encroached, r.stats.ellipse, r.stats.bad_shape, r.stats.duplicate, r.stats.overlap,
+                r.stats.size, r.stats.redirected, r.stats.rounds);
+  o.rules_line = line;
+  o.options = {{"shape_bound", v.shape_bound},     {"size_bound", v.size_bound},
+               {"corner_shells", v.corner_shells}, {"max_vertices", v.max_vertices},
+               {"status", core::to_string(r.status)}};
+  double worst = 0;
+  for (double b : r.shape) worst = std::max(worst, b);
+  o.rules["worst_vertex_radius_edge"] = worst;
+  std::snprintf(line, sizeof line, "; worst Voronoi vertex radius-edge %.3f (B = %g)", worst, v.shape_bound);
+  o.rules_line += line;
+  return o;
+}
+
 int run_mesh(MeshArgs& a) {
-  if (a.algorithm == "voronoi")
-    throw std::invalid_argument(
-        "--algorithm voronoi (thesis Part II, refinement of the anisotropic Voronoi diagram) is not available yet; "
-        "use --algorithm stars.");
   const core::Domain domain = a.domain == "square" ? core::Domain::unit_square() : core::read_domain(a.domain);
   const auto field = core::parse_metric_field(a.metric);
   const std::string stem = a.out.empty() ? "out/mesh/" + (a.domain == "square" ? "square" : file_stem(a.domain)) : a.out;
@@ -99,7 +173,7 @@ int run_mesh(MeshArgs& a) {
   if (tty)
     a.options.progress = [](std::size_t n) { std::cerr << "\rmeshing: " << n << " vertices" << std::flush; };
   const auto start = std::chrono::steady_clock::now();
-  const core::StarMeshResult r = core::mesh_with_stars(domain, *field, a.options);
+  const MeshOutcome r = a.algorithm == "voronoi" ? run_voronoi(domain, *field, a, tty) : run_stars(domain, *field, a);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (tty) std::cerr << "\r\033[K";
   const std::string valid = core::check_triangulation(r.mesh, domain);
@@ -120,24 +194,8 @@ int run_mesh(MeshArgs& a) {
       {"triangles", r.mesh.triangles.size()},
       {"seconds", seconds},
       {"vertices_per_second", static_cast<double>(r.mesh.points.size()) / seconds},
-      {"options",
-       {{"size_bound", a.options.size_bound},
-        {"radius_edge_bound", a.options.radius_edge_bound},
-        {"distortion_bound", a.options.distortion_bound},
-        {"picking_ratio", a.options.picking_ratio},
-        {"max_vertices", a.options.max_vertices},
-        {"seed", a.options.seed},
-        {"no_lonely_corners", a.options.no_lonely_corners}}},
-      {"rules",
-       {{"encroachment", r.stats.encroachment},
-        {"distortion", r.stats.distortion},
-        {"size", r.stats.size},
-        {"shape", r.stats.shape},
-        {"inconsistency", r.stats.inconsistency},
-        {"snapped", r.stats.snapped},
-        {"corners", r.stats.corners},
-        {"star_updates", r.stats.star_updates},
-        {"consistency_sweeps", r.stats.consistency_sweeps}}},
+      {"options", r.options},
+      {"rules", r.rules},
       {"quality",
        {{"radius_edge", summary_json(q.radius_edge)},
         {"smallest_angle_degrees", summary_json(q.smallest_angle)},
@@ -160,11 +218,7 @@ int run_mesh(MeshArgs& a) {
     std::printf("status       %s; %s\n", r.status.c_str(), valid.empty() ? "valid triangulation of the domain" : valid.c_str());
     std::printf("size         %zu vertices, %zu triangles in %.2f s (%.0f vertices/s)\n", r.mesh.points.size(),
                 r.mesh.triangles.size(), seconds, static_cast<double>(r.mesh.points.size()) / seconds);
-    std::printf("rules        encroachment %zu, distortion %zu, size %zu, shape %zu, inconsistency %zu (snapped %zu)",
-                r.stats.encroachment, r.stats.distortion, r.stats.size, r.stats.shape, r.stats.inconsistency,
-                r.stats.snapped);
-    if (a.options.no_lonely_corners) std::printf(", lonely corners %zu", r.stats.corners);
-    std::printf("\n");
+    std::printf("rules        %s\n", r.rules_line.c_str());
     std::printf("quality      %-16s %8s %8s %8s %8s %8s\n", "(in the metric)", "min", "p5", "mean", "p95", "max");
     auto row = [](const char* name, const core::QualitySummary& s) {
       std::printf("             %-16s %8.3f %8.3f %8.3f %8.3f %8.3f\n", name, s.min, s.p5, s.mean, s.p95, s.max);
@@ -189,12 +243,21 @@ Action add_mesh_command(CLI::App& app) {
       "  uniform:H1:H2[:THETA]  shock[:HMIN:HMAX:WIDTH:X0]  thesis[:H:RATIO:WIDTH:Y0]\n"
       "  expr:a=..;b=..;c=..    sizes:h1=..;h2=..;theta=..  mesh:FILE.mesh[:FILE.sol]\n"
       "Writes OUT.mesh + OUT.sol (Medit: mmg, gmsh), OUT.vtk (ParaView), OUT.json and OUT.svg/.png.\n"
+      "Algorithms: 'stars' refines locally uniform anisotropic stars (thesis Part III; options --size-bound,\n"
+      "--radius-edge, --distortion, --picking, --seed); 'voronoi' refines the anisotropic Voronoi diagram\n"
+      "(thesis Part II, rules 1-5 of section 2.7 and a size rule: options --shape-bound, --size-bound;\n"
+      "--max-vertices defaults to 20000 there) until its dual triangles triangulate the domain with every\n"
+      "Voronoi vertex of radius-edge ratio at most B.\n"
       "Exit status: 0 converged and valid, 3 stopped early or invalid, 2 bad input.");
   cmd->add_option("domain", args->domain, "Domain file, or 'square'")->required();
   cmd->add_option("--metric", args->metric, "Metric field specification")->capture_default_str();
   cmd->add_option("--algorithm", args->algorithm, "stars (Part III, locally uniform) or voronoi (Part II)")
       ->check(CLI::IsMember({"stars", "voronoi"}))->capture_default_str();
-  cmd->add_option("--size-bound", args->options.size_bound, "Largest circumradius in the metric")
+  cmd->add_option("--shape-bound", args->shape_bound,
+                  "voronoi: largest radius-edge ratio B of a Voronoi vertex (1 = 30 degrees when isotropic)")
+      ->capture_default_str();
+  cmd->add_option("--size-bound", args->options.size_bound,
+                  "Largest circumradius in the metric (voronoi: largest radius r(v) of a Voronoi vertex)")
       ->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--radius-edge", args->options.radius_edge_bound, "Largest radius-edge ratio rho0 (1 = 30 degrees)")
       ->check(CLI::Range(0.58, 100.0))->capture_default_str();
@@ -202,11 +265,15 @@ Action add_mesh_command(CLI::App& app) {
       ->check(CLI::Range(1.0001, 100.0))->capture_default_str();
   cmd->add_option("--picking", args->options.picking_ratio, "Picking ratio delta")
       ->check(CLI::Range(0.0, 0.5))->capture_default_str();
-  cmd->add_option("--max-vertices", args->options.max_vertices, "Stop beyond this many vertices")->capture_default_str();
+  args->max_vertices_option =
+      cmd->add_option("--max-vertices", args->options.max_vertices, "Stop beyond this many vertices (voronoi: 20000)")
+          ->capture_default_str();
   cmd->add_option("--seed", args->options.seed, "Seed of the picking")->capture_default_str();
   cmd->add_flag("--no-lonely-corners", args->options.no_lonely_corners,
                 "Refine every boundary corner left with a single triangle (rule 6, core/meshing/StarMesher.hpp)");
   cmd->add_option("-o,--out", args->out, "Output path stem (default out/mesh/<domain>)");
+  cmd->add_flag("!--no-corner-shells", args->corner_shells,
+                "voronoi: split at breakpoints also at acute input corners (the thesis rule, which cascades there)");
   cmd->add_flag("--force", args->force, "Overwrite existing outputs");
   cmd->add_flag("--json", args->json, "Print the JSON report instead of the table");
   cmd->add_flag("!--no-picture", args->picture, "Skip the SVG/PNG picture");

@@ -166,9 +166,11 @@ std::vector<Point2> intersect_conics(const Conic& c1, const Conic& c2, Point2 ce
         } else {
           const double disc = B * B - 4 * A * C;
           if (disc < -1e-12 * B * B) return {};
-          const double sq = std::sqrt(std::max(disc, 0.0));
-          ts.push_back((-B + sq) / (2 * A));
-          if (sq > 0) ts.push_back((-B - sq) / (2 * A));
+          // The stable form (no cancellation when A is tiny, the line nearly meeting a nearly-linear
+          // conic: one root near, one far away).
+          const double sq = std::sqrt(std::max(disc, 0.0)), q = -0.5 * (B + (B >= 0 ? sq : -sq));
+          if (q != 0) ts.push_back(C / q);
+          if (sq > 0 || q == 0) ts.push_back(q / A);
         }
       }
       const double c = std::cos(theta), sn = std::sin(theta);
@@ -233,7 +235,30 @@ std::vector<Point2> intersect_conics(const Conic& c1, const Conic& c2, Point2 ce
     for (const auto& [u, v] : found) out.push_back({centre.x + scale * (c * u - s * v), centre.y + scale * (s * u + c * v)});
     return out;
   }
-  return {};
+  // Both conics are nearly lines in every rotation (quadratic parts below 1e-8 of the linear ones: two
+  // sites with almost equal metrics each): the bounded intersection is near that of the two lines, the
+  // others are beyond ~1e8 length units. Solve the linear parts, then Newton on the full conics.
+  const Conic a = transform(c1, centre, scale, 0), b = transform(c2, centre, scale, 0);
+  const double det = a[3] * b[4] - a[4] * b[3];
+  if (det == 0 || !std::isfinite(det)) return {};
+  double u = (-a[5] * b[4] + a[4] * b[5]) / det, v = (-a[3] * b[5] + a[5] * b[3]) / det;
+  for (int it = 0; it < 20; ++it) {
+    const double f1 = eval(a, u, v), f2 = eval(b, u, v);
+    const double j11 = 2 * a[0] * u + a[1] * v + a[3], j12 = a[1] * u + 2 * a[2] * v + a[4];
+    const double j21 = 2 * b[0] * u + b[1] * v + b[3], j22 = b[1] * u + 2 * b[2] * v + b[4];
+    const double dj = j11 * j22 - j12 * j21;
+    if (dj == 0 || !std::isfinite(dj)) return {};
+    const double du = (f1 * j22 - f2 * j12) / dj, dv = (j11 * f2 - j21 * f1) / dj;
+    u -= du, v -= dv;
+    if (std::abs(du) + std::abs(dv) <= 1e-15 * (1 + std::abs(u) + std::abs(v))) break;
+  }
+  double n1 = 0, n2 = 0;
+  for (std::size_t i = 0; i < 6; ++i) n1 = std::max(n1, std::abs(a[i])), n2 = std::max(n2, std::abs(b[i]));
+  const double mag = 1 + u * u + v * v;
+  if (!std::isfinite(u) || !std::isfinite(v) || std::abs(eval(a, u, v)) > 1e-8 * mag * n1 ||
+      std::abs(eval(b, u, v)) > 1e-8 * mag * n2)
+    return {};
+  return {{centre.x + scale * u, centre.y + scale * v}};
 }
 
 AnisotropicDiagram anisotropic_diagram(const std::vector<AnisotropicSite>& sites, const AnisotropicOptions& options) {

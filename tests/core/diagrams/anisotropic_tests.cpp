@@ -50,6 +50,29 @@ TEST(Anisotropic, ConicIntersectionKnownAnswer) {
   EXPECT_TRUE(intersect_conics({1, 0, 1, 0, 0, -1}, {2, 0, 2, 0, 0, -2}).empty());
 }
 
+TEST(Anisotropic, NearlyLinearBisectorsOfAlmostEqualMetrics) {
+  // Sites whose metrics differ by ~1e-11 relatively (a field that is constant up to rounding, as the
+  // shock layer far from its line): the bisectors are lines up to a tiny quadratic part. Their bounded
+  // intersection must be found, and accurately (found by the meshing of thesis Part II).
+  const double eps = 1e-9;
+  const AnisotropicSite a{1.09375, 1, 100 + 3 * eps, 0, 100}, b{1.078125, 1, 100 + 1 * eps, 0, 100},
+      c{1.072509, 0.942038, 100 + 7 * eps, 0, 100}, d{1.2, 0.9, 100 + 2 * eps, 0, 100 + eps};
+  for (const auto& [p, q, r] : {std::array{a, b, c}, std::array{a, c, d}, std::array{b, c, d}}) {
+    const Point2 centre{(p.x + q.x + r.x) / 3, (p.y + q.y + r.y) / 3};
+    double scale = 0;
+    for (const AnisotropicSite* s : {&p, &q, &r}) scale = std::max(scale, std::hypot(s->x - centre.x, s->y - centre.y));
+    const auto pts = intersect_conics(bisector_conic(p, q), bisector_conic(q, r), centre, scale);
+    // The circumcentre of the three points (the metrics are 100·I up to 1e-11).
+    const double ax = p.x, ay = p.y, bx = q.x, by = q.y, cx = r.x, cy = r.y;
+    const double den = 2 * (ax * (by - cy) + bx * (cy - ay) + cx * (ay - by));
+    const Point2 o{((ax * ax + ay * ay) * (by - cy) + (bx * bx + by * by) * (cy - ay) + (cx * cx + cy * cy) * (ay - by)) / den,
+                   ((ax * ax + ay * ay) * (cx - bx) + (bx * bx + by * by) * (ax - cx) + (cx * cx + cy * cy) * (bx - ax)) / den};
+    bool near = false;
+    for (Point2 x : pts) near = near || std::hypot(x.x - o.x, x.y - o.y) < 1e-7;
+    EXPECT_TRUE(near) << pts.size() << " points, expected one near (" << o.x << ", " << o.y << ")";
+  }
+}
+
 TEST(Anisotropic, RegularComplexFindsEveryVertexOfBruteForce) {
   for (unsigned seed = 1; seed <= 6; ++seed) {
     const auto sites = random_sites(seed, 14 + seed, seed % 2 ? 4.0 : 16.0);

@@ -64,13 +64,42 @@ TEST_F(MeshCli, RefusesToOverwriteAndExplainsBadInput) {
   EXPECT_NE(domain.out.find("bad.txt: hole 1 is not strictly inside the outer boundary"), std::string::npos)
       << domain.out;
 
-  const MeshRun voronoi = mesh("square --algorithm voronoi -o " + path("m"));
-  EXPECT_EQ(voronoi.status, 2);
-  EXPECT_NE(voronoi.out.find("not available yet"), std::string::npos) << voronoi.out;
+  const MeshRun shape = mesh("square --algorithm voronoi --shape-bound 0.1 -o " + path("m"));
+  EXPECT_EQ(shape.status, 2);
+  EXPECT_NE(shape.out.find("--shape-bound"), std::string::npos) << shape.out;
 }
 
 TEST_F(MeshCli, StoppedEarlyExitsThree) {
   const MeshRun r = mesh("square --metric uniform:0.05:0.05 --max-vertices 50 --no-picture -o " + path("cap"));
   EXPECT_EQ(r.status, 3) << r.out;
   EXPECT_NE(r.out.find("max_vertices"), std::string::npos) << r.out;
+}
+
+TEST_F(MeshCli, VoronoiAlgorithmOnABundledDomain) {
+  // Thesis Part II on the L-shaped domain with a wall: converged, valid, every Voronoi vertex within
+  // the shape bound, the same outputs and report as the star mesher.
+  const std::string stem = path("lv");
+  const MeshRun r = mesh(domains + "l-shape-with-wall.txt --algorithm voronoi --metric thesis:0.2:4:0.2:1.5 "
+                         "--shape-bound 1 --size-bound 2 --json -o " + stem);
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["algorithm"], "voronoi");
+  EXPECT_TRUE(j["converged"].get<bool>()) << j["status"];
+  EXPECT_TRUE(j["valid_triangulation"].get<bool>()) << j["validation"];
+  EXPECT_LE(j["rules"]["worst_vertex_radius_edge"].get<double>(), 1.0);
+  for (const char* rule : {"encroached", "ellipse", "bad_shape", "duplicate", "overlap", "size", "redirected", "rounds"})
+    EXPECT_TRUE(j["rules"].contains(rule)) << rule;
+  EXPECT_GT(j["rules"]["rounds"].get<int>(), 0);
+  for (const char* ext : {".mesh", ".sol", ".vtk", ".json", ".svg", ".png"}) EXPECT_TRUE(fs::exists(stem + ext)) << stem << ext;
+
+  const MeshRun table = mesh("square --algorithm voronoi --metric uniform:0.2:0.2 --no-picture -o " + path("sv"));
+  ASSERT_EQ(table.status, 0) << table.out;
+  EXPECT_NE(table.out.find("algorithm voronoi"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("1 encroached"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("smallest angle"), std::string::npos) << table.out;
+
+  const MeshRun cap = mesh("square --algorithm voronoi --metric uniform:0.05:0.05 --max-vertices 40 --no-picture -o " +
+                           path("vc"));
+  EXPECT_EQ(cap.status, 3) << cap.out;
+  EXPECT_NE(cap.out.find("max_vertices"), std::string::npos) << cap.out;
 }
