@@ -46,6 +46,7 @@ struct Subsegment {
   Index a, b;
   bool alive = true;
   bool two_sided = false;  ///< an interior constraint (Ω on both sides); boundary edges have Ω on their left
+  std::array<std::size_t, 4> cells{};  ///< registered cells of subs_grid_: i0, j0, i1, j1
 };
 
 /// A refinement request: rule (2..5), the star's site and version, the triangle.
@@ -170,6 +171,13 @@ public:
     }
     result.stats = stats_;
     merge(result);
+    // Consistent stars whose union is not a triangulation of Ω would be a bug of the star
+    // computation; never report such a mesh as converged.
+    if (result.converged)
+      if (std::string problem = check_triangulation(result.mesh, domain_); !problem.empty()) {
+        result.converged = false;
+        result.status = "not a triangulation although every star is consistent: " + problem;
+      }
     return result;
   }
 
@@ -221,6 +229,7 @@ private:
   void add_subsegment(Index a, Index b, bool two_sided) {
     const Index s = static_cast<Index>(subs_.size());
     subs_.push_back({a, b, true, two_sided});
+    sub_seen_.push_back(0);
     // Register over the bounding box of both diametral ellipses.
     const Point2 pa = points_[a], pb = points_[b];
     const double mx = (pa.x + pb.x) / 2, my = (pa.y + pb.y) / 2;
@@ -232,8 +241,10 @@ private:
       ex = std::max(ex, r * std::sqrt(m.c / det));
       ey = std::max(ey, r * std::sqrt(m.a / det));
     }
-    for (std::size_t j = subs_grid_.iy(my - ey); j <= subs_grid_.iy(my + ey); ++j)
-      for (std::size_t i = subs_grid_.ix(mx - ex); i <= subs_grid_.ix(mx + ex); ++i) subs_grid_.at(i, j).push_back(s);
+    subs_[s].cells = {subs_grid_.ix(mx - ex), subs_grid_.iy(my - ey), subs_grid_.ix(mx + ex), subs_grid_.iy(my + ey)};
+    const auto& c = subs_[s].cells;
+    for (std::size_t j = c[1]; j <= c[3]; ++j)
+      for (std::size_t i = c[0]; i <= c[2]; ++i) subs_grid_.at(i, j).push_back(s);
   }
 
   /// p lies strictly inside the M_a- or M_b-diametral ball of subsegment s, on a side of s where the
@@ -277,6 +288,13 @@ private:
   void split(Index s) {
     ++stats_.encroachment;
     subs_[s].alive = false;
+    // Unregister it: the cells would otherwise fill up with dead subsegments that every query skips.
+    const auto c = subs_[s].cells;
+    for (std::size_t j = c[1]; j <= c[3]; ++j)
+      for (std::size_t i = c[0]; i <= c[2]; ++i) {
+        auto& cell = subs_grid_.at(i, j);
+        cell.erase(std::find(cell.begin(), cell.end(), s));
+      }
     const Index a = subs_[s].a, b = subs_[s].b;
     const Point2 m{(points_[a].x + points_[b].x) / 2, (points_[a].y + points_[b].y) / 2};
     const double length = metric_length(metrics_[a], points_[b].x - points_[a].x, points_[b].y - points_[a].y);
@@ -311,23 +329,50 @@ private:
     const double sx = std::sqrt(m.c / det_m), sy = std::sqrt(m.a / det_m);
     double r = star.query_radius > 0 ? star.query_radius : hint_[v];
     std::vector<Index> ids;
-    std::vector<std::array<double, 2>> stretched;
-    std::vector<std::array<std::size_t, 2>> fan;
+    std::vector<std::array<double, 2>> stretched, plane;
+    std::vector<std::array<std::size_t, 2>> fan, constraints;
+    std::vector<Index> near_subs;
+    std::vector<std::int8_t> side;
+    std::vector<std::pair<Index, int>> at_v;
     std::vector<StarTriangle> kept;
-    double needed = 0;  // the largest |circumcentre| + circumradius over the fan, in the metric
+    const std::array<double, 3> metric{m.a, m.b, m.c};
+    double needed = 0;  // the largest |circumcentre| + circumradius over the kept triangles, in the metric
     while (true) {
       ids.clear();
       stretched.clear();
+      plane.clear();
       std::size_t centre = 0;
       const double ex = r * sx, ey = r * sy;
-      for_sites_in_box(p.x - ex, p.y - ey, p.x + ex, p.y + ey, [&](Index w) {
+      const auto add_local = [&](Index w) {
         const double dx = points_[w].x - p.x, dy = points_[w].y - p.y;
-        const double qx = f.m00 * dx + f.m01 * dy, qy = f.m10 * dx + f.m11 * dy;
-        if (qx * qx + qy * qy > r * r) return;
         if (w == v) centre = ids.size();
         ids.push_back(w);
-        stretched.push_back({qx, qy});
+        stretched.push_back({f.m00 * dx + f.m01 * dy, f.m10 * dx + f.m11 * dy});
+        plane.push_back({points_[w].x, points_[w].y});
+      };
+      for_sites_in_box(p.x - ex, p.y - ey, p.x + ex, p.y + ey, [&](Index w) {
+        if (metric_length(m, points_[w].x - p.x, points_[w].y - p.y) <= r) add_local(w);
       });
+      // Every subsegment that may pass through the queried ball is a constraint of the local
+      // triangulation (with its endpoints, even outside the ball): the star is the one of the
+      // constrained Delaunay triangulation, so no triangle of it crosses Ω's boundary or a wall.
+      near_subs.clear();
+      ++sub_epoch_;
+      for (std::size_t j = subs_grid_.iy(p.y - ey); j <= subs_grid_.iy(p.y + ey); ++j)
+        for (std::size_t i = subs_grid_.ix(p.x - ex); i <= subs_grid_.ix(p.x + ex); ++i)
+          for (Index s : subs_grid_.at(i, j)) {
+            if (!subs_[s].alive || sub_seen_[s] == sub_epoch_) continue;
+            sub_seen_[s] = sub_epoch_;
+            if (stretched_distance_to_subsegment(f, p, s) <= r * (1 + 1e-6)) near_subs.push_back(s);
+          }
+      constraints.clear();
+      const auto local_of = [&](Index w) {
+        const auto it = std::find(ids.begin(), ids.end(), w);
+        if (it != ids.end()) return static_cast<std::size_t>(it - ids.begin());
+        add_local(w);
+        return ids.size() - 1;
+      };
+      for (Index s : near_subs) constraints.push_back({local_of(subs_[s].a), local_of(subs_[s].b)});
       // The ball covers the whole box only if the box's four corners are inside it.
       bool everything = true;
       for (const double cx : {box_[0], box_[2]})
@@ -336,12 +381,19 @@ private:
       bool on_hull = true;
       ++stats_.star_attempts;
       stats_.star_points += ids.size();
-      if (ids.size() >= 3) detail::delaunay_fan(stretched, centre, fan, on_hull);
+      if (ids.size() >= 3) detail::delaunay_fan(plane, centre, metric, constraints, fan, on_hull);
       else fan.clear();
       bool complete = !fan.empty() || everything;
+      at_v.clear();
+      for (Index s : near_subs)
+        if (!subs_[s].two_sided && (subs_[s].a == v || subs_[s].b == v))
+          at_v.push_back({subs_[s].a == v ? subs_[s].b : subs_[s].a, subs_[s].a == v ? 1 : -1});
+      classify_fan(ids, fan, on_hull, at_v, side);
       kept.clear();
       needed = 0;
-      for (const auto& [ia, ib] : fan) {
+      for (std::size_t k = 0; k < fan.size(); ++k) {
+        if (side[k] <= 0) continue;  // outside Ω: neither part of the star nor needed to certify it
+        const auto [ia, ib] = fan[k];
         const auto& sa = stretched[ia];
         const auto& sb = stretched[ib];
         // Circumcentre of (0, sa, sb) in the stretched frame.
@@ -353,16 +405,13 @@ private:
         const double det = f.m00 * f.m11 - f.m01 * f.m10;
         const double cx = p.x + (f.m11 * ux - f.m01 * uy) / det, cy = p.y + (-f.m10 * ux + f.m00 * uy) / det;
         needed = std::max(needed, std::hypot(ux, uy) + radius);
-        if (!everything && needed * (1 + 1e-9) > r) {
+        if (!everything && !(needed * (1 + 1e-9) <= r)) {
           complete = false;
           break;
         }
-        const Index a = ids[ia], b = ids[ib];
-        const Point2 g{(p.x + points_[a].x + points_[b].x) / 3, (p.y + points_[a].y + points_[b].y) / 3};
-        if (domain_.locate(g) != DomainSide::inside) continue;
         const double shortest = std::min({std::hypot(sa[0], sa[1]), std::hypot(sb[0], sb[1]),
                                           std::hypot(sa[0] - sb[0], sa[1] - sb[1])});
-        kept.push_back({a, b, cx, cy, radius, shortest});
+        kept.push_back({ids[ia], ids[ib], cx, cy, radius, shortest});
       }
       if (complete && on_hull && !everything && !fan.empty()) complete = gap_outside_domain(v, ids[fan.front()[0]], ids[fan.back()[1]]);
       if (complete) break;
@@ -375,6 +424,49 @@ private:
     ++star.version;
     register_zone(v);
     evaluate(v, m);
+  }
+
+  /// Which triangles of a constrained fan around v lie in Ω (side +1) or outside (−1), from the
+  /// boundary subsegments at v alone (`at_v`: the other endpoint w, +1 for a subsegment v→w, −1 for
+  /// w→v; Ω is on the left of each): the face after the edge v→w counter-clockwise is on the left of
+  /// v→w, the face before it on its right, and the side only changes across such an edge. Exact and
+  /// purely combinatorial (no point location on rounded points), so a sliver between a boundary
+  /// edge and sites split off it by rounding is classified by the subsegments that bound it. With no
+  /// boundary subsegment at v (v strictly inside Ω or on a wall), the whole fan is in Ω.
+  static void classify_fan(const std::vector<Index>& ids, const std::vector<std::array<std::size_t, 2>>& fan,
+                           bool open, const std::vector<std::pair<Index, int>>& at_v, std::vector<std::int8_t>& side) {
+    side.assign(fan.size(), 0);
+    const auto orientation_of = [&](Index w) {
+      for (const auto& [u, o] : at_v)
+        if (u == w) return o;
+      return 0;
+    };
+    bool seeded = false;
+    for (std::size_t k = 0; k < fan.size(); ++k) {
+      const int after = orientation_of(ids[fan[k][0]]);   // edge v→a: the face is on its left
+      const int before = orientation_of(ids[fan[k][1]]);  // edge v→b: the face is on its right
+      int s = 0;
+      if (after != 0) s = after;
+      if (before != 0) s = s == 0 ? -before : std::min(s, -before);
+      side[k] = static_cast<std::int8_t>(s);
+      seeded = seeded || s != 0;
+    }
+    if (!seeded) {
+      side.assign(fan.size(), 1);
+      return;
+    }
+    const std::size_t n = fan.size();
+    std::size_t first = 0;
+    while (side[first] == 0) ++first;
+    // Forward from the first seeded face (round the whole cycle for a closed fan), then, for an open
+    // fan, backward from it to the fan's start.
+    const std::size_t steps = open ? n - 1 - first : n - 1;
+    for (std::size_t i = 1; i <= steps; ++i) {
+      const std::size_t k = (first + i) % n, prev = (first + i - 1) % n;
+      if (side[k] == 0) side[k] = side[prev];
+    }
+    for (std::size_t k = first; open && k-- > 0;)
+      if (side[k] == 0) side[k] = side[k + 1];
   }
 
   /// For an open fan at v from neighbour `first` (ccw) round to `last`: the directions in the gap from
@@ -392,6 +484,19 @@ private:
     if (lb == 0) return false;
     const double eps = 1e-7 * std::min(lu, lw);
     return domain_.locate({p.x + eps * bx / lb, p.y + eps * by / lb}) == DomainSide::outside;
+  }
+
+  /// The M-distance from p to subsegment s, for the stretching f = M^{1/2} (in doubles: a filter with
+  /// a relative margin, not a predicate).
+  double stretched_distance_to_subsegment(const Matrix2& f, Point2 p, Index s) const {
+    const auto stretch = [&](Point2 q) {
+      const double dx = q.x - p.x, dy = q.y - p.y;
+      return std::array<double, 2>{f.m00 * dx + f.m01 * dy, f.m10 * dx + f.m11 * dy};
+    };
+    const auto a = stretch(points_[subs_[s].a]), b = stretch(points_[subs_[s].b]);
+    const double ux = b[0] - a[0], uy = b[1] - a[1], uu = ux * ux + uy * uy;
+    const double t = uu > 0 ? std::clamp(-(a[0] * ux + a[1] * uy) / uu, 0.0, 1.0) : 0.0;
+    return std::hypot(a[0] + t * ux, a[1] + t * uy);
   }
 
   void register_zone(Index v) {
@@ -595,6 +700,8 @@ private:
   std::vector<bool> is_dirty_;
   std::vector<Index> dirty_;
   std::vector<Subsegment> subs_;
+  std::vector<std::uint32_t> sub_seen_;  ///< per subsegment: the last star query that met it
+  std::uint32_t sub_epoch_ = 0;
   std::vector<Index> split_queue_;
   std::priority_queue<Request> requests_;
   StarMeshStats stats_;
