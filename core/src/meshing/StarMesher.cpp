@@ -199,6 +199,8 @@ private:
     largest_size_.push_back(sizes_of(m)[0]);
     stars_.emplace_back();
     is_dirty_.push_back(false);
+    local_stamp_.push_back(0);
+    local_index_.push_back(0);
     if (options_.progress && v % 1000 == 0 && v > 0) options_.progress(v);
     sites_grid_.at(sites_grid_.ix(p.x), sites_grid_.iy(p.y)).push_back(v);
     // Stars whose conflict zone contains p change; so does p's own.
@@ -308,8 +310,9 @@ private:
 
   template <class F>
   void for_sites_in_box(double x0, double y0, double x1, double y1, F&& f) const {
-    for (std::size_t j = sites_grid_.iy(y0); j <= sites_grid_.iy(y1); ++j)
-      for (std::size_t i = sites_grid_.ix(x0); i <= sites_grid_.ix(x1); ++i)
+    const std::size_t i0 = sites_grid_.ix(x0), i1 = sites_grid_.ix(x1), j0 = sites_grid_.iy(y0), j1 = sites_grid_.iy(y1);
+    for (std::size_t j = j0; j <= j1; ++j)
+      for (std::size_t i = i0; i <= i1; ++i)
         for (Index w : sites_grid_.at(i, j)) f(w);
   }
 
@@ -331,7 +334,7 @@ private:
     std::vector<Index> ids;
     std::vector<std::array<double, 2>> stretched, plane;
     std::vector<std::array<std::size_t, 2>> fan, constraints;
-    std::vector<Index> near_subs;
+    std::vector<Index> near_subs, inner_subs, straddling;
     std::vector<std::int8_t> side;
     std::vector<std::pair<Index, int>> at_v;
     std::vector<StarTriangle> kept;
@@ -343,9 +346,12 @@ private:
       plane.clear();
       std::size_t centre = 0;
       const double ex = r * sx, ey = r * sy;
+      ++local_epoch_;
       const auto add_local = [&](Index w) {
         const double dx = points_[w].x - p.x, dy = points_[w].y - p.y;
         if (w == v) centre = ids.size();
+        local_stamp_[w] = local_epoch_;
+        local_index_[w] = ids.size();
         ids.push_back(w);
         stretched.push_back({f.m00 * dx + f.m01 * dy, f.m10 * dx + f.m11 * dy});
         plane.push_back({points_[w].x, points_[w].y});
@@ -358,21 +364,29 @@ private:
       // constrained Delaunay triangulation, so no triangle of it crosses Ω's boundary or a wall.
       near_subs.clear();
       ++sub_epoch_;
-      for (std::size_t j = subs_grid_.iy(p.y - ey); j <= subs_grid_.iy(p.y + ey); ++j)
-        for (std::size_t i = subs_grid_.ix(p.x - ex); i <= subs_grid_.ix(p.x + ex); ++i)
+      const std::size_t i0 = subs_grid_.ix(p.x - ex), i1 = subs_grid_.ix(p.x + ex);
+      const std::size_t j0 = subs_grid_.iy(p.y - ey), j1 = subs_grid_.iy(p.y + ey);
+      for (std::size_t j = j0; j <= j1; ++j)
+        for (std::size_t i = i0; i <= i1; ++i)
           for (Index s : subs_grid_.at(i, j)) {
             if (!subs_[s].alive || sub_seen_[s] == sub_epoch_) continue;
             sub_seen_[s] = sub_epoch_;
             if (stretched_distance_to_subsegment(f, p, s) <= r * (1 + 1e-6)) near_subs.push_back(s);
           }
+      // Those with both endpoints in the ball are constraints; a subsegment leaving the ball cannot be
+      // one, but if it crosses a triangle of the star the star is not certified (checked below).
       constraints.clear();
-      const auto local_of = [&](Index w) {
-        const auto it = std::find(ids.begin(), ids.end(), w);
-        if (it != ids.end()) return static_cast<std::size_t>(it - ids.begin());
-        add_local(w);
-        return ids.size() - 1;
-      };
-      for (Index s : near_subs) constraints.push_back({local_of(subs_[s].a), local_of(subs_[s].b)});
+      inner_subs.clear();
+      straddling.clear();
+      for (Index s : near_subs) {
+        const Index a = subs_[s].a, b = subs_[s].b;
+        if (local_stamp_[a] == local_epoch_ && local_stamp_[b] == local_epoch_) {
+          constraints.push_back({local_index_[a], local_index_[b]});
+          inner_subs.push_back(s);
+        } else {
+          straddling.push_back(s);
+        }
+      }
       // The ball covers the whole box only if the box's four corners are inside it.
       bool everything = true;
       for (const double cx : {box_[0], box_[2]})
@@ -385,7 +399,7 @@ private:
       else fan.clear();
       bool complete = !fan.empty() || everything;
       at_v.clear();
-      for (Index s : near_subs)
+      for (Index s : inner_subs)
         if (!subs_[s].two_sided && (subs_[s].a == v || subs_[s].b == v))
           at_v.push_back({subs_[s].a == v ? subs_[s].b : subs_[s].a, subs_[s].a == v ? 1 : -1});
       classify_fan(ids, fan, on_hull, at_v, side);
@@ -413,6 +427,12 @@ private:
                                           std::hypot(sa[0] - sb[0], sa[1] - sb[1])});
         kept.push_back({ids[ia], ids[ib], cx, cy, radius, shortest});
       }
+      for (std::size_t k = 0; complete && k < kept.size(); ++k)
+        for (Index s : straddling)
+          if (crosses_triangle(s, v, kept[k].a, kept[k].b)) {
+            complete = false;
+            break;
+          }
       if (complete && on_hull && !everything && !fan.empty()) complete = gap_outside_domain(v, ids[fan.front()[0]], ids[fan.back()[1]]);
       if (complete) break;
       r *= 1.6;
@@ -484,6 +504,23 @@ private:
     if (lb == 0) return false;
     const double eps = 1e-7 * std::min(lu, lw);
     return domain_.locate({p.x + eps * bx / lb, p.y + eps * by / lb}) == DomainSide::outside;
+  }
+
+  /// Subsegment s properly crosses an edge of the triangle (u, a, b), so it meets its interior (a site
+  /// on a subsegment is always one of its endpoints, so s cannot enter through a vertex). Exact.
+  bool crosses_triangle(Index s, Index u, Index a, Index b) const {
+    const Point2 s0 = points_[subs_[s].a], s1 = points_[subs_[s].b];
+    const auto opposite = [](Sign x, Sign y) {
+      return (x == Sign::positive && y == Sign::negative) || (x == Sign::negative && y == Sign::positive);
+    };
+    const Index corners[3] = {u, a, b};
+    for (int k = 0; k < 3; ++k) {
+      const Point2 e0 = points_[corners[k]], e1 = points_[corners[(k + 1) % 3]];
+      if (opposite(orientation(e0, e1, s0), orientation(e0, e1, s1)) &&
+          opposite(orientation(s0, s1, e0), orientation(s0, s1, e1)))
+        return true;
+    }
+    return false;
   }
 
   /// The M-distance from p to subsegment s, for the stretching f = M^{1/2} (in doubles: a filter with
@@ -702,6 +739,9 @@ private:
   std::vector<Subsegment> subs_;
   std::vector<std::uint32_t> sub_seen_;  ///< per subsegment: the last star query that met it
   std::uint32_t sub_epoch_ = 0;
+  std::vector<std::uint32_t> local_stamp_;  ///< per site: the last star query that took it
+  std::vector<std::size_t> local_index_;    ///< per site: its index in that query
+  std::uint32_t local_epoch_ = 0;
   std::vector<Index> split_queue_;
   std::priority_queue<Request> requests_;
   StarMeshStats stats_;
