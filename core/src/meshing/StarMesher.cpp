@@ -133,6 +133,10 @@ public:
         result.status = "stopped at " + std::to_string(points_.size()) + " vertices (max_vertices)";
         break;
       }
+      if (!degenerate_.empty()) {
+        result.status = "stopped: " + degenerate_;
+        break;
+      }
       if (!split_queue_.empty()) {
         const Index s = split_queue_.back();
         split_queue_.pop_back();
@@ -310,7 +314,8 @@ private:
 
   template <class F>
   void for_sites_in_box(double x0, double y0, double x1, double y1, F&& f) const {
-    const std::size_t i0 = sites_grid_.ix(x0), i1 = sites_grid_.ix(x1), j0 = sites_grid_.iy(y0), j1 = sites_grid_.iy(y1);
+    const std::size_t i0 = sites_grid_.ix(x0), i1 = sites_grid_.ix(x1);
+    const std::size_t j0 = sites_grid_.iy(y0), j1 = sites_grid_.iy(y1);
     for (std::size_t j = j0; j <= j1; ++j)
       for (std::size_t i = i0; i <= i1; ++i)
         for (Index w : sites_grid_.at(i, j)) f(w);
@@ -437,6 +442,13 @@ private:
       if (complete) break;
       r *= 1.6;
     }
+    // A star triangle whose circumcentre is not finite in doubles cannot be refined (its picking
+    // region is undefined); exact predicates keep collinear boundary sites from forming one, so this
+    // is a safeguard: stop with a status rather than feed inf/NaN to the predicates.
+    for (const StarTriangle& t : kept)
+      if (degenerate_.empty() && !(std::isfinite(t.cx) && std::isfinite(t.cy) && std::isfinite(t.radius)))
+        degenerate_ = "a flat triangle (" + std::to_string(v) + ", " + std::to_string(t.a) + ", " +
+                      std::to_string(t.b) + ") in a star has no finite circumcentre";
     star.triangles = std::move(kept);
     kept = {};
     // Next time, start from what this star needed (stars only shrink as sites are added).
@@ -496,12 +508,13 @@ private:
     const double ux = points_[first].x - p.x, uy = points_[first].y - p.y;
     const double wx = points_[last].x - p.x, wy = points_[last].y - p.y;
     const double lu = std::hypot(ux, uy), lw = std::hypot(wx, wy);
-    double bx = ux / lu + wx / lw, by = uy / lu + wy / lw;
-    // The gap runs counter-clockwise from `last` to `first`; if that turn is a left turn the gap is
-    // less than π and its bisector is u + w, otherwise −(u + w).
-    if (orientation(p, points_[last], points_[first]) != Sign::positive) bx = -bx, by = -by;
+    // For unit vectors w = (cos α, sin α) and u = w turned by φ ∈ (0, 2π) counter-clockwise, w − u
+    // turned by +90° is 2 sin(φ/2) times the bisector: one formula for every gap, well conditioned at
+    // φ = π (a boundary vertex between two collinear neighbours, where w + u vanishes).
+    const double dx = wx / lw - ux / lu, dy = wy / lw - uy / lu;
+    const double bx = -dy, by = dx;
     const double lb = std::hypot(bx, by);
-    if (lb == 0) return false;
+    if (!(lb > 0)) return false;
     const double eps = 1e-7 * std::min(lu, lw);
     return domain_.locate({p.x + eps * bx / lb, p.y + eps * by / lb}) == DomainSide::outside;
   }
@@ -565,6 +578,7 @@ private:
   void evaluate(Index v, const Metric& m) {
     const Star& star = stars_[v];
     for (const StarTriangle& t : star.triangles) {
+      if (!std::isfinite(t.radius)) continue;  // the refinement stops (degenerate_)
       int rule = 0;
       double g = std::max(distortion(m, metrics_[t.a]), distortion(m, metrics_[t.b]));
       try {
@@ -746,6 +760,7 @@ private:
   std::priority_queue<Request> requests_;
   StarMeshStats stats_;
   std::size_t sites_at_last_sweep_ = 0;
+  std::string degenerate_;  ///< why the refinement must stop (a star triangle it cannot refine), or ""
 };
 
 }  // namespace

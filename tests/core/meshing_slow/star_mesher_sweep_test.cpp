@@ -13,7 +13,8 @@ namespace {
 TEST(StarMesherSweep, ConvergedImpliesATriangulation) {
   const std::string data = std::string(LAGUERRE_TEST_DATA);
   const Domain holes = read_domain(data + "/../../scenarios/domains/square-with-holes.txt");
-  const Domain diamond = read_domain(data + "/domains/diamond.txt"), hexagon = read_domain(data + "/domains/hexagon.txt");
+  const Domain diamond = read_domain(data + "/domains/diamond.txt");
+  const Domain hexagon = read_domain(data + "/domains/hexagon.txt");
   const struct {
     const Domain* domain;
     const char* field;

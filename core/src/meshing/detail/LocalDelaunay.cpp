@@ -26,7 +26,8 @@ NT in_circle_determinant(const std::array<double, 2>& p, const std::array<double
   const NT qx = NT(q[0]) - tx, qy = NT(q[1]) - ty;
   const NT rx = NT(r[0]) - tx, ry = NT(r[1]) - ty;
   const auto lift = [&](const NT& x, const NT& y) -> NT { return a * x * x + NT(2) * b * x * y + c * y * y; };
-  return NT(lift(px, py) * (qx * ry - qy * rx) - lift(qx, qy) * (px * ry - py * rx) + lift(rx, ry) * (px * qy - py * qx));
+  return NT(lift(px, py) * (qx * ry - qy * rx) - lift(qx, qy) * (px * ry - py * rx) +
+            lift(rx, ry) * (px * qy - py * qx));
 }
 
 /// The interval and exact stages of the in-circle test (the static filter failed).
