@@ -432,6 +432,9 @@ private:
                                           std::hypot(sa[0] - sb[0], sa[1] - sb[1])});
         kept.push_back({ids[ia], ids[ib], cx, cy, radius, shortest});
       }
+      // v's own subsegments must be constraints: they alone decide which fan triangles are in Ω.
+      for (Index s : straddling)
+        if (subs_[s].a == v || subs_[s].b == v) complete = false;
       for (std::size_t k = 0; complete && k < kept.size(); ++k)
         for (Index s : straddling)
           if (crosses_triangle(s, v, kept[k].a, kept[k].b)) {
