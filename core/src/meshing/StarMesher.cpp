@@ -247,7 +247,8 @@ private:
       ex = std::max(ex, r * std::sqrt(m.c / det));
       ey = std::max(ey, r * std::sqrt(m.a / det));
     }
-    subs_[s].cells = {subs_grid_.ix(mx - ex), subs_grid_.iy(my - ey), subs_grid_.ix(mx + ex), subs_grid_.iy(my + ey)};
+    subs_[s].cells = {subs_grid_.ix(mx - ex), subs_grid_.iy(my - ey),  //
+                      subs_grid_.ix(mx + ex), subs_grid_.iy(my + ey)};
     const auto& c = subs_[s].cells;
     for (std::size_t j = c[1]; j <= c[3]; ++j)
       for (std::size_t i = c[0]; i <= c[2]; ++i) subs_grid_.at(i, j).push_back(s);
@@ -352,21 +353,21 @@ private:
       std::size_t centre = 0;
       const double ex = r * sx, ey = r * sy;
       ++local_epoch_;
-      const auto add_local = [&](Index w) {
+      for_sites_in_box(p.x - ex, p.y - ey, p.x + ex, p.y + ey, [&](Index w) {
         const double dx = points_[w].x - p.x, dy = points_[w].y - p.y;
+        const double qx = f.m00 * dx + f.m01 * dy, qy = f.m10 * dx + f.m11 * dy;
+        if (qx * qx + qy * qy > r * r) return;
         if (w == v) centre = ids.size();
         local_stamp_[w] = local_epoch_;
         local_index_[w] = ids.size();
         ids.push_back(w);
-        stretched.push_back({f.m00 * dx + f.m01 * dy, f.m10 * dx + f.m11 * dy});
+        stretched.push_back({qx, qy});
         plane.push_back({points_[w].x, points_[w].y});
-      };
-      for_sites_in_box(p.x - ex, p.y - ey, p.x + ex, p.y + ey, [&](Index w) {
-        if (metric_length(m, points_[w].x - p.x, points_[w].y - p.y) <= r) add_local(w);
       });
-      // Every subsegment that may pass through the queried ball is a constraint of the local
-      // triangulation (with its endpoints, even outside the ball): the star is the one of the
-      // constrained Delaunay triangulation, so no triangle of it crosses Ω's boundary or a wall.
+      // The subsegments that may pass through the queried ball. Those with both endpoints in it are
+      // constraints of the local triangulation, so that no triangle of the star crosses Ω's boundary
+      // or a wall; one leaving the ball cannot be, but the star is not certified while it crosses one
+      // of the star's triangles or is one of v's own subsegments (checked below).
       near_subs.clear();
       ++sub_epoch_;
       const std::size_t i0 = subs_grid_.ix(p.x - ex), i1 = subs_grid_.ix(p.x + ex);
@@ -378,8 +379,6 @@ private:
             sub_seen_[s] = sub_epoch_;
             if (stretched_distance_to_subsegment(f, p, s) <= r * (1 + 1e-6)) near_subs.push_back(s);
           }
-      // Those with both endpoints in the ball are constraints; a subsegment leaving the ball cannot be
-      // one, but if it crosses a triangle of the star the star is not certified (checked below).
       constraints.clear();
       inner_subs.clear();
       straddling.clear();
@@ -754,11 +753,11 @@ private:
   std::vector<bool> is_dirty_;
   std::vector<Index> dirty_;
   std::vector<Subsegment> subs_;
-  std::vector<std::uint32_t> sub_seen_;  ///< per subsegment: the last star query that met it
-  std::uint32_t sub_epoch_ = 0;
-  std::vector<std::uint32_t> local_stamp_;  ///< per site: the last star query that took it
+  std::vector<std::uint64_t> sub_seen_;  ///< per subsegment: the last star query that met it
+  std::uint64_t sub_epoch_ = 0;
+  std::vector<std::uint64_t> local_stamp_;  ///< per site: the last star query that took it
   std::vector<std::size_t> local_index_;    ///< per site: its index in that query
-  std::uint32_t local_epoch_ = 0;
+  std::uint64_t local_epoch_ = 0;
   std::vector<Index> split_queue_;
   std::priority_queue<Request> requests_;
   StarMeshStats stats_;
