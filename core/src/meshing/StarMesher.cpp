@@ -46,6 +46,7 @@ struct Subsegment {
   Index a, b;
   bool alive = true;
   bool two_sided = false;  ///< an interior constraint (Ω on both sides); boundary edges have Ω on their left
+  std::array<std::size_t, 4> cells{};  ///< registered cells of subs_grid_: i0, j0, i1, j1
 };
 
 /// A refinement request: rule (2..5), the star's site and version, the triangle.
@@ -132,6 +133,10 @@ public:
         result.status = "stopped at " + std::to_string(points_.size()) + " vertices (max_vertices)";
         break;
       }
+      if (!degenerate_.empty()) {
+        result.status = "stopped: " + degenerate_;
+        break;
+      }
       if (!split_queue_.empty()) {
         const Index s = split_queue_.back();
         split_queue_.pop_back();
@@ -170,6 +175,13 @@ public:
     }
     result.stats = stats_;
     merge(result);
+    // Consistent stars whose union is not a triangulation of Ω would be a bug of the star
+    // computation; never report such a mesh as converged.
+    if (result.converged)
+      if (std::string problem = check_triangulation(result.mesh, domain_); !problem.empty()) {
+        result.converged = false;
+        result.status = "not a triangulation although every star is consistent: " + problem;
+      }
     return result;
   }
 
@@ -191,6 +203,8 @@ private:
     largest_size_.push_back(sizes_of(m)[0]);
     stars_.emplace_back();
     is_dirty_.push_back(false);
+    local_stamp_.push_back(0);
+    local_index_.push_back(0);
     if (options_.progress && v % 1000 == 0 && v > 0) options_.progress(v);
     sites_grid_.at(sites_grid_.ix(p.x), sites_grid_.iy(p.y)).push_back(v);
     // Stars whose conflict zone contains p change; so does p's own.
@@ -221,6 +235,7 @@ private:
   void add_subsegment(Index a, Index b, bool two_sided) {
     const Index s = static_cast<Index>(subs_.size());
     subs_.push_back({a, b, true, two_sided});
+    sub_seen_.push_back(0);
     // Register over the bounding box of both diametral ellipses.
     const Point2 pa = points_[a], pb = points_[b];
     const double mx = (pa.x + pb.x) / 2, my = (pa.y + pb.y) / 2;
@@ -232,8 +247,11 @@ private:
       ex = std::max(ex, r * std::sqrt(m.c / det));
       ey = std::max(ey, r * std::sqrt(m.a / det));
     }
-    for (std::size_t j = subs_grid_.iy(my - ey); j <= subs_grid_.iy(my + ey); ++j)
-      for (std::size_t i = subs_grid_.ix(mx - ex); i <= subs_grid_.ix(mx + ex); ++i) subs_grid_.at(i, j).push_back(s);
+    subs_[s].cells = {subs_grid_.ix(mx - ex), subs_grid_.iy(my - ey),  //
+                      subs_grid_.ix(mx + ex), subs_grid_.iy(my + ey)};
+    const auto& c = subs_[s].cells;
+    for (std::size_t j = c[1]; j <= c[3]; ++j)
+      for (std::size_t i = c[0]; i <= c[2]; ++i) subs_grid_.at(i, j).push_back(s);
   }
 
   /// p lies strictly inside the M_a- or M_b-diametral ball of subsegment s, on a side of s where the
@@ -277,6 +295,13 @@ private:
   void split(Index s) {
     ++stats_.encroachment;
     subs_[s].alive = false;
+    // Unregister it: the cells would otherwise fill up with dead subsegments that every query skips.
+    const auto c = subs_[s].cells;
+    for (std::size_t j = c[1]; j <= c[3]; ++j)
+      for (std::size_t i = c[0]; i <= c[2]; ++i) {
+        auto& cell = subs_grid_.at(i, j);
+        cell.erase(std::find(cell.begin(), cell.end(), s));
+      }
     const Index a = subs_[s].a, b = subs_[s].b;
     const Point2 m{(points_[a].x + points_[b].x) / 2, (points_[a].y + points_[b].y) / 2};
     const double length = metric_length(metrics_[a], points_[b].x - points_[a].x, points_[b].y - points_[a].y);
@@ -290,8 +315,10 @@ private:
 
   template <class F>
   void for_sites_in_box(double x0, double y0, double x1, double y1, F&& f) const {
-    for (std::size_t j = sites_grid_.iy(y0); j <= sites_grid_.iy(y1); ++j)
-      for (std::size_t i = sites_grid_.ix(x0); i <= sites_grid_.ix(x1); ++i)
+    const std::size_t i0 = sites_grid_.ix(x0), i1 = sites_grid_.ix(x1);
+    const std::size_t j0 = sites_grid_.iy(y0), j1 = sites_grid_.iy(y1);
+    for (std::size_t j = j0; j <= j1; ++j)
+      for (std::size_t i = i0; i <= i1; ++i)
         for (Index w : sites_grid_.at(i, j)) f(w);
   }
 
@@ -311,23 +338,59 @@ private:
     const double sx = std::sqrt(m.c / det_m), sy = std::sqrt(m.a / det_m);
     double r = star.query_radius > 0 ? star.query_radius : hint_[v];
     std::vector<Index> ids;
-    std::vector<std::array<double, 2>> stretched;
-    std::vector<std::array<std::size_t, 2>> fan;
+    std::vector<std::array<double, 2>> stretched, plane;
+    std::vector<std::array<std::size_t, 2>> fan, constraints;
+    std::vector<Index> near_subs, inner_subs, straddling;
+    std::vector<std::int8_t> side;
+    std::vector<std::pair<Index, int>> at_v;
     std::vector<StarTriangle> kept;
-    double needed = 0;  // the largest |circumcentre| + circumradius over the fan, in the metric
+    const std::array<double, 3> metric{m.a, m.b, m.c};
+    double needed = 0;  // the largest |circumcentre| + circumradius over the kept triangles, in the metric
     while (true) {
       ids.clear();
       stretched.clear();
+      plane.clear();
       std::size_t centre = 0;
       const double ex = r * sx, ey = r * sy;
+      ++local_epoch_;
       for_sites_in_box(p.x - ex, p.y - ey, p.x + ex, p.y + ey, [&](Index w) {
         const double dx = points_[w].x - p.x, dy = points_[w].y - p.y;
         const double qx = f.m00 * dx + f.m01 * dy, qy = f.m10 * dx + f.m11 * dy;
         if (qx * qx + qy * qy > r * r) return;
         if (w == v) centre = ids.size();
+        local_stamp_[w] = local_epoch_;
+        local_index_[w] = ids.size();
         ids.push_back(w);
         stretched.push_back({qx, qy});
+        plane.push_back({points_[w].x, points_[w].y});
       });
+      // The subsegments that may pass through the queried ball. Those with both endpoints in it are
+      // constraints of the local triangulation, so that no triangle of the star crosses Ω's boundary
+      // or a wall; one leaving the ball cannot be, but the star is not certified while it crosses one
+      // of the star's triangles or is one of v's own subsegments (checked below).
+      near_subs.clear();
+      ++sub_epoch_;
+      const std::size_t i0 = subs_grid_.ix(p.x - ex), i1 = subs_grid_.ix(p.x + ex);
+      const std::size_t j0 = subs_grid_.iy(p.y - ey), j1 = subs_grid_.iy(p.y + ey);
+      for (std::size_t j = j0; j <= j1; ++j)
+        for (std::size_t i = i0; i <= i1; ++i)
+          for (Index s : subs_grid_.at(i, j)) {
+            if (!subs_[s].alive || sub_seen_[s] == sub_epoch_) continue;
+            sub_seen_[s] = sub_epoch_;
+            if (stretched_distance_to_subsegment(f, p, s) <= r * (1 + 1e-6)) near_subs.push_back(s);
+          }
+      constraints.clear();
+      inner_subs.clear();
+      straddling.clear();
+      for (Index s : near_subs) {
+        const Index a = subs_[s].a, b = subs_[s].b;
+        if (local_stamp_[a] == local_epoch_ && local_stamp_[b] == local_epoch_) {
+          constraints.push_back({local_index_[a], local_index_[b]});
+          inner_subs.push_back(s);
+        } else {
+          straddling.push_back(s);
+        }
+      }
       // The ball covers the whole box only if the box's four corners are inside it.
       bool everything = true;
       for (const double cx : {box_[0], box_[2]})
@@ -336,12 +399,19 @@ private:
       bool on_hull = true;
       ++stats_.star_attempts;
       stats_.star_points += ids.size();
-      if (ids.size() >= 3) detail::delaunay_fan(stretched, centre, fan, on_hull);
+      if (ids.size() >= 3) detail::delaunay_fan(plane, centre, metric, constraints, fan, on_hull);
       else fan.clear();
       bool complete = !fan.empty() || everything;
+      at_v.clear();
+      for (Index s : inner_subs)
+        if (!subs_[s].two_sided && (subs_[s].a == v || subs_[s].b == v))
+          at_v.push_back({subs_[s].a == v ? subs_[s].b : subs_[s].a, subs_[s].a == v ? 1 : -1});
+      classify_fan(ids, fan, on_hull, at_v, side);
       kept.clear();
       needed = 0;
-      for (const auto& [ia, ib] : fan) {
+      for (std::size_t k = 0; k < fan.size(); ++k) {
+        if (side[k] <= 0) continue;  // outside Ω: neither part of the star nor needed to certify it
+        const auto [ia, ib] = fan[k];
         const auto& sa = stretched[ia];
         const auto& sb = stretched[ib];
         // Circumcentre of (0, sa, sb) in the stretched frame.
@@ -353,21 +423,34 @@ private:
         const double det = f.m00 * f.m11 - f.m01 * f.m10;
         const double cx = p.x + (f.m11 * ux - f.m01 * uy) / det, cy = p.y + (-f.m10 * ux + f.m00 * uy) / det;
         needed = std::max(needed, std::hypot(ux, uy) + radius);
-        if (!everything && needed * (1 + 1e-9) > r) {
+        if (!everything && !(needed * (1 + 1e-9) <= r)) {
           complete = false;
           break;
         }
-        const Index a = ids[ia], b = ids[ib];
-        const Point2 g{(p.x + points_[a].x + points_[b].x) / 3, (p.y + points_[a].y + points_[b].y) / 3};
-        if (domain_.locate(g) != DomainSide::inside) continue;
         const double shortest = std::min({std::hypot(sa[0], sa[1]), std::hypot(sb[0], sb[1]),
                                           std::hypot(sa[0] - sb[0], sa[1] - sb[1])});
-        kept.push_back({a, b, cx, cy, radius, shortest});
+        kept.push_back({ids[ia], ids[ib], cx, cy, radius, shortest});
       }
+      // v's own subsegments must be constraints: they alone decide which fan triangles are in Ω.
+      for (Index s : straddling)
+        if (subs_[s].a == v || subs_[s].b == v) complete = false;
+      for (std::size_t k = 0; complete && k < kept.size(); ++k)
+        for (Index s : straddling)
+          if (crosses_triangle(s, v, kept[k].a, kept[k].b)) {
+            complete = false;
+            break;
+          }
       if (complete && on_hull && !everything && !fan.empty()) complete = gap_outside_domain(v, ids[fan.front()[0]], ids[fan.back()[1]]);
       if (complete) break;
       r *= 1.6;
     }
+    // A star triangle whose circumcentre is not finite in doubles cannot be refined (its picking
+    // region is undefined); exact predicates keep collinear boundary sites from forming one, so this
+    // is a safeguard: stop with a status rather than feed inf/NaN to the predicates.
+    for (const StarTriangle& t : kept)
+      if (degenerate_.empty() && !(std::isfinite(t.cx) && std::isfinite(t.cy) && std::isfinite(t.radius)))
+        degenerate_ = "a flat triangle (" + std::to_string(v) + ", " + std::to_string(t.a) + ", " +
+                      std::to_string(t.b) + ") in a star has no finite circumcentre";
     star.triangles = std::move(kept);
     kept = {};
     // Next time, start from what this star needed (stars only shrink as sites are added).
@@ -377,6 +460,49 @@ private:
     evaluate(v, m);
   }
 
+  /// Which triangles of a constrained fan around v lie in Ω (side +1) or outside (−1), from the
+  /// boundary subsegments at v alone (`at_v`: the other endpoint w, +1 for a subsegment v→w, −1 for
+  /// w→v; Ω is on the left of each): the face after the edge v→w counter-clockwise is on the left of
+  /// v→w, the face before it on its right, and the side only changes across such an edge. Exact and
+  /// purely combinatorial (no point location on rounded points), so a sliver between a boundary
+  /// edge and sites split off it by rounding is classified by the subsegments that bound it. With no
+  /// boundary subsegment at v (v strictly inside Ω or on a wall), the whole fan is in Ω.
+  static void classify_fan(const std::vector<Index>& ids, const std::vector<std::array<std::size_t, 2>>& fan,
+                           bool open, const std::vector<std::pair<Index, int>>& at_v, std::vector<std::int8_t>& side) {
+    side.assign(fan.size(), 0);
+    const auto orientation_of = [&](Index w) {
+      for (const auto& [u, o] : at_v)
+        if (u == w) return o;
+      return 0;
+    };
+    bool seeded = false;
+    for (std::size_t k = 0; k < fan.size(); ++k) {
+      const int after = orientation_of(ids[fan[k][0]]);   // edge v→a: the face is on its left
+      const int before = orientation_of(ids[fan[k][1]]);  // edge v→b: the face is on its right
+      int s = 0;
+      if (after != 0) s = after;
+      if (before != 0) s = s == 0 ? -before : std::min(s, -before);
+      side[k] = static_cast<std::int8_t>(s);
+      seeded = seeded || s != 0;
+    }
+    if (!seeded) {
+      side.assign(fan.size(), 1);
+      return;
+    }
+    const std::size_t n = fan.size();
+    std::size_t first = 0;
+    while (side[first] == 0) ++first;
+    // Forward from the first seeded face (round the whole cycle for a closed fan), then, for an open
+    // fan, backward from it to the fan's start.
+    const std::size_t steps = open ? n - 1 - first : n - 1;
+    for (std::size_t i = 1; i <= steps; ++i) {
+      const std::size_t k = (first + i) % n, prev = (first + i - 1) % n;
+      if (side[k] == 0) side[k] = side[prev];
+    }
+    for (std::size_t k = first; open && k-- > 0;)
+      if (side[k] == 0) side[k] = side[k + 1];
+  }
+
   /// For an open fan at v from neighbour `first` (ccw) round to `last`: the directions in the gap from
   /// `last` counter-clockwise to `first` lie outside the domain (tested on the gap's bisector).
   bool gap_outside_domain(Index v, Index first, Index last) const {
@@ -384,14 +510,45 @@ private:
     const double ux = points_[first].x - p.x, uy = points_[first].y - p.y;
     const double wx = points_[last].x - p.x, wy = points_[last].y - p.y;
     const double lu = std::hypot(ux, uy), lw = std::hypot(wx, wy);
-    double bx = ux / lu + wx / lw, by = uy / lu + wy / lw;
-    // The gap runs counter-clockwise from `last` to `first`; if that turn is a left turn the gap is
-    // less than π and its bisector is u + w, otherwise −(u + w).
-    if (orientation(p, points_[last], points_[first]) != Sign::positive) bx = -bx, by = -by;
+    // For unit vectors w = (cos α, sin α) and u = w turned by φ ∈ (0, 2π) counter-clockwise, w − u
+    // turned by +90° is 2 sin(φ/2) times the bisector: one formula for every gap, well conditioned at
+    // φ = π (a boundary vertex between two collinear neighbours, where w + u vanishes).
+    const double dx = wx / lw - ux / lu, dy = wy / lw - uy / lu;
+    const double bx = -dy, by = dx;
     const double lb = std::hypot(bx, by);
-    if (lb == 0) return false;
+    if (!(lb > 0)) return false;
     const double eps = 1e-7 * std::min(lu, lw);
     return domain_.locate({p.x + eps * bx / lb, p.y + eps * by / lb}) == DomainSide::outside;
+  }
+
+  /// Subsegment s properly crosses an edge of the triangle (u, a, b), so it meets its interior (a site
+  /// on a subsegment is always one of its endpoints, so s cannot enter through a vertex). Exact.
+  bool crosses_triangle(Index s, Index u, Index a, Index b) const {
+    const Point2 s0 = points_[subs_[s].a], s1 = points_[subs_[s].b];
+    const auto opposite = [](Sign x, Sign y) {
+      return (x == Sign::positive && y == Sign::negative) || (x == Sign::negative && y == Sign::positive);
+    };
+    const Index corners[3] = {u, a, b};
+    for (int k = 0; k < 3; ++k) {
+      const Point2 e0 = points_[corners[k]], e1 = points_[corners[(k + 1) % 3]];
+      if (opposite(orientation(e0, e1, s0), orientation(e0, e1, s1)) &&
+          opposite(orientation(s0, s1, e0), orientation(s0, s1, e1)))
+        return true;
+    }
+    return false;
+  }
+
+  /// The M-distance from p to subsegment s, for the stretching f = M^{1/2} (in doubles: a filter with
+  /// a relative margin, not a predicate).
+  double stretched_distance_to_subsegment(const Matrix2& f, Point2 p, Index s) const {
+    const auto stretch = [&](Point2 q) {
+      const double dx = q.x - p.x, dy = q.y - p.y;
+      return std::array<double, 2>{f.m00 * dx + f.m01 * dy, f.m10 * dx + f.m11 * dy};
+    };
+    const auto a = stretch(points_[subs_[s].a]), b = stretch(points_[subs_[s].b]);
+    const double ux = b[0] - a[0], uy = b[1] - a[1], uu = ux * ux + uy * uy;
+    const double t = uu > 0 ? std::clamp(-(a[0] * ux + a[1] * uy) / uu, 0.0, 1.0) : 0.0;
+    return std::hypot(a[0] + t * ux, a[1] + t * uy);
   }
 
   void register_zone(Index v) {
@@ -423,6 +580,7 @@ private:
   void evaluate(Index v, const Metric& m) {
     const Star& star = stars_[v];
     for (const StarTriangle& t : star.triangles) {
+      if (!std::isfinite(t.radius)) continue;  // the refinement stops (degenerate_)
       int rule = 0;
       double g = std::max(distortion(m, metrics_[t.a]), distortion(m, metrics_[t.b]));
       try {
@@ -595,10 +753,16 @@ private:
   std::vector<bool> is_dirty_;
   std::vector<Index> dirty_;
   std::vector<Subsegment> subs_;
+  std::vector<std::uint64_t> sub_seen_;  ///< per subsegment: the last star query that met it
+  std::uint64_t sub_epoch_ = 0;
+  std::vector<std::uint64_t> local_stamp_;  ///< per site: the last star query that took it
+  std::vector<std::size_t> local_index_;    ///< per site: its index in that query
+  std::uint64_t local_epoch_ = 0;
   std::vector<Index> split_queue_;
   std::priority_queue<Request> requests_;
   StarMeshStats stats_;
   std::size_t sites_at_last_sweep_ = 0;
+  std::string degenerate_;  ///< why the refinement must stop (a star triangle it cannot refine), or ""
 };
 
 }  // namespace

@@ -126,7 +126,9 @@ PlanarGraph prepared_graph(const TriangleMesh& mesh, GraphKind& kind) {
 
 TEST(StarMesher, LonelyCornersOfADomainWithHolesAreRefined) {
   const Domain d = read_domain(std::string(LAGUERRE_TEST_DATA) + "/../../scenarios/domains/square-with-holes.txt");
-  for (const char* spec : {"uniform:0.25:0.25", "uniform:0.1:0.05:0", "shock:0.02:0.15:0.05:0.5"}) {
+  // (shock:0.02:0.15:0.05:0.5 used to leave lonely corners too; since stars are constrained Delaunay
+  // (no refinement is spent on sites hidden behind a hole) its plain mesh no longer has one.)
+  for (const char* spec : {"uniform:0.25:0.25", "uniform:0.1:0.05:0", "shock:0.03:0.15:0.05:0.5"}) {
     SCOPED_TRACE(spec);
     const auto field = parse_metric_field(spec);
     StarMeshOptions o;

@@ -103,3 +103,17 @@ TEST_F(MeshCli, VoronoiAlgorithmOnABundledDomain) {
   EXPECT_EQ(cap.status, 3) << cap.out;
   EXPECT_NE(cap.out.find("max_vertices"), std::string::npos) << cap.out;
 }
+
+TEST_F(MeshCli, SlantedEdgesAndHoleCornersMeshValidly) {
+  // Regression (StarMesher.hpp): the diamond threw "exact predicate orientation: … NaN" (exit 1), and
+  // square-with-holes at uniform:0.12:0.06:0 reported "converged" with a hole in the mesh (exit 3).
+  const std::string diamond = std::string(LAGUERRE_SOURCE_DIR) + "/tests/data/domains/diamond.txt";
+  for (const std::string& args : {diamond + " --metric uniform:0.2:0.2",
+                                  domains + "square-with-holes.txt --metric uniform:0.12:0.06:0"}) {
+    const MeshRun r = mesh(args + " --no-picture --json -o " + path("m") + " --force");
+    ASSERT_EQ(r.status, 0) << args << "\n" << r.out;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_TRUE(j["converged"].get<bool>()) << args;
+    EXPECT_TRUE(j["valid_triangulation"].get<bool>()) << args << ": " << j["validation"];
+  }
+}

@@ -5,11 +5,24 @@
 ///
 /// Every site v carries its metric M_v = field(v) and its *star* S_v: the triangles incident to v in
 /// the Delaunay triangulation of all sites for M_v (the Euclidean Delaunay triangulation of F_v(V),
-/// F_v = M_v^{1/2}), restricted to the domain (triangles whose centroid lies in Ω). Stars of different
-/// sites disagree in general; a triangle is *consistent* when it belongs to the stars of its three
-/// vertices. Refinement inserts points until every triangle of every star is consistent and good,
-/// and the mesh is then the union of the stars: each vertex's neighbourhood in the mesh is exactly its
-/// own Delaunay star for its own metric.
+/// F_v = M_v^{1/2}), constrained by the boundary and wall subsegments and restricted to the domain.
+/// Stars of different sites disagree in general; a triangle is *consistent* when it belongs to the
+/// stars of its three vertices. Refinement inserts points until every triangle of every star is
+/// consistent and good, and the mesh is then the union of the stars: each vertex's neighbourhood in the
+/// mesh is exactly its own (constrained) Delaunay star for its own metric.
+///
+/// How a star is computed (core/src/meshing/detail/LocalDelaunay.hpp): the sites of a growing M_v-ball
+/// around v keep their own coordinates, and M_v enters only the in-circle predicate (the lifting
+/// xᵀM_v x; exact: static filter, intervals, rationals), orientation is that of the plane. The sites
+/// are never moved by F_v, so sites collinear on a boundary edge stay collinear for every metric.
+/// Every subsegment with both endpoints in the ball is a constraint (the plain Delaunay triangulation
+/// is used when they are all Delaunay edges already, the usual case): encroachment is only tested on
+/// Ω's side of a boundary subsegment (rule 1), so a site across a hole may lie in its diametral ball,
+/// and only the constraint keeps the star from crossing the hole. The fan's triangles are in or out of
+/// Ω by the boundary subsegments at v (Ω on their left; the side changes only across them), a
+/// combinatorial and exact test. A star is certified when every kept triangle's M_v-circumball lies in
+/// the ball, v's own subsegments are constraints, no subsegment leaving the ball crosses a kept
+/// triangle (exact orientations), and an open fan's gap is outside Ω.
 ///
 /// Rules, in priority order (a rule applies only when no earlier one does), following §3.4 for 2D:
 ///   1. encroachment: a boundary/constraint subsegment whose M_a- or M_b-diametral ball (a, b its
@@ -47,14 +60,40 @@
 /// default refinement is the thesis's, and meshes for a seed stay as they were.
 /// 3D (sliver rule 4 of §3.4) is not implemented.
 ///
-/// Known limit (observed, not fixed): sites on an outer boundary edge that is not parallel to an axis
-/// of the metric lose their exact collinearity in the stretched frame F_v (rounding), and a star can
-/// then hold a flat sliver along the edge whose circumcentre is not finite in doubles; refining it
-/// throws std::domain_error from the exact predicates (e.g. the diamond |x| + |y| ≤ 1 at
-/// uniform:0.2:0.2). The bundled domains (axis-parallel outer edges) do not throw, but with anisotropic
-/// fields a converged mesh of square-with-holes can fail check_triangulation ("a hole in the mesh", e.g.
-/// uniform:0.12:0.06:0 with seed 1, with or without rule 6), maybe for the same reason near the slanted
-/// edges of its triangular hole.
+/// Honest gaps.
+///  - Fixed: sites on an outer edge not parallel to a metric axis lost their collinearity when stars
+///    were computed on the stretched points F_v(p) (rounding), a flat sliver with a non-finite
+///    circumcentre entered a star and refining it threw std::domain_error (the diamond |x| + |y| ≤ 1 at
+///    uniform:0.2:0.2); and square-with-holes at uniform:0.12:0.06:0 reported "converged" with "a hole
+///    in the mesh": a site behind the triangular hole's corner (0.7, 0.8) lay in the diametral ball of
+///    a subsegment of the other edge (allowed by the one-sided encroachment), so the unconstrained star
+///    had a triangle across the hole, kept by a centroid test. Both are gone with the stars above.
+///  - Split points are rounded midpoints: on an edge with inexact direction (the hexagon's √3/2) they
+///    lie up to an ulp off the input edge, so the mesh covers Ω up to slivers of that width (the area
+///    check of check_triangulation has a relative tolerance of 1e-9). Triangles between such a chain of
+///    subsegments and the true edge are classified by the subsegments, not by the input polygon.
+///  - If a star still held a triangle whose circumcentre is not finite in doubles, the refinement
+///    stops with a non-converged status instead of throwing (a safeguard; not seen in the tests).
+///  - mesh_with_stars checks the merged mesh with check_triangulation before reporting "converged";
+///    a failure there would be reported as a non-converged status (never seen since the fix).
+///  - Termination is the thesis's theorem (corners of at least 90° in the metric, δ small); outside its
+///    hypothesis the cap `max_vertices` turns a cascade into a status (e.g. the diamond under
+///    thesis:0.1:4:0.2:0.5, whose top and bottom corners are acute in the metric: rule 1 splits the
+///    edges there until the cap). Milder violations may still converge (the diamond at
+///    uniform:0.2:0.1:0, corners of 53° in the metric, does).
+///  - Also fixed on the way: the test that an open fan's gap lies outside Ω took the gap's bisector as
+///    ±(w + u) for its unit edge directions, which vanishes for a boundary vertex between two collinear
+///    neighbours (every split point of an edge): the test then failed or followed rounding noise, and
+///    the star's ball grew, often to the whole domain (a noisy direction could also have certified an
+///    incomplete star). The bisector is now w − u turned by 90°. Stars come out the same with 3-5×
+///    fewer points queried (tools/bench/mesh.sh --quick: same meshes, 4-7× faster).
+///  - The in-circle predicate with the metric costs about 10% more per point than CGAL's Euclidean one
+///    (measured where both give the same mesh: the unit square under shock:0.01:0.1:0.05:0.5).
+///  - Meshes for a given seed changed with these fixes where stars differed: near holes (e.g.
+///    square-with-holes under the default field `shock`, 8237 vertices instead of 8786) and where
+///    cocircular ties are now broken on exact coordinates (the square at uniform:0.1:0.1, 84 instead
+///    of 83). The bench's shock-layer meshes of the square keep their vertex and triangle counts and
+///    quality figures.
 
 #include "laguerre/core/meshing/Domain.hpp"
 #include "laguerre/core/meshing/Medit.hpp"
@@ -100,7 +139,7 @@ struct StarMeshResult {
   TriangleMesh mesh;             ///< vertices, consistent triangles (counter-clockwise), constraint subsegments
   std::vector<Metric> metrics;   ///< M_v per vertex
   StarMeshStats stats;           ///< rule counts
-  bool converged = false;        ///< every star consistent and every rule satisfied
+  bool converged = false;        ///< every star consistent, every rule met, and check_triangulation passes
   std::string status;            ///< "converged", or why not
 };
 
