@@ -187,6 +187,32 @@ std::vector<std::array<Point2, 2>> Domain::constraints() const {
   return all;
 }
 
+std::vector<Domain::ConstraintPiece> Domain::constraint_pieces() const {
+  const auto all = constraints();
+  std::vector<Point2> endpoints;
+  for (const auto& c : all) endpoints.insert(endpoints.end(), {c[0], c[1]});
+  std::vector<ConstraintPiece> pieces;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const auto [a, b] = all[i];
+    std::vector<std::pair<double, Point2>> inner;
+    for (const Point2& e : endpoints) {
+      const bool at_end = (e.x == a.x && e.y == a.y) || (e.x == b.x && e.y == b.y);
+      if (!at_end && orientation(a, b, e) == Sign::zero && std::min(a.x, b.x) <= e.x && e.x <= std::max(a.x, b.x) &&
+          std::min(a.y, b.y) <= e.y && e.y <= std::max(a.y, b.y))
+        inner.push_back({std::hypot(e.x - a.x, e.y - a.y), e});
+    }
+    std::sort(inner.begin(), inner.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
+    Point2 from = a;
+    for (const auto& [d, e] : inner) {
+      if (e.x == from.x && e.y == from.y) continue;  // the same endpoint listed twice
+      pieces.push_back({from, e, i});
+      from = e;
+    }
+    pieces.push_back({from, b, i});
+  }
+  return pieces;
+}
+
 DomainSide Domain::locate(Point2 p) const {
   const DomainSide side = locate_in(outer_, p);
   if (side != DomainSide::inside) return side;

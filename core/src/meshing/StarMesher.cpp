@@ -102,30 +102,11 @@ public:
       if (inserted) it->second = add_site(p, INFINITY);
       return it->second;
     };
-    const auto constraints = domain_.constraints();
-    const std::size_t boundary_edges = constraints.size() - domain_.segments().size();
-    // A constraint endpoint may lie inside another constraint (a wall ending on the boundary): split
-    // that constraint there, so that every site on a constraint is a subsegment endpoint.
-    std::vector<Point2> endpoints;
-    for (const auto& c : constraints) endpoints.insert(endpoints.end(), {c[0], c[1]});
-    for (std::size_t i = 0; i < constraints.size(); ++i) {
-      const auto [a, b] = constraints[i];
-      std::vector<std::pair<double, Point2>> inner;
-      for (const Point2& e : endpoints) {
-        const bool at_end = (e.x == a.x && e.y == a.y) || (e.x == b.x && e.y == b.y);
-        if (!at_end && orientation(a, b, e) == Sign::zero && std::min(a.x, b.x) <= e.x && e.x <= std::max(a.x, b.x) &&
-            std::min(a.y, b.y) <= e.y && e.y <= std::max(a.y, b.y))
-          inner.push_back({std::hypot(e.x - a.x, e.y - a.y), e});
-      }
-      std::sort(inner.begin(), inner.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
-      Point2 from = a;
-      for (const auto& [d, e] : inner) {
-        if (e.x == from.x && e.y == from.y) continue;  // the same endpoint listed twice
-        add_subsegment(site_of(from), site_of(e), i >= boundary_edges);
-        from = e;
-      }
-      add_subsegment(site_of(from), site_of(b), i >= boundary_edges);
-    }
+    const std::size_t boundary_edges = domain_.constraints().size() - domain_.segments().size();
+    // A constraint endpoint may lie inside another constraint (a wall ending on the boundary): that
+    // constraint is split there, so that every site on a constraint is a subsegment endpoint.
+    for (const Domain::ConstraintPiece& piece : domain_.constraint_pieces())
+      add_subsegment(site_of(piece.a), site_of(piece.b), piece.constraint >= boundary_edges);
     for (std::size_t s = 0; s < subs_.size(); ++s) check_subsegment(static_cast<Index>(s));
 
     while (true) {

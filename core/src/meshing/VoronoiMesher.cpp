@@ -262,27 +262,9 @@ private:
       if (inserted) it->second = add_site(p);
       return it->second;
     };
-    const auto constraints = domain_.constraints();
-    std::vector<Point2> endpoints;
-    for (const auto& c : constraints) endpoints.insert(endpoints.end(), {c[0], c[1]});
     // A constraint endpoint on another constraint (a wall ending on the boundary) splits it there.
-    for (const auto& [a, b] : constraints) {
-      std::vector<std::pair<double, Point2>> inner;
-      for (const Point2& e : endpoints) {
-        const bool at_end = (e.x == a.x && e.y == a.y) || (e.x == b.x && e.y == b.y);
-        if (!at_end && orientation(a, b, e) == Sign::zero && std::min(a.x, b.x) <= e.x && e.x <= std::max(a.x, b.x) &&
-            std::min(a.y, b.y) <= e.y && e.y <= std::max(a.y, b.y))
-          inner.push_back({std::hypot(e.x - a.x, e.y - a.y), e});
-      }
-      std::sort(inner.begin(), inner.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
-      Point2 from = a;
-      for (const auto& [d, e] : inner) {
-        if (e.x == from.x && e.y == from.y) continue;
-        subs_.push_back({site_of(from), site_of(e)});
-        from = e;
-      }
-      subs_.push_back({site_of(from), site_of(b)});
-    }
+    for (const Domain::ConstraintPiece& piece : domain_.constraint_pieces())
+      subs_.push_back({site_of(piece.a), site_of(piece.b)});
     if (options_.corner_shells) mark_acute_corners();
     for (const Point2& p : options_.extra_sites) {
       if (domain_.locate(p) != DomainSide::inside)

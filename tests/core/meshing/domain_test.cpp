@@ -30,6 +30,35 @@ TEST(Domain, NormalizesOrientationAndMeasuresArea) {
   EXPECT_EQ(d.constraints().size(), 8u);
 }
 
+TEST(Domain, ConstraintPiecesSplitEdgesWhereAWallEnds) {
+  // The L shape with a wall from (0, 1.5) on the left side to (0.6, 1.5): the left side (0, 2)–(0, 0)
+  // is split at the wall's end; every other constraint is one piece; pieces follow constraint order
+  // and cover each constraint exactly.
+  const Domain d({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, {}, {{Point2{0, 1.5}, Point2{0.6, 1.5}}});
+  const auto constraints = d.constraints();
+  const auto pieces = d.constraint_pieces();
+  ASSERT_EQ(pieces.size(), constraints.size() + 1);
+  std::size_t split = 0;
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
+    std::vector<Domain::ConstraintPiece> of;
+    for (const auto& p : pieces)
+      if (p.constraint == i) of.push_back(p);
+    ASSERT_FALSE(of.empty());
+    EXPECT_EQ(of.front().a.x, constraints[i][0].x);
+    EXPECT_EQ(of.front().a.y, constraints[i][0].y);
+    EXPECT_EQ(of.back().b.x, constraints[i][1].x);
+    EXPECT_EQ(of.back().b.y, constraints[i][1].y);
+    for (std::size_t k = 1; k < of.size(); ++k) EXPECT_TRUE(of[k].a.x == of[k - 1].b.x && of[k].a.y == of[k - 1].b.y);
+    if (of.size() == 2) {
+      ++split;
+      EXPECT_EQ(of[0].b.x, 0.0);
+      EXPECT_EQ(of[0].b.y, 1.5);
+    }
+  }
+  EXPECT_EQ(split, 1u);
+  for (std::size_t k = 1; k < pieces.size(); ++k) EXPECT_LE(pieces[k - 1].constraint, pieces[k].constraint);
+}
+
 TEST(Domain, LocatesPointsExactly) {
   const Domain d({{0, 0}, {3, 0}, {3, 3}, {0, 3}}, {{{1, 1}, {2, 1}, {2, 2}, {1, 2}}});
   EXPECT_EQ(d.locate({0.5, 0.5}), DomainSide::inside);

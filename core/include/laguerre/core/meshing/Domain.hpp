@@ -64,6 +64,17 @@ public:
   /// Every boundary edge (outer, then holes) and every constraint segment: the input constraints C.
   std::vector<std::array<Point2, 2>> constraints() const;
 
+  /// A piece of a constraint between two consecutive constraint endpoints on it.
+  struct ConstraintPiece {
+    Point2 a;                    ///< first endpoint (the constraint's first endpoint, or one inside it)
+    Point2 b;                    ///< second endpoint
+    std::size_t constraint = 0;  ///< index of the constraint in `constraints()`
+  };
+  /// The constraints split at every other constraint endpoint that lies on them (a wall ending on the
+  /// boundary splits that boundary edge; exact collinearity), in constraint order, each constraint's
+  /// pieces from its first endpoint on: the initial subsegments of both meshers.
+  std::vector<ConstraintPiece> constraint_pieces() const;
+
   /// Exact classification of `p` (boundary = on the outer boundary or a hole's boundary).
   DomainSide locate(Point2 p) const;
 
