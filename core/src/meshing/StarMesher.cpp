@@ -1,5 +1,6 @@
 #include "laguerre/core/meshing/StarMesher.hpp"
 
+#include "detail/BucketGrid.hpp"
 #include "detail/LocalDelaunay.hpp"
 
 #include <algorithm>
@@ -60,31 +61,6 @@ struct Request {
     if (radius != o.radius) return radius < o.radius;
     return std::tie(v, a, b) > std::tie(o.v, o.a, o.b);
   }
-};
-
-/// A uniform grid of buckets over a box.
-class Grid {
-public:
-  Grid(std::array<double, 4> box, std::size_t n) : box_(box), n_(n), cells_(n * n) {
-    w_ = (box_[2] - box_[0]) / static_cast<double>(n);
-    h_ = (box_[3] - box_[1]) / static_cast<double>(n);
-  }
-  std::size_t ix(double x) const { return clamp_index((x - box_[0]) / w_); }
-  std::size_t iy(double y) const { return clamp_index((y - box_[1]) / h_); }
-  std::vector<Index>& at(std::size_t i, std::size_t j) { return cells_[j * n_ + i]; }
-  const std::vector<Index>& at(std::size_t i, std::size_t j) const { return cells_[j * n_ + i]; }
-  double cell_size() const { return std::max(w_, h_); }
-
-private:
-  std::size_t clamp_index(double t) const {
-    if (!(t > 0)) return 0;
-    if (!(t < static_cast<double>(n_))) return n_ - 1;  // also +∞
-    return static_cast<std::size_t>(t);
-  }
-  std::array<double, 4> box_;
-  std::size_t n_;
-  double w_ = 1, h_ = 1;
-  std::vector<std::vector<Index>> cells_;
 };
 
 class StarMesher {
@@ -724,7 +700,7 @@ private:
   StarMeshOptions options_;
   Stream rng_;
   std::array<double, 4> box_;
-  Grid sites_grid_, zones_grid_, subs_grid_;
+  detail::BucketGrid<Index> sites_grid_, zones_grid_, subs_grid_;
   std::vector<Point2> points_;
   std::vector<Metric> metrics_;
   std::vector<Matrix2> roots_;

@@ -3,6 +3,8 @@
 /// batched rounds described in VoronoiMesher.hpp.
 #include "laguerre/core/meshing/VoronoiMesher.hpp"
 
+#include "detail/BucketGrid.hpp"
+
 #include "laguerre/core/meshing/StarMesher.hpp"  // check_triangulation
 
 #include <algorithm>
@@ -106,39 +108,6 @@ double edge_length(const AnisotropicSite& x, const AnisotropicSite& y) {
 
 Metric metric_of(const AnisotropicSite& s) { return {s.a, s.b, s.c}; }
 
-/// A uniform grid of buckets over a box (indices of points or of boxes registered over cells).
-class Buckets {
-public:
-  Buckets(std::array<double, 4> box, std::size_t n) : box_(box), n_(std::max<std::size_t>(n, 1)), cells_(n_ * n_) {
-    w_ = std::max(box_[2] - box_[0], 1e-300) / static_cast<double>(n_);
-    h_ = std::max(box_[3] - box_[1], 1e-300) / static_cast<double>(n_);
-  }
-  std::size_t ix(double x) const { return clamp((x - box_[0]) / w_); }
-  std::size_t iy(double y) const { return clamp((y - box_[1]) / h_); }
-  void add_point(double x, double y, Index i) { cells_[iy(y) * n_ + ix(x)].push_back(i); }
-  void add_box(double x0, double y0, double x1, double y1, Index i) {
-    for (std::size_t j = iy(y0); j <= iy(y1); ++j)
-      for (std::size_t k = ix(x0); k <= ix(x1); ++k) cells_[j * n_ + k].push_back(i);
-  }
-  const std::vector<Index>& at(double x, double y) const { return cells_[iy(y) * n_ + ix(x)]; }
-  template <class F>
-  void for_box(double x0, double y0, double x1, double y1, F&& f) const {
-    for (std::size_t j = iy(y0); j <= iy(y1); ++j)
-      for (std::size_t k = ix(x0); k <= ix(x1); ++k)
-        for (Index i : cells_[j * n_ + k]) f(i);
-  }
-
-private:
-  std::size_t clamp(double t) const {
-    if (!(t > 0)) return 0;
-    if (!(t < static_cast<double>(n_))) return n_ - 1;
-    return static_cast<std::size_t>(t);
-  }
-  std::array<double, 4> box_;
-  std::size_t n_;
-  double w_ = 1, h_ = 1;
-  std::vector<std::vector<Index>> cells_;
-};
 
 struct Subsegment {
   Index a, b;
@@ -375,9 +344,9 @@ private:
     lambda_min_ = std::numeric_limits<double>::infinity();
     for (const AnisotropicSite& s : sites_) lambda_min_ = std::min(lambda_min_, smallest_eigenvalue(s));
     const auto n = static_cast<std::size_t>(std::sqrt(static_cast<double>(sites_.size())) / 2) + 1;
-    site_grid_ = Buckets(box_, n);
+    site_grid_ = detail::BucketGrid<Index>(box_, n);
     for (Index i = 0; i < sites_.size(); ++i) site_grid_.add_point(sites_[i].x, sites_[i].y, i);
-    sub_grid_ = Buckets(box_, n);
+    sub_grid_ = detail::BucketGrid<Index>(box_, n);
     for (Index s = 0; s < subs_.size(); ++s) {
       if (!subs_[s].alive) continue;
       const auto r = segment_reach(sites_[subs_[s].a], sites_[subs_[s].b]);
@@ -470,16 +439,8 @@ private:
       } else {
         // Numerically a missed vertex: the midpoint of e (a conditional insertion there is redirected
         // to the breakpoint of e in the diagram with the midpoint added, the midpoint itself).
-        const double t = split_parameter(s, midpoint_parameter(a, b));
-        q.point = {a.x + t * ux, a.y + t * uy};
-        q.site = site_with_metric(field_, q.point);
-        q.split = s;
-        q.redirected = true;
         q.fallback = true;
-        q.segments.push_back({a, b});
-        q.segments.push_back({a, q.site});
-        q.segments.push_back({q.site, b});
-        finish(q);
+        split_request(q, s, midpoint_parameter(a, b));
       }
       out.push_back(std::move(q));
     }
@@ -597,7 +558,7 @@ private:
     };
     if (q.point.x >= box_[0] && q.point.x <= box_[2] && q.point.y >= box_[1] && q.point.y <= box_[3] &&
         smallest_eigenvalue(q.site) >= lambda_min_) {
-      for (Index s : sub_grid_.at(q.point.x, q.point.y)) test(s);
+      for (Index s : sub_grid_.cell_of(q.point.x, q.point.y)) test(s);
     } else {
       for (Index s = 0; s < subs_.size(); ++s) test(s);
     }
@@ -607,10 +568,18 @@ private:
     }
     const AnisotropicSite &a = sites_[subs_[hit].a], &b = sites_[subs_[hit].b];
     const auto t = breakpoint_parameter(a, b, {q.site}, options_.encroachment_tolerance);
-    const double tb = split_parameter(hit, t ? *t : midpoint_parameter(a, b));
-    q.point = {a.x + tb * (b.x - a.x), a.y + tb * (b.y - a.y)};
+    split_request(q, hit, t ? *t : midpoint_parameter(a, b));
+  }
+
+  /// Turns q into the split of subsegment s at parameter t (moved by split_parameter, e.g. onto a
+  /// concentric shell): the new site there, q redirected, and the subsegment and its two halves
+  /// protected.
+  void split_request(Request& q, Index s, double t) const {
+    const AnisotropicSite &a = sites_[subs_[s].a], &b = sites_[subs_[s].b];
+    const double ts = split_parameter(s, t);
+    q.point = {a.x + ts * (b.x - a.x), a.y + ts * (b.y - a.y)};
     q.site = site_with_metric(field_, q.point);
-    q.split = hit;
+    q.split = s;
     q.redirected = true;
     q.segments.push_back({a, b});
     q.segments.push_back({a, q.site});
@@ -755,8 +724,8 @@ private:
   std::map<std::pair<Index, Index>, std::vector<std::size_t>> edges_;
   std::array<double, 4> box_{};
   double lambda_min_ = 1;
-  Buckets site_grid_{{0, 0, 1, 1}, 1};
-  Buckets sub_grid_{{0, 0, 1, 1}, 1};
+  detail::BucketGrid<Index> site_grid_{{0, 0, 1, 1}, 1};
+  detail::BucketGrid<Index> sub_grid_{{0, 0, 1, 1}, 1};
   VoronoiMeshStats stats_;
 };
 

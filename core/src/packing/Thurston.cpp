@@ -135,15 +135,21 @@ double updated_radius(const PackingComplex& k, const Radii& h, Vertex v, UpdateR
   return updated_lifted(k, h, lift_all(h), v, rule);
 }
 
-double star_angle_sum(double hv, const StarView& s) {
-  std::vector<Lift> lifts(s.neighbour_h.size());
+namespace {
+// The neighbours' lifts of a node-local star, in a per-thread buffer: a node updates once per step,
+// and the update should not allocate.
+const std::vector<Lift>& star_lifts(const StarView& s) {
+  thread_local std::vector<Lift> lifts;
+  lifts.resize(s.neighbour_h.size());
   for (std::size_t i = 0; i < lifts.size(); ++i) lifts[i] = lift(s.neighbour_h[i]);
-  return star_angle_sum_lifted(s, lifts, hv);
+  return lifts;
 }
+}  // namespace
+
+double star_angle_sum(double hv, const StarView& s) { return star_angle_sum_lifted(s, star_lifts(s), hv); }
 
 double star_updated_radius(double hv, const StarView& s, UpdateRule rule) {
-  std::vector<Lift> lifts(s.neighbour_h.size());
-  for (std::size_t i = 0; i < lifts.size(); ++i) lifts[i] = lift(s.neighbour_h[i]);
+  const std::vector<Lift>& lifts = star_lifts(s);
   if (rule == UpdateRule::uniform_neighbour && s.cos_spoke.empty())
     return uniform_neighbour_update(hv, star_angle_sum_lifted(s, lifts, hv), static_cast<int>(lifts.size()));
   return solve_exact(hv, [&](double x) { return star_angle_sum_lifted(s, lifts, x); });
