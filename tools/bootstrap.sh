@@ -1,23 +1,26 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages laguerre needs (only those missing) and builds a CMake preset.
-#   tools/bootstrap.sh [--preset release|debug-asan] [--no-build]
-# Safe to run again: installed packages are skipped, the build is incremental.
+#   tools/bootstrap.sh [--preset release|debug-asan] [--target TARGET]... [--no-build]
+# Safe to run again: installed packages are skipped, the build is incremental. With --target only
+# those targets (and what they need) are built, e.g. `--target laguerre` for the program alone.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 preset=release
 build=1
+targets=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --preset) preset="$2"; shift 2 ;;
+    --target) targets+=(--target "$2"); shift 2 ;;
     --no-build) build=0; shift ;;
-    -h|--help) sed -n '2,4p' "$0"; exit 0 ;;
-    *) echo "bootstrap: unknown argument '$1' (expected --preset NAME or --no-build)" >&2; exit 2 ;;
+    -h|--help) sed -n '2,5p' "$0"; exit 0 ;;
+    *) echo "bootstrap: unknown argument '$1' (expected --preset NAME, --target TARGET or --no-build)" >&2; exit 2 ;;
   esac
 done
 
 packages=(
-  build-essential cmake pkg-config ccache git
+  build-essential cmake ninja-build pkg-config ccache git
   libcgal-dev libgmp-dev libmpfr-dev          # exact predicates, diagrams
   libboost-dev libboost-graph-dev             # planarity (Boyer–Myrvold), graph algorithms
   libeigen3-dev                               # linear algebra
@@ -42,5 +45,5 @@ fi
 
 if [ "$build" -eq 1 ]; then
   cmake --preset "$preset" >/dev/null
-  cmake --build --preset "$preset"
+  cmake --build --preset "$preset" "${targets[@]}"
 fi

@@ -5,7 +5,7 @@
 # each run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-tools/bootstrap.sh --preset release
+tools/bootstrap.sh --preset release --target laguerre   # the program only; tools/test.sh builds the rest
 laguerre=build/release/tools/laguerre
 echo
 echo "== laguerre run scenarios/quickstart.yaml -o out/quickstart --force"
