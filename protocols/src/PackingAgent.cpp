@@ -1,8 +1,7 @@
-#include <limits>
-
 #include "PackingAgent.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "laguerre/core/packing/HyperbolicTriangle.hpp"
 #include "laguerre/protocols/LocalChecks.hpp"
@@ -57,14 +56,14 @@ VertexState PackingAgent::state() const {
   return s;
 }
 
-void PackingAgent::send(std::size_t i, const Message& m) {
+void PackingAgent::send(std::size_t i, const PackingMessage& m) {
   encode(m, buffer_);
   send_encoded(i);
 }
 
 void PackingAgent::send_encoded(std::size_t i) { host_.send(index_, i, buffer_); }
 
-void PackingAgent::broadcast(const Message& m) {
+void PackingAgent::broadcast(const PackingMessage& m) {
   encode(m, buffer_);
   for (std::size_t i = 0; i < deg_; ++i) send_encoded(i);
 }
@@ -82,7 +81,7 @@ void PackingAgent::start() {
   maybe_candidate();
 }
 
-void PackingAgent::receive(std::size_t i, const Message& m) {
+void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
   // Asynchronous mode: the last round's updates do not wait for every neighbour's value, so a
   // neighbour's final RadiusMsg may still be on its way (e.g. retransmitted) when the stop decision
   // arrives. It is stale, not unexpected.
@@ -93,14 +92,6 @@ void PackingAgent::receive(std::size_t i, const Message& m) {
   }
   std::visit([&](const auto& msg) { handle(i, msg); }, m);
 }
-
-void PackingAgent::handle(std::size_t, const RelayMsg&) { ++host_.counters().unexpected; }  // envelopes never nest
-void PackingAgent::handle(std::size_t, const DataMsg&) { ++host_.counters().unexpected; }   // ForwardingNode's
-void PackingAgent::handle(std::size_t, const RouteMsg&) { ++host_.counters().unexpected; }  // ForwardingNode's
-// The reliability layer's messages are PackingNode's; an agent never sees them from a correct peer.
-void PackingAgent::handle(std::size_t, const FrameMsg&) { ++host_.counters().unexpected; }
-void PackingAgent::handle(std::size_t, const AckMsg&) { ++host_.counters().unexpected; }
-void PackingAgent::handle(std::size_t, const FailureMsg&) { ++host_.counters().unexpected; }
 
 // ---- Depth: pulse-synchronized BFS from the boundary (over K) -----------------------------------
 

@@ -45,7 +45,7 @@ public:
   PackingAgent(AgentHost& host, std::size_t index, AgentSpec spec, PackingParams params);
 
   void start();
-  void receive(std::size_t k_index, const Message& m);
+  void receive(std::size_t k_index, const PackingMessage& m);
 
   PackingPhase phase() const { return phase_; }
   PackingOutcome outcome() const { return outcome_; }
@@ -74,9 +74,9 @@ private:
     std::vector<core::Circle> circles;  // host walk order
   };
 
-  void send(std::size_t i, const Message& m);
+  void send(std::size_t i, const PackingMessage& m);
   void send_encoded(std::size_t i);
-  void broadcast(const Message& m);
+  void broadcast(const PackingMessage& m);
   bool interior_nbr(std::size_t i) const { return nbr_depth_[i] != 0; }
   double cos_spoke(std::size_t i) const { return know_.is_face || know_.face_nbr[i] ? 0.0 : 1.0; }
   double cos_rim(std::size_t i) const {
@@ -94,12 +94,6 @@ private:
   void handle(std::size_t i, const DecisionMsg& m);
   void handle(std::size_t i, const ShapeMsg& m);
   void handle(std::size_t i, const FaceCirclesMsg& m);
-  void handle(std::size_t i, const RelayMsg& m);
-  void handle(std::size_t i, const DataMsg& m);
-  void handle(std::size_t i, const RouteMsg& m);
-  void handle(std::size_t i, const FrameMsg& m);
-  void handle(std::size_t i, const AckMsg& m);
-  void handle(std::size_t i, const FailureMsg& m);
 
   void advance_depth();
   void maybe_candidate();
