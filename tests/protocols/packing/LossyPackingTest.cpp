@@ -1,25 +1,16 @@
-// The reliability layer (PackingNode.hpp, "Loss, duplication and crashes") on the lossy host: the same
+// The reliability layer (docs/protocol.md, "Loss, duplication and crashes") on the lossy host: the same
 // run as core::pack, bit for bit, under loss, duplication and reordering; quiescence; crash detection.
 
 #include <gtest/gtest.h>
 
 #include "../LossyCompare.hpp"
-#include "laguerre/core/graph/GraphKind.hpp"
-#include "laguerre/core/graph/RandomGraphs.hpp"
+#include "../TestGraphs.hpp"
 
 using namespace laguerre;
 using namespace laguerre::protocols;
 using namespace laguerre::protocols::testing;
 
 namespace {
-
-core::PlanarGraph triangulation(std::size_t n, std::uint64_t seed) {
-  return core::prepare_for_packing(core::random_delaunay_triangulation(n, seed));
-}
-
-core::PlanarGraph three_connected(std::size_t n, std::uint64_t seed) {
-  return core::prepare_for_packing(core::random_three_connected(n, seed));
-}
 
 PackingParams lossy_params(int steps = 2) {
   PackingParams p;
@@ -39,7 +30,7 @@ TEST(LossyPacking, EnableLossyLinksFitsThePeriodsToTheLatency) {
 }
 
 TEST(LossyPacking, RejectsBadParameters) {
-  const core::PlanarGraph g = triangulation(10, 3);
+  const core::PlanarGraph g = delaunay(10, 3);
   PackingParams p = lossy_params();
   p.max_retransmissions = 0;
   EXPECT_THROW(DequeHost(g, p), std::invalid_argument);
@@ -52,7 +43,7 @@ TEST(LossyPacking, RejectsBadParameters) {
 }
 
 TEST(LossyPacking, LosslessLinksNeedNoRetransmissionAndSeeNoDuplicates) {
-  const core::PlanarGraph g = triangulation(40, 11);
+  const core::PlanarGraph g = delaunay(40, 11);
   PackingParams p = lossy_params();
   p.adaptive_rto = false;  // the fixed timeout, retransmit_after, is above every round trip
   const LossyTotals t = expect_lossy_equals_core(g, p, LossyConfig{}, "lossless");
@@ -69,7 +60,7 @@ TEST(LossyPacking, LosslessLinksNeedNoRetransmissionAndSeeNoDuplicates) {
 }
 
 TEST(LossyPacking, TwentyPercentLossAndDuplicationGiveCoresPackingBitForBit) {
-  const core::PlanarGraph g = triangulation(40, 11);
+  const core::PlanarGraph g = delaunay(40, 11);
   LossyConfig c;
   c.loss = 0.2;
   c.dup = 0.1;
@@ -95,7 +86,7 @@ TEST(LossyPacking, ThreeConnectedGraphsWithRelayedFaceTrafficSurviveLoss) {
 
 TEST(LossyPacking, HeavyLossStillTerminatesWithTheSameResult) {
   // 40% loss is far beyond the target; the backoff and the bounded retransmissions still suffice.
-  const core::PlanarGraph g = triangulation(20, 2);
+  const core::PlanarGraph g = delaunay(20, 2);
   LossyConfig c;
   c.loss = 0.4;
   c.dup = 0.2;
@@ -128,7 +119,7 @@ LossyHost::Stats expect_crash_detected(const core::PlanarGraph& g, NodeId victim
 }  // namespace
 
 TEST(LossyPacking, ACrashMidRunEndsEverySurvivorWithTheFailureStatus) {
-  const core::PlanarGraph g = triangulation(40, 11);
+  const core::PlanarGraph g = delaunay(40, 11);
   LossyConfig c;
   c.loss = 0.1;
   c.dup = 0.05;
@@ -156,7 +147,7 @@ TEST(LossyPacking, CrashRunsAreDeterministicPerSeed) {
 }
 
 TEST(LossyPacking, ACrashAfterConvergenceChangesNothing) {
-  const core::PlanarGraph g = triangulation(20, 5);
+  const core::PlanarGraph g = delaunay(20, 5);
   LossyHost clean(g, lossy_params(), LossyConfig{});
   const Time end = clean.run().end;
   LossyConfig c;
@@ -169,7 +160,7 @@ TEST(LossyPacking, ACrashAfterConvergenceChangesNothing) {
 TEST(LossyPacking, ForgedFramesAreCountedNotTrusted) {
   // The reliability layer's receive side, message by message, on a node that has not started: a bad
   // payload, a repeat, a frame far beyond the window, an unframed message and a stray ack.
-  const core::PlanarGraph g = triangulation(12, 4);
+  const core::PlanarGraph g = delaunay(12, 4);
   DequeHost host(g, lossy_params());
   PackingNode& n = host.node(0);
   const NodeId from = local_knowledge(g, 0).neighbours[0];
@@ -197,7 +188,7 @@ TEST(LossyPacking, ForgedFramesAreCountedNotTrusted) {
 }
 
 TEST(LossyPacking, AFailureNoticeEndsTheRunAndIsFloodedOnce) {
-  const core::PlanarGraph g = triangulation(12, 4);
+  const core::PlanarGraph g = delaunay(12, 4);
   DequeHost host(g, lossy_params());
   PackingNode& n = host.node(0);
   const auto nb = local_knowledge(g, 0).neighbours;
@@ -215,7 +206,7 @@ TEST(LossyPacking, SequenceNumbersWrapSafely) {
   // Links start a few frames before 2^32 (and before 2^31, where a signed comparison would flip):
   // under loss, duplication and reordering, acks, selective bitmaps and duplicate detection must keep
   // working across the wrap (serial-number arithmetic), giving core's packing bit for bit.
-  const core::PlanarGraph g = triangulation(30, 5);
+  const core::PlanarGraph g = delaunay(30, 5);
   for (std::uint32_t start : {0xffffffffu - 20u, 0x7fffffffu - 20u}) {
     PackingParams p = lossy_params();
     p.initial_seq = start;

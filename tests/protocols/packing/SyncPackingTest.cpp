@@ -1,18 +1,14 @@
 #include <gtest/gtest.h>
 
-#include "../SyncCompare.hpp"
 #include "../NullRuntime.hpp"
-#include "laguerre/core/graph/GraphKind.hpp"
-#include "laguerre/core/graph/RandomGraphs.hpp"
+#include "../SyncCompare.hpp"
+#include "../TestGraphs.hpp"
 
 using namespace laguerre;
 using namespace laguerre::protocols;
 using namespace laguerre::protocols::testing;
 
 namespace {
-core::PlanarGraph delaunay(std::size_t n, std::uint64_t seed) {
-  return core::prepare_for_packing(core::random_delaunay_triangulation(n, seed));
-}
 bool has_interior(const core::PlanarGraph& g) {
   for (core::Vertex v = 0; v < g.num_vertices(); ++v)
     if (!g.is_boundary(v)) return true;

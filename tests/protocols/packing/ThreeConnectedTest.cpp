@@ -4,10 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include "../SyncCompare.hpp"
 #include "../NullRuntime.hpp"
-#include "laguerre/core/graph/GraphKind.hpp"
-#include "laguerre/core/graph/RandomGraphs.hpp"
+#include "../SyncCompare.hpp"
+#include "../TestGraphs.hpp"
 #include "laguerre/protocols/LocalChecks.hpp"
 
 using namespace laguerre;
@@ -15,9 +14,6 @@ using namespace laguerre::protocols;
 using namespace laguerre::protocols::testing;
 
 namespace {
-core::PlanarGraph three_connected(std::size_t n, std::uint64_t seed) {
-  return core::prepare_for_packing(core::random_three_connected(n, seed));
-}
 
 // check_glpd_local at every vertex of g, fed from g as a node would gather it.
 void expect_local_glpd_equals_core(const core::PlanarGraph& g, const core::CircleEmbedding& phi) {
