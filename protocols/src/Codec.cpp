@@ -8,166 +8,81 @@ namespace laguerre::protocols {
 
 // ---- The layout of every message, once ----------------------------------------------------------
 //
-// `fields(ar, m)` names the fields of a message in wire order, with their ranges, for any archive:
-// SizeArchive counts the bytes, WriteArchive appends them, ReadArchive reads and checks them. An
-// archive provides u8 / u32 / u64 / f64 (a scalar), flag (a bool as u8 ∈ {0, 1}), code (an enum as u8
-// in [lo, hi]), sequence (a u32 count in [lo, hi], then that many items: bytes, or structs visited by
-// their own `fields`) and require (a range condition; only ReadArchive evaluates its result). The
-// writer and the sizer see `const` messages, the reader mutable ones, hence `Self`.
+// `fields(ar, m)` lists the fields of a message in wire order, with their ranges: `ar(f1, f2, …)`
+// visits fields (by their C++ type: u8, u32, u64, f64, bool as u8 ∈ {0, 1}; `code(e, lo, hi)` an enum
+// as u8 in [lo, hi]; `counted(v, lo, hi)` a u32 count in [lo, hi] then that many items, bytes or
+// structs with their own `fields`), and `require(condition)` states a range that involves several
+// fields (only the reader evaluates it). The same description serves SizeArchive (counts bytes),
+// WriteArchive (appends them) and ReadArchive (reads and checks them); the first two visit `const`
+// messages, the reader mutable ones, hence the parameter `M`.
 
 namespace {
 
-template <class Self, class T>
-concept Is = std::is_same_v<std::remove_const_t<Self>, T>;
+template <class M, class T>
+concept Is = std::is_same_v<std::remove_const_t<M>, T>;
+
+template <class E>
+struct Code {
+  E& value;
+  std::remove_const_t<E> lo, hi;
+};
+template <class E>
+Code<E> code(E& value, std::remove_const_t<E> lo, std::remove_const_t<E> hi) {
+  return {value, lo, hi};
+}
+
+template <class V>
+struct Counted {
+  V& items;
+  std::uint32_t lo, hi;
+};
+template <class V>
+Counted<V> counted(V& items, std::uint32_t lo, std::uint32_t hi) {
+  return {items, lo, hi};
+}
 
 bool positive(double h) { return h > 0.0; }  // a hyperbolic radius: (0, ∞]; false for NaN
 bool zero_bits(double v) { return std::bit_cast<std::uint64_t>(v) == 0; }
 bool finite(double a, double b) { return std::isfinite(a) && std::isfinite(b); }
 
-template <class Ar, Is<FaceCircle> Self>
-void fields(Ar& ar, Self& c) {
-  ar.f64(c.x);
-  ar.f64(c.y);
-  ar.f64(c.r);
+template <class Ar, Is<FaceCircle> M> void fields(Ar& ar, M& c) { ar(c.x, c.y, c.r); }
+template <class Ar, Is<DepthMsg> M> void fields(Ar& ar, M& m) { ar(m.pulse, m.final); }
+template <class Ar, Is<ElectionMsg> M> void fields(Ar& ar, M& m) { ar(m.depth, m.id); }
+template <class Ar, Is<StartMsg> M> void fields(Ar& ar, M& m) { ar(m.root, m.first).require(m.root != m.first); }
+template <class Ar, Is<WaveMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.pulse, m.placed, m.parent).require(m.placed || m.parent == 0);
 }
-
-template <class Ar, Is<AckInfo> Self>
-void fields(Ar& ar, Self& a) {
-  ar.u32(a.next);
-  ar.u64(a.bits);
+template <class Ar, Is<RadiusMsg> M> void fields(Ar& ar, M& m) { ar(m.step, m.h).require(positive(m.h)); }
+template <class Ar, Is<PlacedMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.round, m.h, m.centre_re, m.centre_im, m.cx, m.cy, m.cr).require(positive(m.h));
 }
-
-template <class Ar, Is<DepthMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u32(m.pulse);
-  ar.flag(m.final);
+template <class Ar, Is<ReportMsg> M> void fields(Ar& ar, M& m) { ar(m.round, m.ok); }
+template <class Ar, Is<DecisionMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.round, code(m.verdict, Verdict::next, Verdict::cap));
 }
-
-template <class Ar, Is<ElectionMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u32(m.depth);
-  ar.u64(m.id);
+template <class Ar, Is<ShapeMsg> M> void fields(Ar& ar, M& m) { ar(m.down, m.polygon); }
+template <class Ar, Is<FaceCirclesMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.round, counted(m.circles, 3, max_face_circles));
 }
-
-template <class Ar, Is<StartMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u64(m.root);
-  ar.u64(m.first);
-  ar.require(m.root != m.first);
+template <class Ar, Is<RelayMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.face, m.source, m.target, m.backward, counted(m.payload, 2, max_relay_payload))
+      .require(m.source != m.target && (m.face == m.source || m.face == m.target));
 }
-
-template <class Ar, Is<WaveMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u32(m.pulse);
-  ar.flag(m.placed);
-  ar.u64(m.parent);
-  ar.require(m.placed || m.parent == 0);
+template <class Ar, Is<DataMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.packet, m.source, m.target, m.tx, m.ty, m.tr, m.ttl, m.hops)
+      .require(m.hops >= 1 && m.hops <= m.ttl && m.source != m.target && finite(m.tx, m.ty) && std::isfinite(m.tr) &&
+               m.tr >= 0);
 }
-
-template <class Ar, Is<RadiusMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u32(m.step);
-  ar.f64(m.h);
-  ar.require(positive(m.h));
+template <class Ar, Is<FrameMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.seq, m.ack.next, m.ack.bits, counted(m.payload, 0, max_frame_payload));
 }
+template <class Ar, Is<AckMsg> M> void fields(Ar& ar, M& m) { ar(m.ack.next, m.ack.bits); }
+template <class Ar, Is<FailureMsg> M> void fields(Ar& ar, M& m) { ar(m.suspect); }
 
-template <class Ar, Is<PlacedMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u32(m.round);
-  ar.f64(m.h);
-  ar.f64(m.centre_re);
-  ar.f64(m.centre_im);
-  ar.f64(m.cx);
-  ar.f64(m.cy);
-  ar.f64(m.cr);
-  ar.require(positive(m.h));
-}
-
-template <class Ar, Is<ReportMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u32(m.round);
-  ar.flag(m.ok);
-}
-
-template <class Ar, Is<DecisionMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u32(m.round);
-  ar.code(m.verdict, Verdict::next, Verdict::cap);
-}
-
-template <class Ar, Is<ShapeMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.flag(m.down);
-  ar.flag(m.polygon);
-}
-
-template <class Ar, Is<FaceCirclesMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u32(m.round);
-  ar.sequence(m.circles, 3, max_face_circles);
-}
-
-template <class Ar, Is<RelayMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u64(m.face);
-  ar.u64(m.source);
-  ar.u64(m.target);
-  ar.flag(m.backward);
-  ar.sequence(m.payload, 2, max_relay_payload);
-  ar.require(m.source != m.target && (m.face == m.source || m.face == m.target));
-}
-
-template <class Ar, Is<DataMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u64(m.packet);
-  ar.u64(m.source);
-  ar.u64(m.target);
-  ar.f64(m.tx);
-  ar.f64(m.ty);
-  ar.f64(m.tr);
-  ar.u32(m.ttl);
-  ar.u32(m.hops);
-  ar.require(m.hops >= 1 && m.hops <= m.ttl && m.source != m.target && finite(m.tx, m.ty) && std::isfinite(m.tr) &&
-             m.tr >= 0);
-}
-
-template <class Ar, Is<FrameMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u32(m.seq);
-  fields(ar, m.ack);
-  ar.sequence(m.payload, 0, max_frame_payload);
-}
-
-template <class Ar, Is<AckMsg> Self>
-void fields(Ar& ar, Self& m) {
-  fields(ar, m.ack);
-}
-
-template <class Ar, Is<FailureMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u64(m.suspect);
-}
-
-template <class Ar, Is<RouteMsg> Self>
-void fields(Ar& ar, Self& m) {
-  ar.u64(m.packet);
-  ar.u64(m.source);
-  ar.u64(m.target);
-  ar.code(m.scheme, RouteScheme::greedy_euclid, RouteScheme::gfg);
-  ar.f64(m.tx);
-  ar.f64(m.ty);
-  ar.u32(m.ttl);
-  ar.u32(m.hops);
-  ar.flag(m.perimeter);
-  ar.f64(m.px);
-  ar.f64(m.py);
-  ar.flag(m.crossed);
-  ar.f64(m.ax);
-  ar.f64(m.ay);
-  ar.f64(m.bx);
-  ar.f64(m.by);
-  ar.u64(m.walk_tail);
-  ar.u64(m.walk_head);
+template <class Ar, Is<RouteMsg> M>
+void fields(Ar& ar, M& m) {
+  ar(m.packet, m.source, m.target, code(m.scheme, RouteScheme::greedy_euclid, RouteScheme::gfg), m.tx, m.ty, m.ttl,
+     m.hops, m.perimeter, m.px, m.py, m.crossed, m.ax, m.ay, m.bx, m.by, m.walk_tail, m.walk_head);
   ar.require(m.hops >= 1 && m.hops <= m.ttl && m.source != m.target && finite(m.tx, m.ty));
   // Canonical: the fields a mode does not use are +0.
   const bool edge_zero = zero_bits(m.ax) && zero_bits(m.ay) && zero_bits(m.bx) && zero_bits(m.by);
@@ -182,20 +97,32 @@ void fields(Ar& ar, Self& m) {
 
 constexpr std::size_t header = 2;
 
-// Counts bytes.
-class SizeArchive {
+// What every archive does with a list of fields: visit them in order.
+template <class Ar>
+class Archive {
 public:
-  void u8(std::uint8_t) { size_ += 1; }
-  void u32(std::uint32_t) { size_ += 4; }
-  void u64(std::uint64_t) { size_ += 8; }
-  void f64(double) { size_ += 8; }
-  void flag(bool) { size_ += 1; }
+  template <class... F>
+  Ar& operator()(F&&... f) {
+    Ar& self = static_cast<Ar&>(*this);
+    (self.field(f), ...);
+    return self;
+  }
+};
+
+// Counts bytes.
+class SizeArchive : public Archive<SizeArchive> {
+public:
+  void field(std::uint8_t) { size_ += 1; }
+  void field(bool) { size_ += 1; }
+  void field(std::uint32_t) { size_ += 4; }
+  void field(std::uint64_t) { size_ += 8; }
+  void field(double) { size_ += 8; }
   template <class E>
-  void code(E, E, E) {
+  void field(const Code<E>&) {
     size_ += 1;
   }
-  template <class T>
-  void sequence(const std::vector<T>& items, std::uint32_t, std::uint32_t);
+  template <class V>
+  void field(const Counted<V>& c);
   void require(bool) {}
   std::size_t size() const { return size_; }
 
@@ -216,31 +143,32 @@ std::size_t item_size() {
   }
 }
 
-template <class T>
-void SizeArchive::sequence(const std::vector<T>& items, std::uint32_t, std::uint32_t) {
-  size_ += 4 + items.size() * item_size<T>();
+template <class V>
+void SizeArchive::field(const Counted<V>& c) {
+  size_ += 4 + c.items.size() * item_size<typename std::remove_const_t<V>::value_type>();
 }
 
 // Appends little-endian fields to a byte vector.
-class WriteArchive {
+class WriteArchive : public Archive<WriteArchive> {
 public:
   explicit WriteArchive(std::vector<std::byte>& out) : out_(out) {}
-  void u8(std::uint8_t v) { out_.push_back(static_cast<std::byte>(v)); }
-  void u32(std::uint32_t v) { little_endian(v, 4); }
-  void u64(std::uint64_t v) { little_endian(v, 8); }
-  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
-  void flag(bool v) { u8(v ? 1 : 0); }
+  void field(std::uint8_t v) { out_.push_back(static_cast<std::byte>(v)); }
+  void field(bool v) { out_.push_back(v ? std::byte{1} : std::byte{0}); }
+  void field(std::uint32_t v) { little_endian(v, 4); }
+  void field(std::uint64_t v) { little_endian(v, 8); }
+  void field(double v) { little_endian(std::bit_cast<std::uint64_t>(v), 8); }
   template <class E>
-  void code(E v, E, E) {
-    u8(static_cast<std::uint8_t>(v));
+  void field(const Code<E>& c) {
+    field(static_cast<std::uint8_t>(c.value));
   }
-  template <class T>
-  void sequence(const std::vector<T>& items, std::uint32_t, std::uint32_t) {
-    u32(static_cast<std::uint32_t>(items.size()));
+  template <class V>
+  void field(const Counted<V>& c) {
+    field(static_cast<std::uint32_t>(c.items.size()));
+    using T = typename std::remove_const_t<V>::value_type;
     if constexpr (std::is_same_v<T, std::byte>)
-      out_.insert(out_.end(), items.begin(), items.end());
+      out_.insert(out_.end(), c.items.begin(), c.items.end());
     else
-      for (const T& item : items) fields(*this, item);
+      for (const T& item : c.items) fields(*this, item);
   }
   void require(bool) {}
 
@@ -253,29 +181,30 @@ private:
 
 // Reads little-endian fields, never past the end. The first structural fault (too few bytes, a count
 // out of range) stops reading; status() then ranks the faults as `decode` documents.
-class ReadArchive {
+class ReadArchive : public Archive<ReadArchive> {
 public:
   explicit ReadArchive(std::span<const std::byte> in) : in_(in) {}
-  void u8(std::uint8_t& v) { v = static_cast<std::uint8_t>(take(1)); }
-  void u32(std::uint32_t& v) { v = static_cast<std::uint32_t>(take(4)); }
-  void u64(std::uint64_t& v) { v = take(8); }
-  void f64(double& v) { v = std::bit_cast<double>(take(8)); }
-  void flag(bool& v) {
+  void field(std::uint8_t& v) { v = static_cast<std::uint8_t>(take(1)); }
+  void field(bool& v) {
     const std::uint64_t b = take(1);
     require(b <= 1);
     v = b == 1;
   }
+  void field(std::uint32_t& v) { v = static_cast<std::uint32_t>(take(4)); }
+  void field(std::uint64_t& v) { v = take(8); }
+  void field(double& v) { v = std::bit_cast<double>(take(8)); }
   template <class E>
-  void code(E& v, E lo, E hi) {
+  void field(const Code<E>& c) {
     const auto b = static_cast<std::uint8_t>(take(1));
-    require(b >= static_cast<std::uint8_t>(lo) && b <= static_cast<std::uint8_t>(hi));
-    v = static_cast<E>(b);
+    require(b >= static_cast<std::uint8_t>(c.lo) && b <= static_cast<std::uint8_t>(c.hi));
+    c.value = static_cast<E>(b);
   }
-  template <class T>
-  void sequence(std::vector<T>& items, std::uint32_t lo, std::uint32_t hi) {
+  template <class V>
+  void field(const Counted<V>& c) {
+    using T = typename V::value_type;
     const auto count = static_cast<std::uint32_t>(take(4));
     if (fault_ != DecodeStatus::ok) return;
-    if (count < lo || count > hi) {
+    if (count < c.lo || count > c.hi) {
       fault_ = DecodeStatus::out_of_range;  // before the count sizes anything
       return;
     }
@@ -284,11 +213,12 @@ public:
       return;
     }
     if constexpr (std::is_same_v<T, std::byte>) {
-      items.assign(in_.begin() + static_cast<std::ptrdiff_t>(pos_), in_.begin() + static_cast<std::ptrdiff_t>(pos_ + count));
+      const auto first = in_.begin() + static_cast<std::ptrdiff_t>(pos_);
+      c.items.assign(first, first + static_cast<std::ptrdiff_t>(count));
       pos_ += count;
     } else {
-      items.resize(count);
-      for (T& item : items) fields(*this, item);
+      c.items.resize(count);
+      for (T& item : c.items) fields(*this, item);
     }
   }
   void require(bool condition) { in_range_ = in_range_ && condition; }
@@ -467,8 +397,7 @@ void encode(const M& m, std::vector<std::byte>& out) {
   fields(s, m);
   out.reserve(header + s.size());
   WriteArchive w(out);
-  w.u8(wire_version);
-  w.u8(code_of<M>());
+  w(wire_version, code_of<M>());
   fields(w, m);
 }
 
