@@ -61,10 +61,7 @@ TEST(LossyPacking, LosslessLinksNeedNoRetransmissionAndSeeNoDuplicates) {
 
 TEST(LossyPacking, TwentyPercentLossAndDuplicationGiveCoresPackingBitForBit) {
   const core::PlanarGraph g = delaunay(40, 11);
-  LossyConfig c;
-  c.loss = 0.2;
-  c.dup = 0.1;
-  c.seed = 5;
+  const LossyConfig c = lossy_config(0.2, 0.1, 5);
   const LossyTotals t = expect_lossy_equals_core(g, lossy_params(), c, "loss 0.2 dup 0.1");
   EXPECT_GT(t.host.lost, 0u);
   EXPECT_GT(t.counters.retransmissions, 0u);
@@ -75,10 +72,7 @@ TEST(LossyPacking, TwentyPercentLossAndDuplicationGiveCoresPackingBitForBit) {
 TEST(LossyPacking, ThreeConnectedGraphsWithRelayedFaceTrafficSurviveLoss) {
   const core::PlanarGraph g = three_connected(30, 4);
   ASSERT_TRUE(core::PackingComplex::from_graph(g).has_face_vertices());
-  LossyConfig c;
-  c.loss = 0.2;
-  c.dup = 0.05;
-  c.seed = 9;
+  const LossyConfig c = lossy_config(0.2, 0.05, 9);
   const LossyTotals t = expect_lossy_equals_core(g, lossy_params(1), c, "3-connected loss 0.2");
   EXPECT_GT(t.counters.relayed, 0u);
   EXPECT_GT(t.counters.duplicates, 0u);
@@ -87,10 +81,7 @@ TEST(LossyPacking, ThreeConnectedGraphsWithRelayedFaceTrafficSurviveLoss) {
 TEST(LossyPacking, HeavyLossStillTerminatesWithTheSameResult) {
   // 40% loss is far beyond the target; the backoff and the bounded retransmissions still suffice.
   const core::PlanarGraph g = delaunay(20, 2);
-  LossyConfig c;
-  c.loss = 0.4;
-  c.dup = 0.2;
-  c.seed = 77;
+  const LossyConfig c = lossy_config(0.4, 0.2, 77);
   PackingParams p = lossy_params();
   p.max_retransmissions = 60;  // keep false suspicions out at this loss rate
   expect_lossy_equals_core(g, p, c, "loss 0.4");
@@ -120,10 +111,7 @@ LossyHost::Stats expect_crash_detected(const core::PlanarGraph& g, NodeId victim
 
 TEST(LossyPacking, ACrashMidRunEndsEverySurvivorWithTheFailureStatus) {
   const core::PlanarGraph g = delaunay(40, 11);
-  LossyConfig c;
-  c.loss = 0.1;
-  c.dup = 0.05;
-  c.seed = 3;
+  const LossyConfig c = lossy_config(0.1, 0.05, 3);
   LossyHost clean(g, lossy_params(), c);
   const Time end = clean.run().end;
   ASSERT_GT(end, 0);
@@ -136,9 +124,7 @@ TEST(LossyPacking, ACrashMidRunEndsEverySurvivorWithTheFailureStatus) {
 
 TEST(LossyPacking, CrashRunsAreDeterministicPerSeed) {
   const core::PlanarGraph g = three_connected(25, 8);
-  LossyConfig c;
-  c.loss = 0.15;
-  c.seed = 21;
+  const LossyConfig c = lossy_config(0.15, 0, 21);
   const LossyHost::Stats a = expect_crash_detected(g, g.id(5), 200'000'000, c);
   const LossyHost::Stats b = expect_crash_detected(g, g.id(5), 200'000'000, c);
   EXPECT_EQ(a.end, b.end);
@@ -210,10 +196,7 @@ TEST(LossyPacking, SequenceNumbersWrapSafely) {
   for (std::uint32_t start : {0xffffffffu - 20u, 0x7fffffffu - 20u}) {
     PackingParams p = lossy_params();
     p.initial_seq = start;
-    LossyConfig c;
-    c.loss = 0.2;
-    c.dup = 0.1;
-    c.seed = start % 7 + 1;
+    const LossyConfig c = lossy_config(0.2, 0.1, start % 7 + 1);
     const LossyTotals t = expect_lossy_equals_core(g, p, c, "start " + std::to_string(start));
     EXPECT_GT(t.counters.retransmissions, 0u);
     EXPECT_GT(t.counters.duplicates, 0u);

@@ -19,11 +19,7 @@ namespace {
 
 // Loss in {0, 5, 10, 15, 20}%, duplication in {0, 2.5, 5, 7.5, 10}%, mixed by seed.
 LossyConfig config_for(std::uint64_t seed) {
-  LossyConfig c;
-  c.loss = 0.05 * static_cast<double>(seed % 5);
-  c.dup = 0.025 * static_cast<double>((seed / 5) % 5);
-  c.seed = seed;
-  return c;
+  return lossy_config(0.05 * static_cast<double>(seed % 5), 0.025 * static_cast<double>((seed / 5) % 5), seed);
 }
 
 PackingParams params_for(std::uint64_t seed) {
