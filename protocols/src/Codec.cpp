@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cmath>
+#include <iterator>
 #include <utility>
 
 namespace laguerre::protocols {
@@ -317,38 +318,20 @@ DecodeStatus decode_set(std::span<const std::byte> bytes, Set& out) {
 // ---- Public interface ---------------------------------------------------------------------------------
 
 std::string_view to_string(MessageType t) {
-  switch (t) {
-    case MessageType::depth: return "depth";
-    case MessageType::election: return "election";
-    case MessageType::start: return "start";
-    case MessageType::wave: return "wave";
-    case MessageType::radius: return "radius";
-    case MessageType::placed: return "placed";
-    case MessageType::report: return "report";
-    case MessageType::decision: return "decision";
-    case MessageType::shape: return "shape";
-    case MessageType::face_circles: return "face_circles";
-    case MessageType::relay: return "relay";
-    case MessageType::data: return "data";
-    case MessageType::frame: return "frame";
-    case MessageType::ack: return "ack";
-    case MessageType::failure: return "failure";
-    case MessageType::route: return "route";
-  }
-  return "?";
+  static constexpr std::string_view names[] = {"?",      "depth",        "election", "start", "wave",  "radius",
+                                               "placed", "report",       "decision", "shape", "face_circles",
+                                               "relay",  "data",         "frame",    "ack",   "failure", "route"};
+  static_assert(std::size(names) == max_message_type + 1);
+  const auto code = static_cast<std::size_t>(t);
+  return code <= max_message_type ? names[code] : names[0];
 }
 
 std::string_view to_string(DecodeStatus s) {
-  switch (s) {
-    case DecodeStatus::ok: return "ok";
-    case DecodeStatus::truncated: return "truncated";
-    case DecodeStatus::bad_version: return "bad_version";
-    case DecodeStatus::unknown_type: return "unknown_type";
-    case DecodeStatus::trailing_bytes: return "trailing_bytes";
-    case DecodeStatus::out_of_range: return "out_of_range";
-    case DecodeStatus::foreign_type: return "foreign_type";
-  }
-  return "?";
+  static constexpr std::string_view names[] = {"ok",           "truncated",    "bad_version", "unknown_type",
+                                               "trailing_bytes", "out_of_range", "foreign_type"};
+  static_assert(std::size(names) == decode_status_count);
+  const auto i = static_cast<std::size_t>(s);
+  return i < decode_status_count ? names[i] : "?";
 }
 
 bool same_bits(const PlacedMsg& a, const PlacedMsg& b) {

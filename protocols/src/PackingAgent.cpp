@@ -95,16 +95,22 @@ void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
 
 // ---- Depth: pulse-synchronized BFS from the boundary (over K) -----------------------------------
 
+bool PackingAgent::record_pulse(std::vector<std::uint32_t>& value, std::vector<std::uint32_t>& seen, std::size_t& known,
+                                std::size_t i, std::uint32_t pulse, bool final) {
+  if (!final) {
+    seen[i] = std::max(seen[i], pulse + 1);
+    return true;
+  }
+  if (value[i] != unknown) return false;  // a neighbour's final pulse comes once
+  value[i] = pulse;
+  ++known;
+  return true;
+}
+
 void PackingAgent::handle(std::size_t i, const DepthMsg& m) {
-  if (m.final) {
-    if (nbr_depth_[i] != unknown) {
-      ++host_.counters().unexpected;
-      return;
-    }
-    nbr_depth_[i] = m.pulse;
-    ++nbr_depths_known_;
-  } else {
-    nbr_depth_seen_[i] = std::max(nbr_depth_seen_[i], m.pulse + 1);
+  if (!record_pulse(nbr_depth_, nbr_depth_seen_, nbr_depths_known_, i, m.pulse, m.final)) {
+    ++host_.counters().unexpected;
+    return;
   }
   advance_depth();
   maybe_candidate();
@@ -236,17 +242,11 @@ void PackingAgent::begin_wave(std::size_t from, NodeId root, NodeId first) {
 }
 
 void PackingAgent::handle(std::size_t i, const WaveMsg& m) {
-  if (m.placed) {
-    if (nbr_wave_[i] != unknown) {
-      ++host_.counters().unexpected;
-      return;
-    }
-    nbr_wave_[i] = m.pulse;
-    child_[i] = m.parent == know_.id ? 1 : 0;
-    ++nbr_waves_known_;
-  } else {
-    nbr_wave_seen_[i] = std::max(nbr_wave_seen_[i], m.pulse + 1);
+  if (!record_pulse(nbr_wave_, nbr_wave_seen_, nbr_waves_known_, i, m.pulse, m.placed)) {
+    ++host_.counters().unexpected;
+    return;
   }
+  if (m.placed) child_[i] = m.parent == know_.id ? 1 : 0;
   advance_wave();
   maybe_finish_setup();
 }

@@ -1,6 +1,7 @@
 #pragma once
 // One protocol vertex of K (a node's own vertex or a face vertex it hosts): the state machine of
-// PackingNode.hpp, addressing its K-neighbours by index through an AgentHost. Private to the library.
+// docs/protocol.md, addressing its K-neighbours by index through an AgentHost. It handles
+// PackingMessage only (relays, frames and failure notices are PackingNode's). Private to the library.
 
 #include <array>
 #include <cstdint>
@@ -95,6 +96,10 @@ private:
   void handle(std::size_t i, const ShapeMsg& m);
   void handle(std::size_t i, const FaceCirclesMsg& m);
 
+  // Neighbour i's status at a pulse (depth or wave): `final` fixes its value to `pulse`, otherwise it
+  // has passed `pulse`; false for a second final pulse.
+  static bool record_pulse(std::vector<std::uint32_t>& value, std::vector<std::uint32_t>& seen, std::size_t& known,
+                           std::size_t i, std::uint32_t pulse, bool final);
   void advance_depth();
   void maybe_candidate();
   void start_own_wave();
