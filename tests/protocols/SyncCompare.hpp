@@ -139,4 +139,16 @@ inline int expect_sync_equals_core(const core::PlanarGraph& g, const PackingPara
   return iterations;
 }
 
+// With the iteration cap `cap`, then with the exact update (N = 2, no cap, delivery order `shuffle`):
+// both runs equal core::pack's.
+inline void expect_cap_and_exact_update_equal_core(const core::PlanarGraph& g, int cap, std::uint64_t shuffle) {
+  PackingParams p;
+  p.max_iterations = cap;
+  expect_sync_equals_core(g, p, 0, "cap " + std::to_string(cap));
+  p.max_iterations = 100000;
+  p.update = core::UpdateRule::exact;
+  p.steps_per_check = 2;
+  expect_sync_equals_core(g, p, shuffle, "exact update");
+}
+
 }  // namespace laguerre::protocols::testing

@@ -112,14 +112,7 @@ TEST(ThreeConnected, SyncEqualsCoreUnderRandomDeliveryOrder) {
 }
 
 TEST(ThreeConnected, IterationCapAndExactUpdate) {
-  const core::PlanarGraph g = three_connected(30, 11);
-  PackingParams p;
-  p.max_iterations = 4;
-  expect_sync_equals_core(g, p, 0, "cap 4");
-  p.max_iterations = 100000;
-  p.update = core::UpdateRule::exact;
-  p.steps_per_check = 2;
-  expect_sync_equals_core(g, p, 5, "exact update");
+  expect_cap_and_exact_update_equal_core(three_connected(30, 11), 4, 5);
 }
 
 TEST(ThreeConnected, RejectsInconsistentFaces) {
