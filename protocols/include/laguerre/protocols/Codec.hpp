@@ -308,12 +308,16 @@ using ForwardingMessage = std::variant<DataMsg, RouteMsg>;
 using Message = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg, DecisionMsg,
                              ShapeMsg, FaceCirclesMsg, RelayMsg, DataMsg, FrameMsg, AckMsg, FailureMsg, RouteMsg>;
 
-/// Whether T is one of the 16 message structs.
-template <class T, class = Message>
-inline constexpr bool is_message_v = false;
-/// (Specialization.)
+namespace detail {
+template <class T, class Variant>
+struct IsAlternative;
 template <class T, class... Ts>
-inline constexpr bool is_message_v<T, std::variant<Ts...>> = (std::is_same_v<T, Ts> || ...);
+struct IsAlternative<T, std::variant<Ts...>> : std::disjunction<std::is_same<T, Ts>...> {};
+}  // namespace detail
+
+/// Whether T is one of the 16 message structs.
+template <class T>
+inline constexpr bool is_message_v = detail::IsAlternative<T, Message>::value;
 
 /// The type byte of a message.
 MessageType type_of(const Message& m);
