@@ -264,26 +264,20 @@ struct InSet : std::is_same<T, S> {};
 template <class T, class... S>
 struct InSet<T, std::variant<S...>> : std::disjunction<InSet<T, S>...> {};
 
-// Stores message `m` in the alternative of `out` (a set) that holds T.
-template <class T, class S>
-void place(S& out, T&& m) {
-  if constexpr (std::is_same_v<S, T>) {
-    out = std::move(m);
-  } else {
-    bool placed = false;
-    [&]<class... A>(std::variant<A...>*) {
-      (
-          [&] {
-            if constexpr (InSet<T, A>::value) {
-              if (!placed) {
-                placed = true;
-                place(out.template emplace<A>(), std::move(m));
-              }
-            }
-          }(),
-          ...);
-    }(static_cast<S*>(nullptr));
-  }
+// Stores message `m` in `out`: a T, or a set, in whose first alternative that contains T it goes.
+template <class T>
+void place(T& out, T&& m) {
+  out = std::move(m);
+}
+template <class T, class... A>
+void place(std::variant<A...>& out, T&& m) {
+  constexpr std::size_t k = [] {
+    constexpr bool contains[] = {InSet<T, A>::value...};
+    std::size_t i = 0;
+    while (!contains[i]) ++i;
+    return i;
+  }();
+  place(out.template emplace<k>(), std::move(m));
 }
 
 // Calls f.template operator()<T>() for the message struct T whose type code is `code` (1 … 16).
