@@ -2,99 +2,330 @@
 
 #include <bit>
 #include <cmath>
+#include <iterator>
 #include <utility>
-#include <type_traits>
 
 namespace laguerre::protocols {
 
+// ---- The layout of every message, once ----------------------------------------------------------
+//
+// `fields(ar, m)` lists the fields of a message in wire order, with their ranges: `ar(f1, f2, …)`
+// visits fields (by their C++ type: u8, u32, u64, f64, bool as u8 ∈ {0, 1}; `code(e, lo, hi)` an enum
+// as u8 in [lo, hi]; `counted(v, lo, hi)` a u32 count in [lo, hi] then that many items, bytes or
+// structs with their own `fields`), and `require(condition)` states a range that involves several
+// fields (only the reader evaluates it). The same description serves SizeArchive (counts bytes),
+// WriteArchive (appends them) and ReadArchive (reads and checks them); the first two visit `const`
+// messages, the reader mutable ones, hence the parameter `M`.
+
 namespace {
 
-// Appends little-endian fields to a byte vector.
-class Writer {
-public:
-  explicit Writer(std::vector<std::byte>& out) : out_(out) {}
-  void u8(std::uint8_t v) { out_.push_back(static_cast<std::byte>(v)); }
-  void u32(std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) out_.push_back(static_cast<std::byte>((v >> (8 * i)) & 0xffu));
-  }
-  void u64(std::uint64_t v) {
-    for (int i = 0; i < 8; ++i) out_.push_back(static_cast<std::byte>((v >> (8 * i)) & 0xffu));
-  }
-  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
-  void bytes(std::span<const std::byte> b) { out_.insert(out_.end(), b.begin(), b.end()); }
+template <class M, class T>
+concept Is = std::is_same_v<std::remove_const_t<M>, T>;
 
-private:
-  std::vector<std::byte>& out_;
+template <class E>
+struct Code {
+  E& value;
+  std::remove_const_t<E> lo, hi;
 };
+template <class E>
+Code<E> code(E& value, std::remove_const_t<E> lo, std::remove_const_t<E> hi) {
+  return {value, lo, hi};
+}
 
-// Reads little-endian fields; the caller has checked the total length, so reads never overrun.
-class Reader {
-public:
-  explicit Reader(std::span<const std::byte> in) : in_(in) {}
-  std::uint8_t u8() { return std::to_integer<std::uint8_t>(in_[pos_++]); }
-  std::uint32_t u32() {
-    std::uint32_t v = 0;
-    for (int i = 0; i < 4; ++i) v |= std::uint32_t{std::to_integer<std::uint8_t>(in_[pos_++])} << (8 * i);
-    return v;
-  }
-  std::uint64_t u64() {
-    std::uint64_t v = 0;
-    for (int i = 0; i < 8; ++i) v |= std::uint64_t{std::to_integer<std::uint8_t>(in_[pos_++])} << (8 * i);
-    return v;
-  }
-  double f64() { return std::bit_cast<double>(u64()); }
-  std::span<const std::byte> rest() const { return in_.subspan(pos_); }
-
-private:
-  std::span<const std::byte> in_;
-  std::size_t pos_ = 0;
+template <class V>
+struct Counted {
+  V& items;
+  std::uint32_t lo, hi;
 };
+template <class V>
+Counted<V> counted(V& items, std::uint32_t lo, std::uint32_t hi) {
+  return {items, lo, hi};
+}
+
+bool positive(double h) { return h > 0.0; }  // a hyperbolic radius: (0, ∞]; false for NaN
+bool zero_bits(double v) { return std::bit_cast<std::uint64_t>(v) == 0; }
+bool finite(double a, double b) { return std::isfinite(a) && std::isfinite(b); }
+
+template <class Ar, Is<FaceCircle> M> void fields(Ar& ar, M& c) { ar(c.x, c.y, c.r); }
+template <class Ar, Is<DepthMsg> M> void fields(Ar& ar, M& m) { ar(m.pulse, m.final); }
+template <class Ar, Is<ElectionMsg> M> void fields(Ar& ar, M& m) { ar(m.depth, m.id); }
+template <class Ar, Is<StartMsg> M> void fields(Ar& ar, M& m) { ar(m.root, m.first).require(m.root != m.first); }
+template <class Ar, Is<WaveMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.pulse, m.placed, m.parent).require(m.placed || m.parent == 0);
+}
+template <class Ar, Is<RadiusMsg> M> void fields(Ar& ar, M& m) { ar(m.step, m.h).require(positive(m.h)); }
+template <class Ar, Is<PlacedMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.round, m.h, m.centre_re, m.centre_im, m.cx, m.cy, m.cr).require(positive(m.h));
+}
+template <class Ar, Is<ReportMsg> M> void fields(Ar& ar, M& m) { ar(m.round, m.ok); }
+template <class Ar, Is<DecisionMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.round, code(m.verdict, Verdict::next, Verdict::cap));
+}
+template <class Ar, Is<ShapeMsg> M> void fields(Ar& ar, M& m) { ar(m.down, m.polygon); }
+template <class Ar, Is<FaceCirclesMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.round, counted(m.circles, 3, max_face_circles));
+}
+template <class Ar, Is<RelayMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.face, m.source, m.target, m.backward, counted(m.payload, 2, max_relay_payload))
+      .require(m.source != m.target && (m.face == m.source || m.face == m.target));
+}
+template <class Ar, Is<DataMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.packet, m.source, m.target, m.tx, m.ty, m.tr, m.ttl, m.hops)
+      .require(m.hops >= 1 && m.hops <= m.ttl && m.source != m.target && finite(m.tx, m.ty) && std::isfinite(m.tr) &&
+               m.tr >= 0);
+}
+template <class Ar, Is<FrameMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.seq, m.ack.next, m.ack.bits, counted(m.payload, 0, max_frame_payload));
+}
+template <class Ar, Is<AckMsg> M> void fields(Ar& ar, M& m) { ar(m.ack.next, m.ack.bits); }
+template <class Ar, Is<FailureMsg> M> void fields(Ar& ar, M& m) { ar(m.suspect); }
+
+template <class Ar, Is<RouteMsg> M>
+void fields(Ar& ar, M& m) {
+  ar(m.packet, m.source, m.target, code(m.scheme, RouteScheme::greedy_euclid, RouteScheme::gfg), m.tx, m.ty, m.ttl,
+     m.hops, m.perimeter, m.px, m.py, m.crossed, m.ax, m.ay, m.bx, m.by, m.walk_tail, m.walk_head);
+  ar.require(m.hops >= 1 && m.hops <= m.ttl && m.source != m.target && finite(m.tx, m.ty));
+  // Canonical: the fields a mode does not use are +0.
+  const bool edge_zero = zero_bits(m.ax) && zero_bits(m.ay) && zero_bits(m.bx) && zero_bits(m.by);
+  if (!m.perimeter)
+    ar.require(zero_bits(m.px) && zero_bits(m.py) && !m.crossed && edge_zero && m.walk_tail == 0 && m.walk_head == 0);
+  else
+    ar.require(m.scheme == RouteScheme::gfg && finite(m.px, m.py) && m.walk_tail != m.walk_head &&
+               (m.crossed ? finite(m.ax, m.ay) && finite(m.bx, m.by) : edge_zero));
+}
+
+// ---- Archives -------------------------------------------------------------------------------------
 
 constexpr std::size_t header = 2;
 
-// A boolean field must be 0 or 1; anything else is out of range.
-bool read_bool(Reader& r, bool& ok) {
-  const std::uint8_t b = r.u8();
-  if (b > 1) ok = false;
-  return b == 1;
+// What every archive does with a list of fields: visit them in order.
+template <class Ar>
+class Archive {
+public:
+  template <class... F>
+  Ar& operator()(F&&... f) {
+    Ar& self = static_cast<Ar&>(*this);
+    (self.field(f), ...);
+    return self;
+  }
+};
+
+// Counts bytes.
+class SizeArchive : public Archive<SizeArchive> {
+public:
+  void field(std::uint8_t) { size_ += 1; }
+  void field(bool) { size_ += 1; }
+  void field(std::uint32_t) { size_ += 4; }
+  void field(std::uint64_t) { size_ += 8; }
+  void field(double) { size_ += 8; }
+  template <class E>
+  void field(const Code<E>&) {
+    size_ += 1;
+  }
+  template <class V>
+  void field(const Counted<V>& c);
+  void require(bool) {}
+  std::size_t size() const { return size_; }
+
+private:
+  std::size_t size_ = 0;
+};
+
+// Bytes of one item of a sequence.
+template <class T>
+std::size_t item_size() {
+  if constexpr (std::is_same_v<T, std::byte>) {
+    return 1;
+  } else {
+    SizeArchive s;
+    const T item{};
+    fields(s, item);
+    return s.size();
+  }
 }
 
-bool hyperbolic_radius(double h) { return h > 0.0; }  // (0, ∞]; false for NaN
+template <class V>
+void SizeArchive::field(const Counted<V>& c) {
+  size_ += 4 + c.items.size() * item_size<typename std::remove_const_t<V>::value_type>();
+}
+
+// Appends little-endian fields to a byte vector.
+class WriteArchive : public Archive<WriteArchive> {
+public:
+  explicit WriteArchive(std::vector<std::byte>& out) : out_(out) {}
+  void field(std::uint8_t v) { out_.push_back(static_cast<std::byte>(v)); }
+  void field(bool v) { out_.push_back(v ? std::byte{1} : std::byte{0}); }
+  void field(std::uint32_t v) { little_endian(v, 4); }
+  void field(std::uint64_t v) { little_endian(v, 8); }
+  void field(double v) { little_endian(std::bit_cast<std::uint64_t>(v), 8); }
+  template <class E>
+  void field(const Code<E>& c) {
+    field(static_cast<std::uint8_t>(c.value));
+  }
+  template <class V>
+  void field(const Counted<V>& c) {
+    field(static_cast<std::uint32_t>(c.items.size()));
+    using T = typename std::remove_const_t<V>::value_type;
+    if constexpr (std::is_same_v<T, std::byte>)
+      out_.insert(out_.end(), c.items.begin(), c.items.end());
+    else
+      for (const T& item : c.items) fields(*this, item);
+  }
+  void require(bool) {}
+
+private:
+  void little_endian(std::uint64_t v, int bytes) {
+    for (int i = 0; i < bytes; ++i) out_.push_back(static_cast<std::byte>((v >> (8 * i)) & 0xffu));
+  }
+  std::vector<std::byte>& out_;
+};
+
+// Reads little-endian fields, never past the end. The first structural fault (too few bytes, a count
+// out of range) stops reading; status() then ranks the faults as `decode` documents.
+class ReadArchive : public Archive<ReadArchive> {
+public:
+  explicit ReadArchive(std::span<const std::byte> in) : in_(in) {}
+  void field(std::uint8_t& v) { v = static_cast<std::uint8_t>(take(1)); }
+  void field(bool& v) {
+    const std::uint64_t b = take(1);
+    require(b <= 1);
+    v = b == 1;
+  }
+  void field(std::uint32_t& v) { v = static_cast<std::uint32_t>(take(4)); }
+  void field(std::uint64_t& v) { v = take(8); }
+  void field(double& v) { v = std::bit_cast<double>(take(8)); }
+  template <class E>
+  void field(const Code<E>& c) {
+    const auto b = static_cast<std::uint8_t>(take(1));
+    require(b >= static_cast<std::uint8_t>(c.lo) && b <= static_cast<std::uint8_t>(c.hi));
+    c.value = static_cast<E>(b);
+  }
+  template <class V>
+  void field(const Counted<V>& c) {
+    using T = typename V::value_type;
+    const auto count = static_cast<std::uint32_t>(take(4));
+    if (fault_ != DecodeStatus::ok) return;
+    if (count < c.lo || count > c.hi) {
+      fault_ = DecodeStatus::out_of_range;  // before the count sizes anything
+      return;
+    }
+    if (in_.size() - pos_ < std::size_t{count} * item_size<T>()) {
+      fault_ = DecodeStatus::truncated;
+      return;
+    }
+    if constexpr (std::is_same_v<T, std::byte>) {
+      const auto first = in_.begin() + static_cast<std::ptrdiff_t>(pos_);
+      c.items.assign(first, first + static_cast<std::ptrdiff_t>(count));
+      pos_ += count;
+    } else {
+      c.items.resize(count);
+      for (T& item : c.items) fields(*this, item);
+    }
+  }
+  void require(bool condition) { in_range_ = in_range_ && condition; }
+
+  DecodeStatus status() const {
+    if (fault_ != DecodeStatus::ok) return fault_;
+    if (pos_ < in_.size()) return DecodeStatus::trailing_bytes;
+    return in_range_ ? DecodeStatus::ok : DecodeStatus::out_of_range;
+  }
+
+private:
+  std::uint64_t take(std::size_t bytes) {
+    if (fault_ != DecodeStatus::ok) return 0;
+    if (in_.size() - pos_ < bytes) {
+      fault_ = DecodeStatus::truncated;
+      return 0;
+    }
+    std::uint64_t v = 0;
+    for (std::size_t i = 0; i < bytes; ++i) v |= std::uint64_t{std::to_integer<std::uint8_t>(in_[pos_ + i])} << (8 * i);
+    pos_ += bytes;
+    return v;
+  }
+
+  std::span<const std::byte> in_;
+  std::size_t pos_ = 0;
+  DecodeStatus fault_ = DecodeStatus::ok;
+  bool in_range_ = true;
+};
+
+// ---- Message sets -----------------------------------------------------------------------------------
+
+// Type code of a message struct: its position in Message, plus one.
+template <class T, std::size_t I = 0>
+constexpr std::uint8_t code_of() {
+  if constexpr (std::is_same_v<T, std::variant_alternative_t<I, Message>>) return static_cast<std::uint8_t>(I + 1);
+  else return code_of<T, I + 1>();
+}
+
+// Whether message T belongs to set S (S itself, or a variant of sets, to any depth).
+template <class T, class S>
+struct InSet : std::is_same<T, S> {};
+template <class T, class... S>
+struct InSet<T, std::variant<S...>> : std::disjunction<InSet<T, S>...> {};
+
+// Stores message `m` in `out`: a T, or a set, in whose first alternative that contains T it goes.
+template <class T>
+void place(T& out, T&& m) {
+  out = std::move(m);
+}
+template <class T, class... A>
+void place(std::variant<A...>& out, T&& m) {
+  constexpr std::size_t k = [] {
+    constexpr bool contains[] = {InSet<T, A>::value...};
+    std::size_t i = 0;
+    while (!contains[i]) ++i;
+    return i;
+  }();
+  place(out.template emplace<k>(), std::move(m));
+}
+
+// Calls f.template operator()<T>() for the message struct T whose type code is `code` (1 … 16).
+template <class F>
+void with_message_type(std::uint8_t code, F&& f) {
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    ((code == I + 1 ? f.template operator()<std::variant_alternative_t<I, Message>>() : void()), ...);
+  }(std::make_index_sequence<std::variant_size_v<Message>>{});
+}
+
+template <class Set>
+DecodeStatus decode_set(std::span<const std::byte> bytes, Set& out) {
+  if (bytes.size() < header) return DecodeStatus::truncated;
+  if (std::to_integer<std::uint8_t>(bytes[0]) != wire_version) return DecodeStatus::bad_version;
+  const std::uint8_t code = std::to_integer<std::uint8_t>(bytes[1]);
+  if (code < 1 || code > max_message_type) return DecodeStatus::unknown_type;
+  DecodeStatus status = DecodeStatus::foreign_type;
+  with_message_type(code, [&]<class T>() {
+    if constexpr (InSet<T, Set>::value) {
+      T m;
+      ReadArchive r(bytes.subspan(header));
+      fields(r, m);
+      status = r.status();
+      if (status == DecodeStatus::ok) place(out, std::move(m));
+    }
+  });
+  return status;
+}
 
 }  // namespace
 
+// ---- Public interface ---------------------------------------------------------------------------------
+
 std::string_view to_string(MessageType t) {
-  switch (t) {
-    case MessageType::depth: return "depth";
-    case MessageType::election: return "election";
-    case MessageType::start: return "start";
-    case MessageType::wave: return "wave";
-    case MessageType::radius: return "radius";
-    case MessageType::placed: return "placed";
-    case MessageType::report: return "report";
-    case MessageType::decision: return "decision";
-    case MessageType::shape: return "shape";
-    case MessageType::face_circles: return "face_circles";
-    case MessageType::relay: return "relay";
-    case MessageType::data: return "data";
-    case MessageType::frame: return "frame";
-    case MessageType::ack: return "ack";
-    case MessageType::failure: return "failure";
-    case MessageType::route: return "route";
-  }
-  return "?";
+  static constexpr std::string_view names[] = {"?",      "depth",        "election", "start", "wave",  "radius",
+                                               "placed", "report",       "decision", "shape", "face_circles",
+                                               "relay",  "data",         "frame",    "ack",   "failure", "route"};
+  static_assert(std::size(names) == max_message_type + 1);
+  const auto code = static_cast<std::size_t>(t);
+  return code <= max_message_type ? names[code] : names[0];
 }
 
 std::string_view to_string(DecodeStatus s) {
-  switch (s) {
-    case DecodeStatus::ok: return "ok";
-    case DecodeStatus::truncated: return "truncated";
-    case DecodeStatus::bad_version: return "bad_version";
-    case DecodeStatus::unknown_type: return "unknown_type";
-    case DecodeStatus::trailing_bytes: return "trailing_bytes";
-    case DecodeStatus::out_of_range: return "out_of_range";
-  }
-  return "?";
+  static constexpr std::string_view names[] = {"ok",           "truncated",    "bad_version", "unknown_type",
+                                               "trailing_bytes", "out_of_range", "foreign_type"};
+  static_assert(std::size(names) == decode_status_count);
+  const auto i = static_cast<std::size_t>(s);
+  return i < decode_status_count ? names[i] : "?";
 }
 
 bool same_bits(const PlacedMsg& a, const PlacedMsg& b) {
@@ -112,368 +343,63 @@ bool same_bits(const FaceCirclesMsg& a, const FaceCirclesMsg& b) {
   return true;
 }
 
-MessageType type_of(const Message& m) {
-  return std::visit(
-      [](const auto& msg) -> MessageType {
-        using T = std::decay_t<decltype(msg)>;
-        if constexpr (std::is_same_v<T, DepthMsg>) return MessageType::depth;
-        else if constexpr (std::is_same_v<T, ElectionMsg>) return MessageType::election;
-        else if constexpr (std::is_same_v<T, StartMsg>) return MessageType::start;
-        else if constexpr (std::is_same_v<T, WaveMsg>) return MessageType::wave;
-        else if constexpr (std::is_same_v<T, RadiusMsg>) return MessageType::radius;
-        else if constexpr (std::is_same_v<T, PlacedMsg>) return MessageType::placed;
-        else if constexpr (std::is_same_v<T, ReportMsg>) return MessageType::report;
-        else if constexpr (std::is_same_v<T, DecisionMsg>) return MessageType::decision;
-        else if constexpr (std::is_same_v<T, ShapeMsg>) return MessageType::shape;
-        else if constexpr (std::is_same_v<T, FaceCirclesMsg>) return MessageType::face_circles;
-        else if constexpr (std::is_same_v<T, RelayMsg>) return MessageType::relay;
-        else if constexpr (std::is_same_v<T, DataMsg>) return MessageType::data;
-        else if constexpr (std::is_same_v<T, FrameMsg>) return MessageType::frame;
-        else if constexpr (std::is_same_v<T, AckMsg>) return MessageType::ack;
-        else if constexpr (std::is_same_v<T, FailureMsg>) return MessageType::failure;
-        else return MessageType::route;
-      },
-      m);
-}
+MessageType type_of(const Message& m) { return static_cast<MessageType>(m.index() + 1); }
 
 std::size_t encoded_size(MessageType t) {
-  switch (t) {
-    case MessageType::depth: return header + 4 + 1;
-    case MessageType::election: return header + 4 + 8;
-    case MessageType::start: return header + 8 + 8;
-    case MessageType::wave: return header + 4 + 1 + 8;
-    case MessageType::radius: return header + 4 + 8;
-    case MessageType::placed: return header + 4 + 6 * 8;
-    case MessageType::report: return header + 4 + 1;
-    case MessageType::decision: return header + 4 + 1;
-    case MessageType::shape: return header + 1 + 1;
-    case MessageType::face_circles: return header + 4 + 4;  // + 24 per circle
-    case MessageType::relay: return header + 3 * 8 + 1 + 4;  // + 1 per payload byte
-    case MessageType::data: return header + 3 * 8 + 3 * 8 + 4 + 4;
-    case MessageType::frame: return header + 4 + 4 + 8 + 4;  // + 1 per payload byte
-    case MessageType::ack: return header + 4 + 8;
-    case MessageType::failure: return header + 8;
-    case MessageType::route: return header + 3 * 8 + 1 + 2 * 8 + 4 + 4 + 1 + 2 * 8 + 1 + 4 * 8 + 2 * 8;
-  }
-  return 0;
+  std::size_t size = 0;
+  with_message_type(static_cast<std::uint8_t>(t), [&]<class T>() {
+    SizeArchive s;
+    const T empty{};  // variable-size messages: the fixed part, up to and including the count
+    fields(s, empty);
+    size = header + s.size();
+  });
+  return size;
 }
 
 std::size_t encoded_size(const Message& m) {
-  const std::size_t fixed = encoded_size(type_of(m));
-  if (const auto* f = std::get_if<FaceCirclesMsg>(&m)) return fixed + 24 * f->circles.size();
-  if (const auto* r = std::get_if<RelayMsg>(&m)) return fixed + r->payload.size();
-  if (const auto* f = std::get_if<FrameMsg>(&m)) return fixed + f->payload.size();
-  return fixed;
-}
-
-void encode(const Message& m, std::vector<std::byte>& out) {
-  out.clear();
-  const MessageType t = type_of(m);
-  out.reserve(encoded_size(m));
-  Writer w(out);
-  w.u8(wire_version);
-  w.u8(static_cast<std::uint8_t>(t));
-  std::visit(
-      [&](const auto& msg) {
-        using T = std::decay_t<decltype(msg)>;
-        if constexpr (std::is_same_v<T, DepthMsg>) {
-          w.u32(msg.pulse);
-          w.u8(msg.final ? 1 : 0);
-        } else if constexpr (std::is_same_v<T, ElectionMsg>) {
-          w.u32(msg.depth);
-          w.u64(msg.id);
-        } else if constexpr (std::is_same_v<T, StartMsg>) {
-          w.u64(msg.root);
-          w.u64(msg.first);
-        } else if constexpr (std::is_same_v<T, WaveMsg>) {
-          w.u32(msg.pulse);
-          w.u8(msg.placed ? 1 : 0);
-          w.u64(msg.parent);
-        } else if constexpr (std::is_same_v<T, RadiusMsg>) {
-          w.u32(msg.step);
-          w.f64(msg.h);
-        } else if constexpr (std::is_same_v<T, PlacedMsg>) {
-          w.u32(msg.round);
-          w.f64(msg.h);
-          w.f64(msg.centre_re);
-          w.f64(msg.centre_im);
-          w.f64(msg.cx);
-          w.f64(msg.cy);
-          w.f64(msg.cr);
-        } else if constexpr (std::is_same_v<T, ReportMsg>) {
-          w.u32(msg.round);
-          w.u8(msg.ok ? 1 : 0);
-        } else if constexpr (std::is_same_v<T, DecisionMsg>) {
-          w.u32(msg.round);
-          w.u8(static_cast<std::uint8_t>(msg.verdict));
-        } else if constexpr (std::is_same_v<T, ShapeMsg>) {
-          w.u8(msg.down ? 1 : 0);
-          w.u8(msg.polygon ? 1 : 0);
-        } else if constexpr (std::is_same_v<T, FaceCirclesMsg>) {
-          w.u32(msg.round);
-          w.u32(static_cast<std::uint32_t>(msg.circles.size()));
-          for (const FaceCircle& c : msg.circles) {
-            w.f64(c.x);
-            w.f64(c.y);
-            w.f64(c.r);
-          }
-        } else if constexpr (std::is_same_v<T, DataMsg>) {
-          w.u64(msg.packet);
-          w.u64(msg.source);
-          w.u64(msg.target);
-          w.f64(msg.tx);
-          w.f64(msg.ty);
-          w.f64(msg.tr);
-          w.u32(msg.ttl);
-          w.u32(msg.hops);
-        } else if constexpr (std::is_same_v<T, FrameMsg>) {
-          w.u32(msg.seq);
-          w.u32(msg.ack.next);
-          w.u64(msg.ack.bits);
-          w.u32(static_cast<std::uint32_t>(msg.payload.size()));
-          w.bytes(msg.payload);
-        } else if constexpr (std::is_same_v<T, AckMsg>) {
-          w.u32(msg.ack.next);
-          w.u64(msg.ack.bits);
-        } else if constexpr (std::is_same_v<T, FailureMsg>) {
-          w.u64(msg.suspect);
-        } else if constexpr (std::is_same_v<T, RouteMsg>) {
-          w.u64(msg.packet);
-          w.u64(msg.source);
-          w.u64(msg.target);
-          w.u8(static_cast<std::uint8_t>(msg.scheme));
-          w.f64(msg.tx);
-          w.f64(msg.ty);
-          w.u32(msg.ttl);
-          w.u32(msg.hops);
-          w.u8(msg.perimeter ? 1 : 0);
-          w.f64(msg.px);
-          w.f64(msg.py);
-          w.u8(msg.crossed ? 1 : 0);
-          w.f64(msg.ax);
-          w.f64(msg.ay);
-          w.f64(msg.bx);
-          w.f64(msg.by);
-          w.u64(msg.walk_tail);
-          w.u64(msg.walk_head);
-        } else {
-          w.u64(msg.face);
-          w.u64(msg.source);
-          w.u64(msg.target);
-          w.u8(msg.backward ? 1 : 0);
-          w.u32(static_cast<std::uint32_t>(msg.payload.size()));
-          w.bytes(msg.payload);
-        }
+  return std::visit(
+      [](const auto& msg) {
+        SizeArchive s;
+        fields(s, msg);
+        return header + s.size();
       },
       m);
 }
 
-std::vector<std::byte> encode(const Message& m) {
-  std::vector<std::byte> out;
-  encode(m, out);
-  return out;
+template <class M>
+  requires is_message_v<M>
+void encode(const M& m, std::vector<std::byte>& out) {
+  out.clear();
+  SizeArchive s;
+  fields(s, m);
+  out.reserve(header + s.size());
+  WriteArchive w(out);
+  w(wire_version, code_of<M>());
+  fields(w, m);
 }
 
-DecodeStatus decode(std::span<const std::byte> bytes, Message& out) {
-  if (bytes.size() < header) return DecodeStatus::truncated;
-  if (std::to_integer<std::uint8_t>(bytes[0]) != wire_version) return DecodeStatus::bad_version;
-  const std::uint8_t type_byte = std::to_integer<std::uint8_t>(bytes[1]);
-  if (type_byte < 1 || type_byte > max_message_type) return DecodeStatus::unknown_type;
-  const auto t = static_cast<MessageType>(type_byte);
-  std::size_t size = encoded_size(t);
-  if (bytes.size() < size) return DecodeStatus::truncated;
-  if (t == MessageType::face_circles || t == MessageType::relay || t == MessageType::frame) {
-    // The count is the last u32 of the fixed part; check its range before it sizes anything.
-    Reader c(bytes.subspan(size - 4, 4));
-    const std::uint32_t count = c.u32();
-    const bool circles = t == MessageType::face_circles;
-    const bool in_range = circles                      ? count >= 3 && count <= max_face_circles
-                          : t == MessageType::relay    ? count >= 2 && count <= max_relay_payload
-                                                       : count <= max_frame_payload;
-    if (!in_range) return DecodeStatus::out_of_range;
-    size += (circles ? 24 : 1) * std::size_t{count};
-    if (bytes.size() < size) return DecodeStatus::truncated;
-  }
-  if (bytes.size() > size) return DecodeStatus::trailing_bytes;
-  Reader r(bytes.subspan(header));
-  bool ok = true;
-  Message m;
-  switch (t) {
-    case MessageType::depth: {
-      DepthMsg d;
-      d.pulse = r.u32();
-      d.final = read_bool(r, ok);
-      m = d;
-      break;
-    }
-    case MessageType::election: {
-      ElectionMsg e;
-      e.depth = r.u32();
-      e.id = r.u64();
-      m = e;
-      break;
-    }
-    case MessageType::start: {
-      StartMsg s;
-      s.root = r.u64();
-      s.first = r.u64();
-      ok = s.root != s.first;
-      m = s;
-      break;
-    }
-    case MessageType::wave: {
-      WaveMsg w;
-      w.pulse = r.u32();
-      w.placed = read_bool(r, ok);
-      w.parent = r.u64();
-      if (!w.placed && w.parent != 0) ok = false;
-      m = w;
-      break;
-    }
-    case MessageType::radius: {
-      RadiusMsg rm;
-      rm.step = r.u32();
-      rm.h = r.f64();
-      ok = hyperbolic_radius(rm.h);
-      m = rm;
-      break;
-    }
-    case MessageType::placed: {
-      PlacedMsg p;
-      p.round = r.u32();
-      p.h = r.f64();
-      p.centre_re = r.f64();
-      p.centre_im = r.f64();
-      p.cx = r.f64();
-      p.cy = r.f64();
-      p.cr = r.f64();
-      ok = hyperbolic_radius(p.h);
-      m = p;
-      break;
-    }
-    case MessageType::report: {
-      ReportMsg rep;
-      rep.round = r.u32();
-      rep.ok = read_bool(r, ok);
-      m = rep;
-      break;
-    }
-    case MessageType::decision: {
-      DecisionMsg dm;
-      dm.round = r.u32();
-      const std::uint8_t v = r.u8();
-      if (v > 2) ok = false;
-      dm.verdict = static_cast<Verdict>(v);
-      m = dm;
-      break;
-    }
-    case MessageType::shape: {
-      ShapeMsg sm;
-      sm.down = read_bool(r, ok);
-      sm.polygon = read_bool(r, ok);
-      m = sm;
-      break;
-    }
-    case MessageType::face_circles: {
-      FaceCirclesMsg fc;
-      fc.round = r.u32();
-      fc.circles.resize(r.u32());  // range-checked above
-      for (FaceCircle& c : fc.circles) {
-        c.x = r.f64();
-        c.y = r.f64();
-        c.r = r.f64();
-      }
-      m = std::move(fc);
-      break;
-    }
-    case MessageType::relay: {
-      RelayMsg rm;
-      rm.face = r.u64();
-      rm.source = r.u64();
-      rm.target = r.u64();
-      rm.backward = read_bool(r, ok);
-      const std::uint32_t count = r.u32();  // range-checked above
-      const std::span<const std::byte> rest = r.rest();
-      rm.payload.assign(rest.begin(), rest.begin() + count);
-      if (rm.source == rm.target || (rm.face != rm.source && rm.face != rm.target)) ok = false;
-      m = std::move(rm);
-      break;
-    }
-    case MessageType::data: {
-      DataMsg d;
-      d.packet = r.u64();
-      d.source = r.u64();
-      d.target = r.u64();
-      d.tx = r.f64();
-      d.ty = r.f64();
-      d.tr = r.f64();
-      d.ttl = r.u32();
-      d.hops = r.u32();
-      ok = d.hops >= 1 && d.hops <= d.ttl && d.source != d.target && std::isfinite(d.tx) && std::isfinite(d.ty) &&
-           std::isfinite(d.tr) && d.tr >= 0;
-      m = d;
-      break;
-    }
-    case MessageType::frame: {
-      FrameMsg f;
-      f.seq = r.u32();
-      f.ack.next = r.u32();
-      f.ack.bits = r.u64();
-      const std::uint32_t count = r.u32();  // range-checked above
-      const std::span<const std::byte> rest = r.rest();
-      f.payload.assign(rest.begin(), rest.begin() + count);
-      m = std::move(f);
-      break;
-    }
-    case MessageType::ack: {
-      AckMsg a;
-      a.ack.next = r.u32();
-      a.ack.bits = r.u64();
-      m = a;
-      break;
-    }
-    case MessageType::failure: {
-      m = FailureMsg{r.u64()};
-      break;
-    }
-    case MessageType::route: {
-      RouteMsg d;
-      d.packet = r.u64();
-      d.source = r.u64();
-      d.target = r.u64();
-      const std::uint8_t scheme = r.u8();
-      d.scheme = static_cast<RouteScheme>(scheme);
-      d.tx = r.f64();
-      d.ty = r.f64();
-      d.ttl = r.u32();
-      d.hops = r.u32();
-      d.perimeter = read_bool(r, ok);
-      d.px = r.f64();
-      d.py = r.f64();
-      d.crossed = read_bool(r, ok);
-      d.ax = r.f64();
-      d.ay = r.f64();
-      d.bx = r.f64();
-      d.by = r.f64();
-      d.walk_tail = r.u64();
-      d.walk_head = r.u64();
-      auto zero = [](double v) { return std::bit_cast<std::uint64_t>(v) == 0; };
-      const bool edge_zero = zero(d.ax) && zero(d.ay) && zero(d.bx) && zero(d.by);
-      const bool edge_finite = std::isfinite(d.ax) && std::isfinite(d.ay) && std::isfinite(d.bx) && std::isfinite(d.by);
-      ok = ok && scheme >= 1 && scheme <= 3 && d.hops >= 1 && d.hops <= d.ttl && d.source != d.target &&
-           std::isfinite(d.tx) && std::isfinite(d.ty);
-      if (!d.perimeter)
-        ok = ok && zero(d.px) && zero(d.py) && !d.crossed && edge_zero && d.walk_tail == 0 && d.walk_head == 0;
-      else
-        ok = ok && d.scheme == RouteScheme::gfg && std::isfinite(d.px) && std::isfinite(d.py) &&
-             d.walk_tail != d.walk_head && (d.crossed ? edge_finite : edge_zero);
-      m = d;
-      break;
-    }
-  }
-  if (!ok) return DecodeStatus::out_of_range;
-  out = std::move(m);
-  return DecodeStatus::ok;
-}
+template void encode(const DepthMsg&, std::vector<std::byte>&);
+template void encode(const ElectionMsg&, std::vector<std::byte>&);
+template void encode(const StartMsg&, std::vector<std::byte>&);
+template void encode(const WaveMsg&, std::vector<std::byte>&);
+template void encode(const RadiusMsg&, std::vector<std::byte>&);
+template void encode(const PlacedMsg&, std::vector<std::byte>&);
+template void encode(const ReportMsg&, std::vector<std::byte>&);
+template void encode(const DecisionMsg&, std::vector<std::byte>&);
+template void encode(const ShapeMsg&, std::vector<std::byte>&);
+template void encode(const FaceCirclesMsg&, std::vector<std::byte>&);
+template void encode(const RelayMsg&, std::vector<std::byte>&);
+template void encode(const DataMsg&, std::vector<std::byte>&);
+template void encode(const FrameMsg&, std::vector<std::byte>&);
+template void encode(const AckMsg&, std::vector<std::byte>&);
+template void encode(const FailureMsg&, std::vector<std::byte>&);
+template void encode(const RouteMsg&, std::vector<std::byte>&);
+
+DecodeStatus decode(std::span<const std::byte> bytes, Message& out) { return decode_set(bytes, out); }
+DecodeStatus decode(std::span<const std::byte> bytes, PackingMessage& out) { return decode_set(bytes, out); }
+DecodeStatus decode(std::span<const std::byte> bytes, PackingHop& out) { return decode_set(bytes, out); }
+DecodeStatus decode(std::span<const std::byte> bytes, LinkMessage& out) { return decode_set(bytes, out); }
+DecodeStatus decode(std::span<const std::byte> bytes, FramePayload& out) { return decode_set(bytes, out); }
+DecodeStatus decode(std::span<const std::byte> bytes, ForwardingMessage& out) { return decode_set(bytes, out); }
 
 }  // namespace laguerre::protocols

@@ -161,15 +161,14 @@ void ForwardingNode::originate(const DataPacket& p) {
 
 void ForwardingNode::on_message(NodeId from, std::span<const std::byte> bytes) {
   ++counters_.received;
-  Message m;
+  ForwardingMessage m;
   const std::size_t i = index_of(from);
   if (i == no_neighbour || decode(bytes, m) != DecodeStatus::ok) {
     ++counters_.rejected;
     return;
   }
   if (const auto* d = std::get_if<DataMsg>(&m)) return handle(*d);
-  if (const auto* r = std::get_if<RouteMsg>(&m)) return handle(*r, i);
-  ++counters_.rejected;
+  handle(std::get<RouteMsg>(m), i);
 }
 
 void ForwardingNode::handle(const DataMsg& m) {

@@ -1,8 +1,7 @@
-#include <limits>
-
 #include "PackingAgent.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "laguerre/core/packing/HyperbolicTriangle.hpp"
 #include "laguerre/protocols/LocalChecks.hpp"
@@ -57,14 +56,14 @@ VertexState PackingAgent::state() const {
   return s;
 }
 
-void PackingAgent::send(std::size_t i, const Message& m) {
+void PackingAgent::send(std::size_t i, const PackingMessage& m) {
   encode(m, buffer_);
   send_encoded(i);
 }
 
 void PackingAgent::send_encoded(std::size_t i) { host_.send(index_, i, buffer_); }
 
-void PackingAgent::broadcast(const Message& m) {
+void PackingAgent::broadcast(const PackingMessage& m) {
   encode(m, buffer_);
   for (std::size_t i = 0; i < deg_; ++i) send_encoded(i);
 }
@@ -82,7 +81,7 @@ void PackingAgent::start() {
   maybe_candidate();
 }
 
-void PackingAgent::receive(std::size_t i, const Message& m) {
+void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
   // Asynchronous mode: the last round's updates do not wait for every neighbour's value, so a
   // neighbour's final RadiusMsg may still be on its way (e.g. retransmitted) when the stop decision
   // arrives. It is stale, not unexpected.
@@ -94,26 +93,24 @@ void PackingAgent::receive(std::size_t i, const Message& m) {
   std::visit([&](const auto& msg) { handle(i, msg); }, m);
 }
 
-void PackingAgent::handle(std::size_t, const RelayMsg&) { ++host_.counters().unexpected; }  // envelopes never nest
-void PackingAgent::handle(std::size_t, const DataMsg&) { ++host_.counters().unexpected; }   // ForwardingNode's
-void PackingAgent::handle(std::size_t, const RouteMsg&) { ++host_.counters().unexpected; }  // ForwardingNode's
-// The reliability layer's messages are PackingNode's; an agent never sees them from a correct peer.
-void PackingAgent::handle(std::size_t, const FrameMsg&) { ++host_.counters().unexpected; }
-void PackingAgent::handle(std::size_t, const AckMsg&) { ++host_.counters().unexpected; }
-void PackingAgent::handle(std::size_t, const FailureMsg&) { ++host_.counters().unexpected; }
-
 // ---- Depth: pulse-synchronized BFS from the boundary (over K) -----------------------------------
 
+bool PackingAgent::record_pulse(std::vector<std::uint32_t>& value, std::vector<std::uint32_t>& seen, std::size_t& known,
+                                std::size_t i, std::uint32_t pulse, bool final) {
+  if (!final) {
+    seen[i] = std::max(seen[i], pulse + 1);
+    return true;
+  }
+  if (value[i] != unknown) return false;  // a neighbour's final pulse comes once
+  value[i] = pulse;
+  ++known;
+  return true;
+}
+
 void PackingAgent::handle(std::size_t i, const DepthMsg& m) {
-  if (m.final) {
-    if (nbr_depth_[i] != unknown) {
-      ++host_.counters().unexpected;
-      return;
-    }
-    nbr_depth_[i] = m.pulse;
-    ++nbr_depths_known_;
-  } else {
-    nbr_depth_seen_[i] = std::max(nbr_depth_seen_[i], m.pulse + 1);
+  if (!record_pulse(nbr_depth_, nbr_depth_seen_, nbr_depths_known_, i, m.pulse, m.final)) {
+    ++host_.counters().unexpected;
+    return;
   }
   advance_depth();
   maybe_candidate();
@@ -245,17 +242,11 @@ void PackingAgent::begin_wave(std::size_t from, NodeId root, NodeId first) {
 }
 
 void PackingAgent::handle(std::size_t i, const WaveMsg& m) {
-  if (m.placed) {
-    if (nbr_wave_[i] != unknown) {
-      ++host_.counters().unexpected;
-      return;
-    }
-    nbr_wave_[i] = m.pulse;
-    child_[i] = m.parent == know_.id ? 1 : 0;
-    ++nbr_waves_known_;
-  } else {
-    nbr_wave_seen_[i] = std::max(nbr_wave_seen_[i], m.pulse + 1);
+  if (!record_pulse(nbr_wave_, nbr_wave_seen_, nbr_waves_known_, i, m.pulse, m.placed)) {
+    ++host_.counters().unexpected;
+    return;
   }
+  if (m.placed) child_[i] = m.parent == know_.id ? 1 : 0;
   advance_wave();
   maybe_finish_setup();
 }

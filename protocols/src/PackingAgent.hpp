@@ -1,6 +1,7 @@
 #pragma once
 // One protocol vertex of K (a node's own vertex or a face vertex it hosts): the state machine of
-// PackingNode.hpp, addressing its K-neighbours by index through an AgentHost. Private to the library.
+// docs/protocol.md, addressing its K-neighbours by index through an AgentHost. It handles
+// PackingMessage only (relays, frames and failure notices are PackingNode's). Private to the library.
 
 #include <array>
 #include <cstdint>
@@ -45,7 +46,7 @@ public:
   PackingAgent(AgentHost& host, std::size_t index, AgentSpec spec, PackingParams params);
 
   void start();
-  void receive(std::size_t k_index, const Message& m);
+  void receive(std::size_t k_index, const PackingMessage& m);
 
   PackingPhase phase() const { return phase_; }
   PackingOutcome outcome() const { return outcome_; }
@@ -74,9 +75,9 @@ private:
     std::vector<core::Circle> circles;  // host walk order
   };
 
-  void send(std::size_t i, const Message& m);
+  void send(std::size_t i, const PackingMessage& m);
   void send_encoded(std::size_t i);
-  void broadcast(const Message& m);
+  void broadcast(const PackingMessage& m);
   bool interior_nbr(std::size_t i) const { return nbr_depth_[i] != 0; }
   double cos_spoke(std::size_t i) const { return know_.is_face || know_.face_nbr[i] ? 0.0 : 1.0; }
   double cos_rim(std::size_t i) const {
@@ -94,13 +95,11 @@ private:
   void handle(std::size_t i, const DecisionMsg& m);
   void handle(std::size_t i, const ShapeMsg& m);
   void handle(std::size_t i, const FaceCirclesMsg& m);
-  void handle(std::size_t i, const RelayMsg& m);
-  void handle(std::size_t i, const DataMsg& m);
-  void handle(std::size_t i, const RouteMsg& m);
-  void handle(std::size_t i, const FrameMsg& m);
-  void handle(std::size_t i, const AckMsg& m);
-  void handle(std::size_t i, const FailureMsg& m);
 
+  // Neighbour i's status at a pulse (depth or wave): `final` fixes its value to `pulse`, otherwise it
+  // has passed `pulse`; false for a second final pulse.
+  static bool record_pulse(std::vector<std::uint32_t>& value, std::vector<std::uint32_t>& seen, std::size_t& known,
+                           std::size_t i, std::uint32_t pulse, bool final);
   void advance_depth();
   void maybe_candidate();
   void start_own_wave();

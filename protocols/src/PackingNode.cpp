@@ -1,6 +1,7 @@
 #include "laguerre/protocols/PackingNode.hpp"
 
 #include <algorithm>
+#include <deque>
 #include <stdexcept>
 #include <string>
 
@@ -44,6 +45,45 @@ void enable_lossy_links(PackingParams& params, Duration max_latency) {
   params.ack_delay = l / 2;
   params.retransmit_after = 3 * l;
 }
+
+// ---- Private state ----------------------------------------------------------------------------------
+
+struct PackingNode::Wedge {
+  std::vector<NodeId> walk;  // from this node, counter-clockwise
+  NodeId face_id = 0;        // face_vertex_id of the face
+  NodeId host = 0;           // smallest id on the face
+  std::size_t agent = 0;     // index in agents_ if hosted here, else 0
+};
+
+// The reliability layer's state for one G-neighbour (docs/protocol.md, "Loss, duplication and crashes").
+struct PackingNode::Link {
+  struct Pending {  // a frame not yet acknowledged
+    std::uint32_t seq = 0;
+    std::vector<std::byte> payload;
+    Time sent_at = 0;            // first transmission
+    bool retransmitted = false;  // Karn: no RTT sample from it
+  };
+  std::uint32_t next_seq = 0;  // next sequence number to send
+  std::deque<Pending> unacked;  // by seq
+  TimerHandle retransmit_timer = 0;
+  Duration period = 0;  // current retransmission period
+  Duration rto = 0;     // current timeout (backoff resets to it)
+  Duration srtt = 0;    // smoothed round trip (ns)
+  Duration rttvar = 0;  // its mean deviation (ns)
+  bool has_rtt = false;  // a sample was taken
+  int attempts = 0;      // retransmissions since progress
+  AckInfo received;      // what we have of the reverse link
+  bool ack_pending = false;
+  TimerHandle ack_timer = 0;
+  Time last_heard = 0;
+  bool dead = false;
+};
+
+struct PackingNode::Local {
+  std::size_t agent;
+  std::size_t from_index;
+  std::vector<std::byte> bytes;
+};
 
 namespace {
 // Timer ids: kind in the top byte, G-neighbour index below.
@@ -132,7 +172,7 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
 
   host_ = std::make_unique<detail::AgentHost>(*this);
   agents_.push_back(std::make_unique<detail::PackingAgent>(*host_, 0, std::move(own), params));
-  // Hosted face vertices: neighbours = the face's walk from the host (see the header on why).
+  // Hosted face vertices: neighbours = the face's walk from the host (docs/protocol.md, "Face vertices").
   for (Wedge& w : wedges_) {
     if (w.host != know_.id) continue;
     detail::AgentSpec fs;
@@ -220,29 +260,31 @@ void PackingNode::handle_relay(std::size_t from, RelayMsg& m) {
 }
 
 void PackingNode::deliver_payload(std::size_t agent, std::size_t from_index, std::span<const std::byte> bytes) {
-  Message m;
+  PackingMessage m;  // envelopes never nest
   if (decode(bytes, m) != DecodeStatus::ok) {
     ++counters_.bad_payload;
     return;
   }
-  if (std::holds_alternative<RelayMsg>(m)) {
-    ++counters_.unexpected;  // envelopes never nest
-    return;
-  }
   agents_[agent]->receive(from_index, m);
+}
+
+void PackingNode::handle_hop(std::size_t from, PackingHop& m) {
+  // A plain message comes from G-neighbour `from`, which is K-neighbour g_k[from] of the own vertex.
+  if (auto* r = std::get_if<RelayMsg>(&m)) handle_relay(from, *r);
+  else agents_[0]->receive(agents_[0]->spec().g_k[from], std::get<PackingMessage>(m));
 }
 
 void PackingNode::drain() {
   // Local deliveries between this node's agents, after the callback that produced them (never
   // re-entrant); they may produce more, delivered in turn. An abandoned run delivers nothing more.
   if (failed_) local_.clear();
-  while (!local_.empty()) {
-    Local l = std::move(local_.front());
-    local_.pop_front();
-    Message m;
+  for (std::size_t next = 0; next < local_.size(); ++next) {
+    Local l = std::move(local_[next]);  // receive() may append to local_
+    PackingMessage m;
     if (decode(l.bytes, m) != DecodeStatus::ok) continue;  // our own encoding: cannot happen
     agents_[l.agent]->receive(l.from_index, m);
   }
+  local_.clear();
   if (finished_at_ < 0 && is_final()) finished_at_ = rt_.now();
 }
 
@@ -296,7 +338,7 @@ void PackingNode::on_recover() {
   flush_acks();
 }
 
-// ---- The reliability layer (lossy mode; see "Loss, duplication and crashes" in the header) ---------
+// ---- The reliability layer (lossy mode; docs/protocol.md, "Loss, duplication and crashes") ----------
 
 void PackingNode::raw_send(NodeId to, std::span<const std::byte> bytes) {
   rt_.send(to, bytes);
@@ -387,7 +429,7 @@ void PackingNode::handle_ack(std::size_t i, const AckInfo& a) {
 }
 
 void PackingNode::sample_rtt(Link& l, Duration r) {
-  // Jacobson/Karels in integer nanoseconds (see "Adaptive timeout" in the header).
+  // Jacobson/Karels in integer nanoseconds (docs/protocol.md, "Adaptive timeout").
   r = std::max<Duration>(r, 0);
   if (!l.has_rtt) {
     l.srtt = r;
@@ -439,7 +481,7 @@ void PackingNode::handle_frame(std::size_t i, FrameMsg& f) {
 
 void PackingNode::deliver_frame_payload(std::size_t i, std::span<const std::byte> payload) {
   if (payload.empty()) return;  // a probe: its only purpose was the ack
-  Message m;
+  FramePayload m;  // frames never nest
   if (decode(payload, m) != DecodeStatus::ok) {
     ++counters_.bad_payload;
     return;
@@ -448,10 +490,8 @@ void PackingNode::deliver_frame_payload(std::size_t i, std::span<const std::byte
     declare_failure(fail->suspect, i);
     return;
   }
-  if (failed_) return;  // the run is abandoned: the protocol no longer runs
-  if (auto* r = std::get_if<RelayMsg>(&m)) handle_relay(i, *r);
-  else if (std::holds_alternative<FrameMsg>(m) || std::holds_alternative<AckMsg>(m)) ++counters_.unexpected;  // frames never nest
-  else agents_[0]->receive(agents_[0]->spec().g_k[i], m);
+  if (failed_) return;  // the run is abandoned: the protocol does not run any more
+  handle_hop(i, std::get<PackingHop>(m));
 }
 
 void PackingNode::flush_acks() {
@@ -516,31 +556,25 @@ void PackingNode::on_message(NodeId from, std::span<const std::byte> bytes) {
     return;
   }
   if (lossy()) {
-    Message m;
+    LinkMessage m;  // on lossy links everything travels in frames
     const DecodeStatus s = decode(bytes, m);
     ++counters_.decode[static_cast<std::size_t>(s)];
     if (s != DecodeStatus::ok) return;
     links_[i].last_heard = rt_.now();
     if (auto* f = std::get_if<FrameMsg>(&m)) handle_frame(i, *f);
-    else if (const auto* a = std::get_if<AckMsg>(&m)) handle_ack(i, a->ack);
-    else ++counters_.unexpected;  // on lossy links everything travels in frames
+    else handle_ack(i, std::get<AckMsg>(m).ack);
     drain();
     flush_acks();
     return;
   }
-  // A plain message comes from G-neighbour i, which is K-neighbour g_k[i] of this node's own vertex;
-  // an envelope goes to handle_relay with the physical index.
-  const std::size_t k = agents_[0]->spec().g_k[i];
-  Message m;
+  PackingHop m;
   const DecodeStatus s = decode(bytes, m);
   ++counters_.decode[static_cast<std::size_t>(s)];
-  if (s == DecodeStatus::ok) {
-    if (auto* r = std::get_if<RelayMsg>(&m)) handle_relay(i, *r);
-    else agents_[0]->receive(k, m);
-  }
+  if (s == DecodeStatus::ok) handle_hop(i, m);
   drain();
 }
 
+Duration PackingNode::rto(std::size_t i) const { return i < links_.size() ? links_[i].rto : 0; }
 PackingPhase PackingNode::phase() const { return agents_[0]->phase(); }
 PackingOutcome PackingNode::outcome() const {
   return failed_ ? PackingOutcome::neighbour_failed : agents_[0]->outcome();

@@ -55,16 +55,10 @@ inline LossyTotals expect_lossy_equals_core(const core::PlanarGraph& g, const Pa
     for (std::size_t i = 0; i < k.face_of_vertex.size(); ++i) {
       const core::Vertex fv = static_cast<core::Vertex>(g.num_vertices() + i);
       const NodeId fid = ids[fv];
-      const PackingNode& h = host.node(static_cast<core::Vertex>((fid >> 31) & max_face_node_id));
-      bool found = false;
-      for (std::size_t j = 0; j < h.hosted_faces(); ++j) {
-        const VertexState st = h.hosted_face_state(j);
-        if (st.id != fid) continue;
-        found = true;
-        EXPECT_EQ(bits(st.h), bits(r.radii[fv]));
-        expect_same_circle(st.placement, r.layout, fv);
-      }
-      EXPECT_TRUE(found);
+      const std::optional<VertexState> st = hosted_state(host, fid);
+      ASSERT_TRUE(st.has_value());
+      EXPECT_EQ(bits(st->h), bits(r.radii[fv]));
+      expect_same_circle(st->placement, r.layout, fv);
     }
     // The host's ledger and the nodes' agree: every message a node sent went through the host, and
     // every copy the host delivered was received by a node.

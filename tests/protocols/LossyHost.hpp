@@ -33,6 +33,15 @@ struct LossyConfig {
   std::uint64_t max_events = 100'000'000;
 };
 
+// A configuration with the given loss and duplication probabilities and seed, the rest default.
+inline LossyConfig lossy_config(double loss, double dup, std::uint64_t seed) {
+  LossyConfig c;
+  c.loss = loss;
+  c.dup = dup;
+  c.seed = seed;
+  return c;
+}
+
 class LossyHost {
 public:
   struct Stats {

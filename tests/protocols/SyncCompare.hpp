@@ -6,6 +6,7 @@
 #include <bit>
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <string>
 
 #include "SyncHost.hpp"
@@ -50,6 +51,15 @@ inline void expect_same_circle(const core::PlacedCircle& a, const core::Layout& 
   EXPECT_EQ(bits(a.circle.r), bits(l.circles[v].r));
   EXPECT_EQ(bits(a.centre.real()), bits(l.centre[v].real()));
   EXPECT_EQ(bits(a.centre.imag()), bits(l.centre[v].imag()));
+}
+
+// The state of face vertex `fid` at its host (node ids are vertex indices here), if it is hosted there.
+template <class Host>
+std::optional<VertexState> hosted_state(Host& host, NodeId fid) {
+  const PackingNode& h = host.node(static_cast<core::Vertex>((fid >> 31) & max_face_node_id));
+  for (std::size_t j = 0; j < h.hosted_faces(); ++j)
+    if (h.hosted_face_state(j).id == fid) return h.hosted_face_state(j);
+  return std::nullopt;
 }
 
 // Parameters of core::pack equivalent to `params`.
@@ -115,24 +125,30 @@ inline int expect_sync_equals_core(const core::PlanarGraph& g, const PackingPara
     const core::Vertex fv = static_cast<core::Vertex>(g.num_vertices() + i);
     const NodeId fid = ids[fv];
     SCOPED_TRACE("face vertex " + std::to_string(i));
-    const PackingNode& h = host.node(static_cast<core::Vertex>((fid >> 31) & max_face_node_id));
-    bool found = false;
-    for (std::size_t j = 0; j < h.hosted_faces(); ++j) {
-      const VertexState st = h.hosted_face_state(j);
-      if (st.id != fid) continue;
-      found = true;
-      EXPECT_EQ(st.phase, PackingPhase::finished);
-      EXPECT_EQ(st.depth, depth[fv]);
-      EXPECT_EQ(st.wave, r.layout.wave[fv]);
-      EXPECT_EQ(st.parent, ids[r.layout.parent[fv]]);
-      EXPECT_EQ(st.steps, static_cast<std::uint32_t>(r.iterations));
-      EXPECT_EQ(bits(st.h), bits(r.radii[fv])) << st.h << " vs " << r.radii[fv];
-      expect_same_circle(st.placement, r.layout, fv);
-    }
-    EXPECT_TRUE(found);
+    const std::optional<VertexState> st = hosted_state(host, fid);
+    ASSERT_TRUE(st.has_value());
+    EXPECT_EQ(st->phase, PackingPhase::finished);
+    EXPECT_EQ(st->depth, depth[fv]);
+    EXPECT_EQ(st->wave, r.layout.wave[fv]);
+    EXPECT_EQ(st->parent, ids[r.layout.parent[fv]]);
+    EXPECT_EQ(st->steps, static_cast<std::uint32_t>(r.iterations));
+    EXPECT_EQ(bits(st->h), bits(r.radii[fv])) << st->h << " vs " << r.radii[fv];
+    expect_same_circle(st->placement, r.layout, fv);
   }
   }();
   return iterations;
+}
+
+// With the iteration cap `cap`, then with the exact update (N = 2, no cap, delivery order `shuffle`):
+// both runs equal core::pack's.
+inline void expect_cap_and_exact_update_equal_core(const core::PlanarGraph& g, int cap, std::uint64_t shuffle) {
+  PackingParams p;
+  p.max_iterations = cap;
+  expect_sync_equals_core(g, p, 0, "cap " + std::to_string(cap));
+  p.max_iterations = 100000;
+  p.update = core::UpdateRule::exact;
+  p.steps_per_check = 2;
+  expect_sync_equals_core(g, p, shuffle, "exact update");
 }
 
 }  // namespace laguerre::protocols::testing

@@ -5,6 +5,7 @@
 #include <limits>
 #include <random>
 
+#include "CodecChecks.hpp"
 #include "laguerre/protocols/Codec.hpp"
 
 using namespace laguerre::protocols;
@@ -156,14 +157,7 @@ TEST(Codec, RejectsOutOfRangeFields) {
 }
 
 TEST(Codec, EveryTruncationAndExtensionIsRejected) {
-  for (const Message& m : samples()) {
-    std::vector<std::byte> b = encode(m);
-    Message out;
-    for (std::size_t len = 0; len < b.size(); ++len)
-      EXPECT_EQ(decode(std::span(b).first(len), out), DecodeStatus::truncated) << to_string(type_of(m)) << " " << len;
-    b.push_back(std::byte{0});
-    EXPECT_EQ(decode(b, out), DecodeStatus::trailing_bytes);
-  }
+  laguerre::protocols::testing::expect_every_truncation_and_extension_rejected(samples());
 }
 
 TEST(Codec, RandomCorruptionIsRejectedOrDecodesToAValidMessage) {

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "CodecChecks.hpp"
 #include "laguerre/protocols/Codec.hpp"
 
 using namespace laguerre::protocols;
@@ -51,14 +52,7 @@ TEST(ReliabilityCodec, TypesHaveNamesAndSizes) {
 }
 
 TEST(ReliabilityCodec, TruncationsExtensionsAndOversizedCountsAreRejected) {
-  for (const Message& m : samples()) {
-    std::vector<std::byte> b = encode(m);
-    Message out;
-    for (std::size_t len = 0; len < b.size(); ++len)
-      EXPECT_EQ(decode(std::span(b).first(len), out), DecodeStatus::truncated) << to_string(type_of(m)) << " " << len;
-    b.push_back(std::byte{0});
-    EXPECT_EQ(decode(b, out), DecodeStatus::trailing_bytes);
-  }
+  laguerre::protocols::testing::expect_every_truncation_and_extension_rejected(samples());
   // A frame whose count exceeds max_frame_payload is out of range before anything is sized by it.
   std::vector<std::byte> b = encode(FrameMsg{1, {0, 0}, {}});
   const std::uint32_t big = max_frame_payload + 1;

@@ -1,4 +1,4 @@
-// The asynchronous mode (PackingNode.hpp, "Asynchronous mode"): under arbitrary delivery orders, and
+// The asynchronous mode (docs/protocol.md, "Asynchronous mode"): under arbitrary delivery orders, and
 // under loss and duplication with the reliability layer, every node ends converged after the same
 // number of updates, and core's own LPD/GLPD check holds at every vertex of the embedding the nodes
 // hold.
@@ -6,8 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "../LossyCompare.hpp"
-#include "laguerre/core/graph/GraphKind.hpp"
-#include "laguerre/core/graph/RandomGraphs.hpp"
+#include "../TestGraphs.hpp"
 
 using namespace laguerre;
 using namespace laguerre::protocols;
@@ -49,8 +48,7 @@ TEST(AsyncPacking, ConvergesUnderArbitraryDeliveryOrders) {
   for (std::size_t n : {20, 40, 60})
     for (std::uint64_t seed = 1; seed <= 4; ++seed) {
       const bool tri = seed % 2 == 1;
-      const core::PlanarGraph g = core::prepare_for_packing(tri ? core::random_delaunay_triangulation(n, 100 * n + seed)
-                                                               : core::random_three_connected(n, 100 * n + seed));
+      const core::PlanarGraph g = tri ? delaunay(n, 100 * n + seed) : three_connected(n, 100 * n + seed);
       const PackingParams p = async_params(1 + static_cast<int>(seed % 3));
       SCOPED_TRACE("n=" + std::to_string(n) + " seed " + std::to_string(seed));
       DequeHost host(g, p);
@@ -67,14 +65,10 @@ TEST(AsyncPacking, ConvergesUnderArbitraryDeliveryOrders) {
 TEST(AsyncPacking, ConvergesUnderLossAndDuplicationWithTheReliabilityLayer) {
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     const bool tri = seed % 2 == 0;
-    const core::PlanarGraph g = core::prepare_for_packing(tri ? core::random_delaunay_triangulation(40, seed)
-                                                             : core::random_three_connected(40, seed));
+    const core::PlanarGraph g = tri ? delaunay(40, seed) : three_connected(40, seed);
     PackingParams p = async_params(2);
     enable_lossy_links(p, 5'000'000);
-    LossyConfig c;
-    c.loss = 0.2;
-    c.dup = 0.05;
-    c.seed = seed;
+    const LossyConfig c = lossy_config(0.2, 0.05, seed);
     SCOPED_TRACE("seed " + std::to_string(seed));
     LossyHost host(g, p, c);
     ASSERT_TRUE(host.run().drained);

@@ -1,25 +1,16 @@
-// The reliability layer (PackingNode.hpp, "Loss, duplication and crashes") on the lossy host: the same
+// The reliability layer (docs/protocol.md, "Loss, duplication and crashes") on the lossy host: the same
 // run as core::pack, bit for bit, under loss, duplication and reordering; quiescence; crash detection.
 
 #include <gtest/gtest.h>
 
 #include "../LossyCompare.hpp"
-#include "laguerre/core/graph/GraphKind.hpp"
-#include "laguerre/core/graph/RandomGraphs.hpp"
+#include "../TestGraphs.hpp"
 
 using namespace laguerre;
 using namespace laguerre::protocols;
 using namespace laguerre::protocols::testing;
 
 namespace {
-
-core::PlanarGraph triangulation(std::size_t n, std::uint64_t seed) {
-  return core::prepare_for_packing(core::random_delaunay_triangulation(n, seed));
-}
-
-core::PlanarGraph three_connected(std::size_t n, std::uint64_t seed) {
-  return core::prepare_for_packing(core::random_three_connected(n, seed));
-}
 
 PackingParams lossy_params(int steps = 2) {
   PackingParams p;
@@ -39,7 +30,7 @@ TEST(LossyPacking, EnableLossyLinksFitsThePeriodsToTheLatency) {
 }
 
 TEST(LossyPacking, RejectsBadParameters) {
-  const core::PlanarGraph g = triangulation(10, 3);
+  const core::PlanarGraph g = delaunay(10, 3);
   PackingParams p = lossy_params();
   p.max_retransmissions = 0;
   EXPECT_THROW(DequeHost(g, p), std::invalid_argument);
@@ -52,7 +43,7 @@ TEST(LossyPacking, RejectsBadParameters) {
 }
 
 TEST(LossyPacking, LosslessLinksNeedNoRetransmissionAndSeeNoDuplicates) {
-  const core::PlanarGraph g = triangulation(40, 11);
+  const core::PlanarGraph g = delaunay(40, 11);
   PackingParams p = lossy_params();
   p.adaptive_rto = false;  // the fixed timeout, retransmit_after, is above every round trip
   const LossyTotals t = expect_lossy_equals_core(g, p, LossyConfig{}, "lossless");
@@ -69,11 +60,8 @@ TEST(LossyPacking, LosslessLinksNeedNoRetransmissionAndSeeNoDuplicates) {
 }
 
 TEST(LossyPacking, TwentyPercentLossAndDuplicationGiveCoresPackingBitForBit) {
-  const core::PlanarGraph g = triangulation(40, 11);
-  LossyConfig c;
-  c.loss = 0.2;
-  c.dup = 0.1;
-  c.seed = 5;
+  const core::PlanarGraph g = delaunay(40, 11);
+  const LossyConfig c = lossy_config(0.2, 0.1, 5);
   const LossyTotals t = expect_lossy_equals_core(g, lossy_params(), c, "loss 0.2 dup 0.1");
   EXPECT_GT(t.host.lost, 0u);
   EXPECT_GT(t.counters.retransmissions, 0u);
@@ -84,10 +72,7 @@ TEST(LossyPacking, TwentyPercentLossAndDuplicationGiveCoresPackingBitForBit) {
 TEST(LossyPacking, ThreeConnectedGraphsWithRelayedFaceTrafficSurviveLoss) {
   const core::PlanarGraph g = three_connected(30, 4);
   ASSERT_TRUE(core::PackingComplex::from_graph(g).has_face_vertices());
-  LossyConfig c;
-  c.loss = 0.2;
-  c.dup = 0.05;
-  c.seed = 9;
+  const LossyConfig c = lossy_config(0.2, 0.05, 9);
   const LossyTotals t = expect_lossy_equals_core(g, lossy_params(1), c, "3-connected loss 0.2");
   EXPECT_GT(t.counters.relayed, 0u);
   EXPECT_GT(t.counters.duplicates, 0u);
@@ -95,11 +80,8 @@ TEST(LossyPacking, ThreeConnectedGraphsWithRelayedFaceTrafficSurviveLoss) {
 
 TEST(LossyPacking, HeavyLossStillTerminatesWithTheSameResult) {
   // 40% loss is far beyond the target; the backoff and the bounded retransmissions still suffice.
-  const core::PlanarGraph g = triangulation(20, 2);
-  LossyConfig c;
-  c.loss = 0.4;
-  c.dup = 0.2;
-  c.seed = 77;
+  const core::PlanarGraph g = delaunay(20, 2);
+  const LossyConfig c = lossy_config(0.4, 0.2, 77);
   PackingParams p = lossy_params();
   p.max_retransmissions = 60;  // keep false suspicions out at this loss rate
   expect_lossy_equals_core(g, p, c, "loss 0.4");
@@ -128,11 +110,8 @@ LossyHost::Stats expect_crash_detected(const core::PlanarGraph& g, NodeId victim
 }  // namespace
 
 TEST(LossyPacking, ACrashMidRunEndsEverySurvivorWithTheFailureStatus) {
-  const core::PlanarGraph g = triangulation(40, 11);
-  LossyConfig c;
-  c.loss = 0.1;
-  c.dup = 0.05;
-  c.seed = 3;
+  const core::PlanarGraph g = delaunay(40, 11);
+  const LossyConfig c = lossy_config(0.1, 0.05, 3);
   LossyHost clean(g, lossy_params(), c);
   const Time end = clean.run().end;
   ASSERT_GT(end, 0);
@@ -145,9 +124,7 @@ TEST(LossyPacking, ACrashMidRunEndsEverySurvivorWithTheFailureStatus) {
 
 TEST(LossyPacking, CrashRunsAreDeterministicPerSeed) {
   const core::PlanarGraph g = three_connected(25, 8);
-  LossyConfig c;
-  c.loss = 0.15;
-  c.seed = 21;
+  const LossyConfig c = lossy_config(0.15, 0, 21);
   const LossyHost::Stats a = expect_crash_detected(g, g.id(5), 200'000'000, c);
   const LossyHost::Stats b = expect_crash_detected(g, g.id(5), 200'000'000, c);
   EXPECT_EQ(a.end, b.end);
@@ -156,7 +133,7 @@ TEST(LossyPacking, CrashRunsAreDeterministicPerSeed) {
 }
 
 TEST(LossyPacking, ACrashAfterConvergenceChangesNothing) {
-  const core::PlanarGraph g = triangulation(20, 5);
+  const core::PlanarGraph g = delaunay(20, 5);
   LossyHost clean(g, lossy_params(), LossyConfig{});
   const Time end = clean.run().end;
   LossyConfig c;
@@ -169,7 +146,7 @@ TEST(LossyPacking, ACrashAfterConvergenceChangesNothing) {
 TEST(LossyPacking, ForgedFramesAreCountedNotTrusted) {
   // The reliability layer's receive side, message by message, on a node that has not started: a bad
   // payload, a repeat, a frame far beyond the window, an unframed message and a stray ack.
-  const core::PlanarGraph g = triangulation(12, 4);
+  const core::PlanarGraph g = delaunay(12, 4);
   DequeHost host(g, lossy_params());
   PackingNode& n = host.node(0);
   const NodeId from = local_knowledge(g, 0).neighbours[0];
@@ -185,17 +162,19 @@ TEST(LossyPacking, ForgedFramesAreCountedNotTrusted) {
   EXPECT_EQ(n.counters().out_of_window, 1u);  // 64 ahead of the first missing one still fits
   EXPECT_EQ(n.counters().unexpected, 1u);    // …and reaches the (idle) protocol, which rejects it
   n.on_message(from, encode(RadiusMsg{0, 0.5}));
-  EXPECT_EQ(n.counters().unexpected, 2u);  // on lossy links everything travels in frames
+  // On lossy links everything travels in frames: a bare protocol message is not a LinkMessage.
+  EXPECT_EQ(n.counters().decode[static_cast<std::size_t>(DecodeStatus::foreign_type)], 1u);
   n.on_message(from, encode(AckMsg{{1000, ~std::uint64_t{0}}}));
-  EXPECT_EQ(n.counters().unexpected, 2u);  // acknowledging frames never sent is harmless
+  EXPECT_EQ(n.counters().unexpected, 1u);  // acknowledging frames never sent is harmless
   n.on_message(from, encode(FrameMsg{1, {}, encode(FrameMsg{0, {}, {}})}));
-  EXPECT_EQ(n.counters().unexpected, 3u);  // frames never nest
+  EXPECT_EQ(n.counters().bad_payload, 2u);  // frames never nest: a frame is no FramePayload
+  EXPECT_EQ(n.counters().unexpected, 1u);
   EXPECT_EQ(n.counters().received, 7u);
   EXPECT_EQ(n.outcome(), PackingOutcome::running);
 }
 
 TEST(LossyPacking, AFailureNoticeEndsTheRunAndIsFloodedOnce) {
-  const core::PlanarGraph g = triangulation(12, 4);
+  const core::PlanarGraph g = delaunay(12, 4);
   DequeHost host(g, lossy_params());
   PackingNode& n = host.node(0);
   const auto nb = local_knowledge(g, 0).neighbours;
@@ -213,14 +192,11 @@ TEST(LossyPacking, SequenceNumbersWrapSafely) {
   // Links start a few frames before 2^32 (and before 2^31, where a signed comparison would flip):
   // under loss, duplication and reordering, acks, selective bitmaps and duplicate detection must keep
   // working across the wrap (serial-number arithmetic), giving core's packing bit for bit.
-  const core::PlanarGraph g = triangulation(30, 5);
+  const core::PlanarGraph g = delaunay(30, 5);
   for (std::uint32_t start : {0xffffffffu - 20u, 0x7fffffffu - 20u}) {
     PackingParams p = lossy_params();
     p.initial_seq = start;
-    LossyConfig c;
-    c.loss = 0.2;
-    c.dup = 0.1;
-    c.seed = start % 7 + 1;
+    const LossyConfig c = lossy_config(0.2, 0.1, start % 7 + 1);
     const LossyTotals t = expect_lossy_equals_core(g, p, c, "start " + std::to_string(start));
     EXPECT_GT(t.counters.retransmissions, 0u);
     EXPECT_GT(t.counters.duplicates, 0u);

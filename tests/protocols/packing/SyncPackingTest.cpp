@@ -1,18 +1,14 @@
 #include <gtest/gtest.h>
 
-#include "../SyncCompare.hpp"
 #include "../NullRuntime.hpp"
-#include "laguerre/core/graph/GraphKind.hpp"
-#include "laguerre/core/graph/RandomGraphs.hpp"
+#include "../SyncCompare.hpp"
+#include "../TestGraphs.hpp"
 
 using namespace laguerre;
 using namespace laguerre::protocols;
 using namespace laguerre::protocols::testing;
 
 namespace {
-core::PlanarGraph delaunay(std::size_t n, std::uint64_t seed) {
-  return core::prepare_for_packing(core::random_delaunay_triangulation(n, seed));
-}
 bool has_interior(const core::PlanarGraph& g) {
   for (core::Vertex v = 0; v < g.num_vertices(); ++v)
     if (!g.is_boundary(v)) return true;
@@ -108,17 +104,13 @@ TEST(SyncPacking, EqualsCoreUnderRandomDeliveryOrder) {
 
 TEST(SyncPacking, IterationCapAndExactUpdate) {
   const core::PlanarGraph g = delaunay(60, 9);
+  expect_cap_and_exact_update_equal_core(g, 3, 0);
   PackingParams p;
-  p.max_iterations = 3;
-  expect_sync_equals_core(g, p, 0, "cap 3");
   p.max_iterations = 7;
   p.steps_per_check = 4;  // the last round is partial (3 steps), as in core::pack
   expect_sync_equals_core(g, p, 0, "cap 7 N=4");
   p.max_iterations = 100000;
   p.steps_per_check = 2;
-  p.update = core::UpdateRule::exact;
-  expect_sync_equals_core(g, p, 0, "exact update");
-  p.update = core::UpdateRule::uniform_neighbour;
   p.root = core::RootRule::smallest_id;
   expect_sync_equals_core(g, p, 3, "smallest id root");
 }

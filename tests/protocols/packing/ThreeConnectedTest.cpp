@@ -4,10 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include "../SyncCompare.hpp"
 #include "../NullRuntime.hpp"
-#include "laguerre/core/graph/GraphKind.hpp"
-#include "laguerre/core/graph/RandomGraphs.hpp"
+#include "../SyncCompare.hpp"
+#include "../TestGraphs.hpp"
 #include "laguerre/protocols/LocalChecks.hpp"
 
 using namespace laguerre;
@@ -15,9 +14,6 @@ using namespace laguerre::protocols;
 using namespace laguerre::protocols::testing;
 
 namespace {
-core::PlanarGraph three_connected(std::size_t n, std::uint64_t seed) {
-  return core::prepare_for_packing(core::random_three_connected(n, seed));
-}
 
 // check_glpd_local at every vertex of g, fed from g as a node would gather it.
 void expect_local_glpd_equals_core(const core::PlanarGraph& g, const core::CircleEmbedding& phi) {
@@ -116,14 +112,7 @@ TEST(ThreeConnected, SyncEqualsCoreUnderRandomDeliveryOrder) {
 }
 
 TEST(ThreeConnected, IterationCapAndExactUpdate) {
-  const core::PlanarGraph g = three_connected(30, 11);
-  PackingParams p;
-  p.max_iterations = 4;
-  expect_sync_equals_core(g, p, 0, "cap 4");
-  p.max_iterations = 100000;
-  p.update = core::UpdateRule::exact;
-  p.steps_per_check = 2;
-  expect_sync_equals_core(g, p, 5, "exact update");
+  expect_cap_and_exact_update_equal_core(three_connected(30, 11), 4, 5);
 }
 
 TEST(ThreeConnected, RejectsInconsistentFaces) {
@@ -162,7 +151,8 @@ TEST(ThreeConnected, ForgedEnvelopesAreCountedNotTrusted) {
     n.on_message(walk.back(), encode(RelayMsg{face, face, k.id, false, {std::byte{1}, std::byte{99}}}));  // bad payload
     EXPECT_EQ(n.counters().bad_payload, before.bad_payload + 1);
     n.on_message(walk.back(), encode(RelayMsg{face, face, k.id, false, encode(RelayMsg{face, face, k.id, false, payload})}));
-    EXPECT_EQ(n.counters().unexpected, before.unexpected + 4);  // envelopes never nest
+    EXPECT_EQ(n.counters().bad_payload, before.bad_payload + 2);  // envelopes never nest: not a PackingMessage
+    EXPECT_EQ(n.counters().unexpected, before.unexpected + 3);
     return;
   }
   FAIL() << "no node with a polygon face it does not host";

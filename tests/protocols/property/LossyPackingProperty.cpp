@@ -1,4 +1,4 @@
-// The reliability layer over many seeds (PackingNode.hpp, "Loss, duplication and crashes"), on the
+// The reliability layer over many seeds (docs/protocol.md, "Loss, duplication and crashes"), on the
 // lossy host: with loss 0–20%, duplication 0–10% and uniform 1–5 ms latency, every run drains, every
 // node finishes with core::pack's radii, circles and iteration count bit for bit (LPD/GLPD outcome
 // included), duplicates are detected whenever duplication is on. LAGUERRE_PROPERTY_CASES sets the number
@@ -8,11 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-
 #include "../LossyCompare.hpp"
-#include "laguerre/core/graph/GraphKind.hpp"
-#include "laguerre/core/graph/RandomGraphs.hpp"
+#include "../TestGraphs.hpp"
 
 using namespace laguerre;
 using namespace laguerre::protocols;
@@ -20,18 +17,9 @@ using namespace laguerre::protocols::testing;
 
 namespace {
 
-std::uint64_t cases(std::uint64_t fallback) {
-  const char* s = std::getenv("LAGUERRE_PROPERTY_CASES");
-  return s ? std::max<std::uint64_t>(1, std::strtoull(s, nullptr, 10)) : fallback;
-}
-
 // Loss in {0, 5, 10, 15, 20}%, duplication in {0, 2.5, 5, 7.5, 10}%, mixed by seed.
 LossyConfig config_for(std::uint64_t seed) {
-  LossyConfig c;
-  c.loss = 0.05 * static_cast<double>(seed % 5);
-  c.dup = 0.025 * static_cast<double>((seed / 5) % 5);
-  c.seed = seed;
-  return c;
+  return lossy_config(0.05 * static_cast<double>(seed % 5), 0.025 * static_cast<double>((seed / 5) % 5), seed);
 }
 
 PackingParams params_for(std::uint64_t seed) {
@@ -67,10 +55,10 @@ void check_seeds(const core::PlanarGraph& g, std::uint64_t seeds, const std::str
 }  // namespace
 
 TEST(LossyPackingProperty, TriangulationsEqualCoreUnderLossAndDuplication) {
-  const std::uint64_t seeds = cases(30);
+  const std::uint64_t seeds = property_cases(30);
   std::size_t runs = 0;
   for (std::size_t n : {20, 45, 80}) {
-    const core::PlanarGraph g = core::prepare_for_packing(core::random_delaunay_triangulation(n, 31 * n + 1));
+    const core::PlanarGraph g = delaunay(n, 31 * n + 1);
     check_seeds(g, seeds, "triangulation n=" + std::to_string(n), runs);
     if (HasFailure()) return;
   }
@@ -78,10 +66,10 @@ TEST(LossyPackingProperty, TriangulationsEqualCoreUnderLossAndDuplication) {
 }
 
 TEST(LossyPackingProperty, ThreeConnectedGraphsEqualCoreUnderLossAndDuplication) {
-  const std::uint64_t seeds = cases(12);
+  const std::uint64_t seeds = property_cases(12);
   std::size_t runs = 0;
   for (std::size_t n : {20, 40}) {
-    const core::PlanarGraph g = core::prepare_for_packing(core::random_three_connected(n, 53 * n + 2));
+    const core::PlanarGraph g = three_connected(n, 53 * n + 2);
     ASSERT_TRUE(core::PackingComplex::from_graph(g).has_face_vertices());
     check_seeds(g, seeds, "3-connected n=" + std::to_string(n), runs);
     if (HasFailure()) return;

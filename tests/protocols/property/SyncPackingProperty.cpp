@@ -4,29 +4,19 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-
 #include "../SyncCompare.hpp"
-#include "laguerre/core/graph/GraphKind.hpp"
-#include "laguerre/core/graph/RandomGraphs.hpp"
+#include "../TestGraphs.hpp"
 
 using namespace laguerre;
 using namespace laguerre::protocols;
 using namespace laguerre::protocols::testing;
 
-namespace {
-std::uint64_t cases(std::uint64_t fallback) {
-  const char* s = std::getenv("LAGUERRE_PROPERTY_CASES");
-  return s ? std::max<std::uint64_t>(1, std::strtoull(s, nullptr, 10)) : fallback;
-}
-}  // namespace
-
 TEST(SyncPackingProperty, EqualsCoreOnRandomTriangulations) {
-  const std::uint64_t seeds = cases(24);
+  const std::uint64_t seeds = property_cases(24);
   std::size_t graphs = 0, total_iterations = 0;
   for (std::size_t n : {4, 6, 10, 25, 50, 100, 200})
     for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
-      const core::PlanarGraph g = core::prepare_for_packing(core::random_delaunay_triangulation(n, 1000 * n + seed));
+      const core::PlanarGraph g = delaunay(n, 1000 * n + seed);
       if (core::choose_root(core::PackingComplex::from_graph(g), core::RootRule::deepest) == core::none) continue;
       PackingParams p;
       p.steps_per_check = 1 + static_cast<int>(seed % 4);  // N = 1 … 4
@@ -47,11 +37,11 @@ TEST(SyncPackingProperty, EqualsCoreOnRandomTriangulations) {
 // relayed along faces; compares every vertex of K (face vertices included), the GLPD outcome of every
 // vertex of G and the iteration count. Half the cases deliver in a random order.
 TEST(SyncPackingProperty, EqualsCoreOnRandomThreeConnectedGraphs) {
-  const std::uint64_t seeds = cases(24);
+  const std::uint64_t seeds = property_cases(24);
   std::size_t graphs = 0, with_faces = 0, face_vertices = 0, total_iterations = 0;
   for (std::size_t n : {5, 7, 10, 16, 25, 40, 70, 120})
     for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
-      const core::PlanarGraph g = core::prepare_for_packing(core::random_three_connected(n, 7000 * n + seed));
+      const core::PlanarGraph g = three_connected(n, 7000 * n + seed);
       const core::PackingComplex k = core::PackingComplex::from_graph(g);
       if (core::choose_root(k, core::RootRule::deepest) == core::none) continue;
       PackingParams p;

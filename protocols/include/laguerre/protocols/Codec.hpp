@@ -1,12 +1,11 @@
 #pragma once
 /// @file
-/// The messages of the packing protocol and of packet forwarding, and their byte encoding, identical in
-/// every host. Types 9–12, then 13–15, then 16 were added without changing the encoding of the
-/// earlier types (same wire_version): a receiver that predates a type rejects it as unknown_type.
+/// The messages of the packing protocol, of its reliability layer and of packet forwarding, their
+/// message sets, and their byte encoding, identical in every host.
 ///
 /// Wire format (all integers little-endian, every field fixed-size, no padding):
 ///
-///     byte 0      version (wire_version = 2; version 1 carried X = e^{-2h} instead of h)
+///     byte 0      version (wire_version)
 ///     byte 1      MessageType
 ///     bytes 2…    the type's fields, in declaration order:
 ///                   u8 / u32 / u64  unsigned integers, 1 / 4 / 8 bytes, little-endian
@@ -17,28 +16,28 @@
 /// (FaceCirclesMsg, RelayMsg, FrameMsg) have a fixed part of `encoded_size(type)` bytes that ends with a u32
 /// count, followed by exactly that many items; the count is range-checked before it is used, so a
 /// length never depends on unchecked data. `decode` checks, in this order: at least two bytes (else
-/// `truncated`), the version, the type, the exact length (`truncated` if short, `trailing_bytes` if
-/// long; for a variable-size message first the fixed part, then `out_of_range` if the count exceeds its
-/// maximum, then the total), then the ranges each message documents (`out_of_range`). Any byte string
-/// is safe to decode; only `DecodeStatus::ok` yields a message.
+/// `truncated`), the version, the type (`unknown_type` for a byte that is no MessageType,
+/// `foreign_type` for one outside the message set decoded into), the exact length (`truncated` if
+/// short, `trailing_bytes` if long; for a variable-size message first the fixed part, then
+/// `out_of_range` if the count is outside its range, then the total), then the ranges each message
+/// documents (`out_of_range`). Any byte string is safe to decode; only `DecodeStatus::ok` yields a
+/// message. Every valid message has one encoding: a decoded message re-encodes to its bytes.
 ///
-/// 3-connected graphs (PackingNode.hpp, "Face vertices") add three types: ShapeMsg (whether the
-/// graph has a non-triangle inner face, convergecast and broadcast once), FaceCirclesMsg (a face
-/// vertex tells the vertices of its face all their circles) and RelayMsg (an envelope carrying a
-/// message between a face vertex's host and a vertex of that face along the face's boundary).
-///
-/// Lossy links (PackingNode.hpp, "Loss, duplication and crashes") add three more: FrameMsg (a
-/// sequence-numbered envelope of the per-link reliability layer, carrying one message of another type
-/// and a piggybacked acknowledgement), AckMsg (an acknowledgement alone) and FailureMsg (a flooded
-/// "neighbour failed" notice, carried in frames).
-///
-/// The baseline forwarding schemes (Forwarding.hpp) add RouteMsg: a packet of greedy Euclidean,
-/// compass or greedy-face-greedy routing, whose fixed-size header carries GFG's perimeter state.
+/// Message sets: each receiver decodes only the messages it handles (docs/protocol.md describes the
+/// protocols):
+///  - PackingMessage (types 1–10): between protocol vertices of the packing protocol;
+///  - PackingHop: what a packing node sends a neighbour without the reliability layer, a
+///    PackingMessage or a RelayMsg (type 11, an envelope between a face vertex and a face member);
+///  - LinkMessage (types 13, 14): the reliability layer's frames and acknowledgements on one link;
+///  - FramePayload: what a frame carries, a PackingHop or a FailureMsg (type 15);
+///  - ForwardingMessage (types 12, 16): data packets of the forwarding schemes (Forwarding.hpp);
+///  - Message: any of the 16 types.
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -187,7 +186,7 @@ bool same_bits(const FaceCirclesMsg& a, const FaceCirclesMsg& b);
 inline constexpr std::uint32_t max_relay_payload = 2 + 8 + 24 * max_face_circles;
 
 /// An envelope for a message between a face vertex (emulated by its host) and a vertex of its face,
-/// walked along the face's boundary. `face` names the face vertex (see PackingNode.hpp), `source` and
+/// walked along the face's boundary. `face` names the face vertex (face_vertex_id), `source` and
 /// `target` are the ids of the sending and receiving protocol vertices (one of them is `face`), and
 /// `backward` says which way round the face it travels: 0 = in the face's counter-clockwise walk
 /// direction, 1 = against it. The payload is not decoded by relays. Fields: u64 face, u64 source,
@@ -228,7 +227,7 @@ struct AckInfo {
 /// Largest payload of a FrameMsg: any other message, a maximal RelayMsg included.
 inline constexpr std::uint32_t max_frame_payload = 31 + max_relay_payload;
 
-/// One message of the per-link reliability layer (PackingNode.hpp): sequence number `seq` on the
+/// One message of the per-link reliability layer (docs/protocol.md): sequence number `seq` on the
 /// directed link sender → receiver, the sender's acknowledgement of the reverse link, and the carried
 /// message, encoded (empty for a liveness probe). Fields: u32 seq, u32 ack.next, u64 ack.bits,
 /// u32 count ∈ [0, max_frame_payload], count payload bytes. The payload is decoded by the receiver
@@ -294,9 +293,31 @@ struct RouteMsg {
   friend bool operator==(const RouteMsg&, const RouteMsg&) = default;
 };
 
-/// Any message of the packing protocol and of packet forwarding.
+/// Messages between protocol vertices of the packing protocol (types 1–10).
+using PackingMessage = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg,
+                                    DecisionMsg, ShapeMsg, FaceCirclesMsg>;
+/// What a packing node sends a neighbour without the reliability layer (types 1–11).
+using PackingHop = std::variant<PackingMessage, RelayMsg>;
+/// The reliability layer's messages on one link (types 13, 14).
+using LinkMessage = std::variant<FrameMsg, AckMsg>;
+/// What a FrameMsg carries (types 1–11 and 15).
+using FramePayload = std::variant<PackingHop, FailureMsg>;
+/// Data packets of the forwarding schemes (types 12, 16).
+using ForwardingMessage = std::variant<DataMsg, RouteMsg>;
+/// Any message; the alternatives are in type-code order (alternative k has type k + 1).
 using Message = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg, DecisionMsg,
                              ShapeMsg, FaceCirclesMsg, RelayMsg, DataMsg, FrameMsg, AckMsg, FailureMsg, RouteMsg>;
+
+namespace detail {
+template <class T, class Variant>
+struct IsAlternative;
+template <class T, class... Ts>
+struct IsAlternative<T, std::variant<Ts...>> : std::disjunction<std::is_same<T, Ts>...> {};
+}  // namespace detail
+
+/// Whether T is one of the 16 message structs.
+template <class T>
+inline constexpr bool is_message_v = detail::IsAlternative<T, Message>::value;
 
 /// The type byte of a message.
 MessageType type_of(const Message& m);
@@ -316,20 +337,44 @@ enum class DecodeStatus : std::uint8_t {
   unknown_type,    ///< byte 1 is not a MessageType
   trailing_bytes,  ///< more bytes than the type needs
   out_of_range,    ///< a field outside its documented range
+  foreign_type,    ///< byte 1 is a MessageType outside the message set decoded into
 };
 
 /// Number of DecodeStatus values (for per-status counters).
-inline constexpr std::size_t decode_status_count = 6;
+inline constexpr std::size_t decode_status_count = 7;
 
 /// Name of a decode status ("ok", "truncated", …).
 std::string_view to_string(DecodeStatus s);
 
-/// Encodes `m`, replacing the contents of `out`.
-void encode(const Message& m, std::vector<std::byte>& out);
-/// Encodes `m` into a new buffer.
-std::vector<std::byte> encode(const Message& m);
+/// Encodes message `m` (one of the 16 structs), replacing the contents of `out`.
+template <class M>
+  requires is_message_v<M>
+void encode(const M& m, std::vector<std::byte>& out);
+/// Encodes the message a message set holds, replacing the contents of `out`.
+template <class... Ts>
+void encode(const std::variant<Ts...>& m, std::vector<std::byte>& out) {
+  std::visit([&](const auto& x) { encode(x, out); }, m);
+}
+/// Encodes `m` (a message or a message set) into a new buffer.
+template <class M>
+std::vector<std::byte> encode(const M& m) {
+  std::vector<std::byte> out;
+  encode(m, out);
+  return out;
+}
 
-/// Decodes `bytes`; on `DecodeStatus::ok` stores the message in `out`, otherwise leaves it unchanged.
+/// Decodes `bytes` as a message of the set; on `DecodeStatus::ok` stores it in `out`, otherwise leaves
+/// `out` unchanged.
 DecodeStatus decode(std::span<const std::byte> bytes, Message& out);
+/// (As above, for a PackingMessage.)
+DecodeStatus decode(std::span<const std::byte> bytes, PackingMessage& out);
+/// (As above, for a PackingHop.)
+DecodeStatus decode(std::span<const std::byte> bytes, PackingHop& out);
+/// (As above, for a LinkMessage.)
+DecodeStatus decode(std::span<const std::byte> bytes, LinkMessage& out);
+/// (As above, for a FramePayload.)
+DecodeStatus decode(std::span<const std::byte> bytes, FramePayload& out);
+/// (As above, for a ForwardingMessage.)
+DecodeStatus decode(std::span<const std::byte> bytes, ForwardingMessage& out);
 
 }  // namespace laguerre::protocols

@@ -47,7 +47,7 @@ struct Position {
 /// `neighbours` lists the ids of the neighbours in counter-clockwise order around the node. The order
 /// is cyclic, but its starting point matters for bit-exact reproduction of the centralized iteration
 /// (floating-point sums run around the node starting from `neighbours[0]`): build it with
-/// `local_knowledge` (PackingProtocol.hpp) to start where core::PlanarGraph::neighbours(v) starts.
+/// `local_knowledge` (PackingNode.hpp) to start where core::PlanarGraph::neighbours(v) starts.
 /// For a boundary node, `outer_gap` = i says that the outer face lies between `neighbours[i]` and
 /// `neighbours[(i + 1) % degree]` (going counter-clockwise); interior nodes have `outer_gap` = none.
 struct LocalKnowledge {

@@ -17,10 +17,10 @@
 ///     10^5                    7.2 M/s          7.1 M/s     7.7 M/s     6.9 M/s   20.8 M/s  22.1 M/s
 ///     10^6                    3.0 M/s          2.9 M/s     3.3 M/s     3.2 M/s   10.5 M/s  12.7 M/s
 ///
-/// (The previous one-rung ladder, ~16 events per bucket over the whole span of the pending times,
-/// measured 11.7, 6.7 and 2.6 M/s in an earlier, busier run in which this ladder made about 23, 13
-/// and 9 M/s: its front buckets held over a hundred events at these sizes, and at 10^6 its ~60 000
-/// bucket tails missed the caches on every push.)
+/// (A one-rung ladder, ~16 events per bucket over the whole span of the pending times, measured
+/// 11.7, 6.7 and 2.6 M/s in a run in which this ladder made about 23, 13 and 9 M/s: its front buckets
+/// held over a hundred events at these sizes, and at 10^6 its ~60 000 bucket tails missed the caches
+/// on every push.)
 ///
 /// The kernel therefore uses `LadderEventQueue`, a two-rung ladder queue (after Tang, Goh & Thng,
 /// ACM TOMACS 2005, simplified): expected O(1) per event on the smooth time distributions of network
