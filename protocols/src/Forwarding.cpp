@@ -10,7 +10,6 @@ namespace laguerre::protocols {
 namespace {
 
 using core::Point2;
-using core::Sign;
 
 bool finite_circle(const core::Circle& c) {
   return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.r) && c.r >= 0;
@@ -22,30 +21,6 @@ std::vector<Point2> centres(const std::vector<core::Circle>& circles) {
   out.reserve(circles.size());
   for (const core::Circle& c : circles) out.push_back(core::centre(c));
   return out;
-}
-
-int sgn(Sign s) { return static_cast<int>(s); }
-
-/// Sign of (a − p)·(b − p), exactly. compare_deviation(p, b, a, p) compares the angle between a − p
-/// and b − p with that of the zero vector p − p, which it defines as π/2: it is negative exactly when
-/// the angle is below π/2, i.e. when the dot product is positive (and zero when a or b equals p).
-Sign dot_sign(Point2 p, Point2 a, Point2 b) {
-  return static_cast<Sign>(-sgn(core::compare_deviation(p, b, a, p)));
-}
-
-/// core's in_open_sector: whether the direction t − p lies strictly inside the counter-clockwise
-/// sector at p from the ray p→a to the ray p→b (`same_ray`: a node of degree one, the full turn minus
-/// the ray p→a).
-bool in_open_sector(Point2 p, Point2 a, Point2 b, Point2 t, bool same_ray) {
-  const Sign a_t = core::orientation(p, a, t);
-  if (same_ray) return a_t != Sign::zero || dot_sign(p, a, t) == Sign::negative;
-  const Sign t_b = core::orientation(p, t, b);
-  switch (core::orientation(p, a, b)) {
-    case Sign::positive: return a_t == Sign::positive && t_b == Sign::positive;
-    case Sign::negative: return a_t == Sign::positive || t_b == Sign::positive;
-    case Sign::zero: break;
-  }
-  return dot_sign(p, a, b) == Sign::negative && a_t == Sign::positive;
 }
 
 }  // namespace
@@ -90,51 +65,13 @@ ForwardingNode::ForwardingNode(Runtime& runtime, PacketSink& sink, NodeId id, st
     if (!finite_point(p)) throw std::invalid_argument(who + " knows a neighbour position that is not finite.");
 }
 
-std::size_t ForwardingNode::next_hop(double tx, double ty) const {
-  // core::greedy_next: running argmin of the exact power to t over the neighbours, ties to the
-  // smaller id; then the winner must be strictly better than the holder.
-  const Point2 t{tx, ty};
-  const std::size_t deg = neighbours_.size();
-  std::size_t best = deg;
-  for (std::size_t i = 0; i < deg; ++i) {
-    if (best != deg) {
-      const Sign s = core::compare_power(t, circles_[i], circles_[best]);
-      if (s == Sign::positive || (s == Sign::zero && neighbours_[i] > neighbours_[best])) continue;
-    }
-    best = i;
-  }
-  if (best == deg) return deg;
-  return core::compare_power(t, circles_[best], own_) == Sign::negative ? best : deg;
-}
+core::NeighbourView ForwardingNode::view() const { return {own_, position_, circles_, positions_, neighbours_}; }
 
-std::size_t ForwardingNode::next_hop_euclid(Point2 t) const {
-  const std::size_t deg = neighbours_.size();
-  std::size_t best = deg;
-  for (std::size_t i = 0; i < deg; ++i) {
-    if (best != deg) {
-      const Sign s = core::compare_distance(t, positions_[i], positions_[best]);
-      if (s == Sign::positive || (s == Sign::zero && neighbours_[i] > neighbours_[best])) continue;
-    }
-    best = i;
-  }
-  if (best == deg) return deg;
-  return core::compare_distance(t, positions_[best], position_) == Sign::negative ? best : deg;
-}
+std::size_t ForwardingNode::next_hop(double tx, double ty) const { return core::greedy_power_hop(view(), {tx, ty}); }
 
-std::size_t ForwardingNode::next_hop_compass(Point2 t) const {
-  // core::compass_next: the least deviation from the direction of t (compare_deviation is negative
-  // when its first point deviates less), ties to the smaller id; never a dead end with a neighbour.
-  const std::size_t deg = neighbours_.size();
-  std::size_t best = deg;
-  for (std::size_t i = 0; i < deg; ++i) {
-    if (best != deg) {
-      const Sign s = core::compare_deviation(position_, t, positions_[i], positions_[best]);
-      if (s == Sign::positive || (s == Sign::zero && neighbours_[i] > neighbours_[best])) continue;
-    }
-    best = i;
-  }
-  return best;
-}
+std::size_t ForwardingNode::next_hop_euclid(Point2 t) const { return core::greedy_euclid_hop(view(), t); }
+
+std::size_t ForwardingNode::next_hop_compass(Point2 t) const { return core::compass_hop(view(), t); }
 
 std::size_t ForwardingNode::index_of(NodeId n) const {
   const auto it = std::find(neighbours_.begin(), neighbours_.end(), n);
@@ -230,7 +167,7 @@ void ForwardingNode::gfg(RouteMsg& m, std::size_t from) {
   const std::size_t deg = neighbours_.size();
   if (m.perimeter) {
     const Point2 p{m.px, m.py};
-    if (core::compare_distance(t, position_, p) == Sign::negative) {
+    if (core::leaves_perimeter(position_, p, t)) {
       m.perimeter = false;  // back to greedy mode: clear the perimeter block (canonical encoding)
       m.px = m.py = 0;
       m.crossed = false;
@@ -252,11 +189,7 @@ void ForwardingNode::gfg(RouteMsg& m, std::size_t from) {
   }
   // A local minimum: enter perimeter mode here; the first face is the one whose corner here contains
   // the direction of T (searched from neighbours[0], as core searches from the first dart).
-  std::size_t d = deg;
-  for (std::size_t i = 0; i < deg && d == deg; ++i) {
-    const std::size_t b = (i + 1) % deg;
-    if (in_open_sector(position_, positions_[i], positions_[b], t, i == b)) d = b;
-  }
+  const std::size_t d = core::first_face_hop(view(), t);
   if (d == deg) return end(m, PacketOutcome::dead_end);
   m.perimeter = true;
   m.px = position_.x;
@@ -269,45 +202,22 @@ void ForwardingNode::gfg(RouteMsg& m, std::size_t from) {
 }
 
 void ForwardingNode::perimeter_step(RouteMsg& m, std::size_t d) {
-  // The face change rule before traversing self → neighbours_[d] (core's route_gfg, rule 3). The
-  // position λ of a proper crossing of the edge [a, b] with the line PT is o_P / (o_P − o_T) with
-  // o_X = orient(a, b, X); since a and b lie strictly on opposite sides of PT, sign(o_P − o_T) =
-  // sign(orient(P, T, b)), so λ > 0 and λ ≤ 1 are sign conditions on orientation predicates, and two
-  // crossings compare with core::compare_crossings_along: all exact, as in core.
+  // The face change rule before traversing self → neighbours_[d] (core's route_gfg, rule 3); the
+  // last face change travels in the message.
   const Point2 p{m.px, m.py}, t{m.tx, m.ty};
-  const std::size_t deg = neighbours_.size();
-  const Point2 pa = position_;
-  for (;;) {
-    const Point2 pb = positions_[d];
-    const int sa = sgn(core::orientation(p, t, pa)), sb = sgn(core::orientation(p, t, pb));
-    if (sa * sb < 0) {
-      bool beyond_last = false;
-      if (m.crossed)
-        beyond_last = core::compare_crossings_along(p, t, pa, pb, {m.ax, m.ay}, {m.bx, m.by}) == Sign::positive;
-      else
-        beyond_last = sgn(core::orientation(pa, pb, p)) * sb > 0;
-      const int ot = sgn(core::orientation(pa, pb, t));
-      if (beyond_last && ot * sb <= 0) {
-        m.crossed = true;
-        m.ax = pa.x;
-        m.ay = pa.y;
-        m.bx = pb.x;
-        m.by = pb.y;
-        if (ot > 0) {
-          // T is left of self → b: continue in the face on the other side of the edge, from here.
-          d = (d + 1) % deg;
-          m.walk_tail = id_;
-          m.walk_head = neighbours_[d];
-          continue;
-        }
-        m.walk_tail = id_;
-        m.walk_head = neighbours_[d];
-      }
-    }
-    break;
+  core::FaceChange last{m.crossed, {m.ax, m.ay}, {m.bx, m.by}};
+  const core::FaceHop hop = core::face_hop(view(), p, t, last, d);
+  if (hop.changed) {
+    m.crossed = true;
+    m.ax = last.a.x;
+    m.ay = last.a.y;
+    m.bx = last.b.x;
+    m.by = last.b.y;
+    m.walk_tail = id_;
+    m.walk_head = neighbours_[hop.next];
   }
   if (m.hops >= m.ttl) return end(m, PacketOutcome::ttl_exceeded);
-  forward(m, d);
+  forward(m, hop.next);
 }
 
 }  // namespace laguerre::protocols

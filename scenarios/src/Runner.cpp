@@ -9,26 +9,15 @@
 #include <thread>
 
 #include "laguerre/core/packing/Packer.hpp"
+#include "laguerre/core/random/Random.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/scenarios/ProtocolRun.hpp"
 
 namespace laguerre::scenarios {
 
-std::uint64_t splitmix64(std::uint64_t x) {
-  std::uint64_t z = x + 0x9E3779B97F4A7C15ULL;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
+std::uint64_t splitmix64(std::uint64_t x) { return core::splitmix64(x); }
 
-std::uint64_t fnv1a64(std::string_view text) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (char c : text) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 0x100000001b3ULL;
-  }
-  return h;
-}
+std::uint64_t fnv1a64(std::string_view text) { return core::fnv1a64(text); }
 
 std::uint64_t derive_run_seed(std::uint64_t scenario_seed, std::size_t point, std::size_t repetition) {
   return splitmix64(splitmix64(splitmix64(scenario_seed) ^ static_cast<std::uint64_t>(point)) ^

@@ -1,6 +1,6 @@
 #include "laguerre/core/graph/RandomGraphs.hpp"
 
-#include "laguerre/core/random/SeededRandom.hpp"
+#include "laguerre/core/random/Random.hpp"
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -21,18 +21,15 @@ namespace laguerre::core {
 
 namespace {
 
-using Random = SeededRandom;
-
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<Vertex, Kernel>;
-using Tds = CGAL::Triangulation_data_structure_2<VertexBase>;
+using Tds = CGAL::Triangulation_data_structure_2<CGAL::Triangulation_vertex_base_with_info_2<Vertex, Kernel>>;
 using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
 
 /// n distinct uniform points in the open unit disc and their Delaunay edges (as index pairs).
 /// A point equal to an earlier one is redrawn; the whole set is redrawn in the probability-zero event
 /// that all points are collinear. The Delaunay edges of points in general position do not depend on
 /// the insertion order, so CGAL's spatial sorting of the range does not affect the result.
-void draw_delaunay(std::size_t n, Random& random, std::vector<Point2>& points,
+void draw_delaunay(std::size_t n, SeededRandom& random, std::vector<Point2>& points,
                    std::vector<std::pair<Vertex, Vertex>>& edges) {
   const auto draw_point = [&random]() {
     for (;;) {
@@ -175,7 +172,7 @@ GraphInput random_delaunay_triangulation(std::size_t n, std::uint64_t seed) {
   if (n < 3)
     throw std::invalid_argument("A random Delaunay triangulation needs at least 3 vertices, not " +
                                 std::to_string(n) + ".");
-  Random random(seed);
+  SeededRandom random(seed);
   std::vector<Point2> points;
   std::vector<std::pair<Vertex, Vertex>> edges;
   draw_delaunay(n, random, points, edges);
@@ -194,7 +191,7 @@ GraphInput random_three_connected(std::size_t n, std::uint64_t seed, double dele
   if (!(deletions_per_vertex >= 0) || !std::isfinite(deletions_per_vertex))
     throw std::invalid_argument("The number of deletions per vertex must be a finite non-negative number.");
   const std::string name = generator_name("random_three_connected", n, seed);
-  Random random(seed);
+  SeededRandom random(seed);
   std::vector<Point2> points;
   std::vector<std::pair<Vertex, Vertex>> edges;
   GraphInput start;

@@ -2,6 +2,7 @@
 
 #include "detail/BucketGrid.hpp"
 #include "detail/LocalDelaunay.hpp"
+#include "laguerre/core/random/Random.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,18 +16,6 @@ namespace laguerre::core {
 namespace {
 
 using Index = std::uint32_t;
-
-/// SplitMix64: the picking's random stream (deterministic across standard libraries).
-struct Stream {
-  std::uint64_t state;
-  double uniform() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
 
 /// A triangle (v, a, b) of the star of v, with its M_v-circumball.
 struct StarTriangle {
@@ -580,8 +569,8 @@ private:
     // Pick a point in the picking region: the M_v-ball of radius δR around the circumcentre.
     const Matrix2& f = roots_[r.v];
     const double det = f.m00 * f.m11 - f.m01 * f.m10;
-    const double rho = options_.picking_ratio * t->radius * std::sqrt(rng_.uniform());
-    const double angle = 2 * M_PI * rng_.uniform();
+    const double rho = options_.picking_ratio * t->radius * std::sqrt(rng_.uniform01());
+    const double angle = 2 * M_PI * rng_.uniform01();
     const double ux = rho * std::cos(angle), uy = rho * std::sin(angle);
     const Point2 p{t->cx + (f.m11 * ux - f.m01 * uy) / det, t->cy + (-f.m10 * ux + f.m00 * uy) / det};
     const Point2 g{(points_[r.v].x + points_[r.a].x + points_[r.b].x) / 3,
@@ -698,7 +687,7 @@ private:
   const Domain& domain_;
   const MetricField& field_;
   StarMeshOptions options_;
-  Stream rng_;
+  SplitMix64 rng_;  // the picking's random stream (deterministic across standard libraries)
   std::array<double, 4> box_;
   detail::BucketGrid<Index> sites_grid_, zones_grid_, subs_grid_;
   std::vector<Point2> points_;

@@ -7,176 +7,15 @@
 #include <stdexcept>
 #include <string>
 
-#include "../detail/FastFilter.hpp"
-#include "../detail/Filtered.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
+#include "laguerre/core/routing/NextHop.hpp"
 #include "laguerre/core/routing/Router.hpp"
+
+#include "NextHopRules.hpp"  // the rules themselves, so that the router loops inline them
 
 namespace laguerre::core {
 
 namespace {
-
-
-// ---------------------------------------------------------------------------------------------------
-// Fast exact decisions: the double filters of detail/FastFilter.hpp, then the exact predicates.
-// ---------------------------------------------------------------------------------------------------
-
-using detail::Approx;
-using detail::approx_alignment;
-using detail::approx_distance;
-using detail::approx_power;
-using detail::certified_sign;
-using detail::in_range;
-
-/// Sign of (a − p)·(b − p). Exact, filtered like orientation().
-Sign dot_sign(Point2 p, Point2 a, Point2 b) {
-  const double ax = a.x - p.x, ay = a.y - p.y, bx = b.x - p.x, by = b.y - p.y;
-  if (in_range(ax) && in_range(ay) && in_range(bx) && in_range(by)) {
-    if (const auto s = detail::certified_difference(ax * bx, -(ay * by))) return *s;
-  }
-  detail::require_finite("dot_sign", {p.x, p.y, a.x, a.y, b.x, b.y});
-  return detail::filtered([&]<class NT>() {
-    const NT ex = (NT(a.x) - NT(p.x)) * (NT(b.x) - NT(p.x)) + (NT(a.y) - NT(p.y)) * (NT(b.y) - NT(p.y));
-    return detail::sign_of<NT>(ex);
-  });
-}
-
-// ---------------------------------------------------------------------------------------------------
-// Positions along the perimeter segment.
-//
-// In perimeter mode the packet remembers the segment [P, T] from the entry node to the target and the
-// position λ ∈ [0, 1] (P + λ(T − P)) of the last face change. Crossing positions are kept *symbolically*
-// (which edge made them) and compared exactly, never rounded: two crossings a few ulps apart, or a
-// crossing exactly at the entry, are ordered correctly.
-// ---------------------------------------------------------------------------------------------------
-
-/// A position on the line PT: the entry (λ = 0), the target (λ = 1), or the crossing of the line with
-/// the line of the edge [a, b], which must not be parallel to PT.
-struct Along {
-  enum class Kind { entry, target, edge };
-  Kind kind = Kind::entry;
-  Point2 a{}, b{};
-};
-
-/// λ of a position as an exact fraction num / den (den ≠ 0, any sign). For an edge, orient(a, b, ·) is
-/// affine along the line, o(λ) = o_P + λ(o_T − o_P), and vanishes at λ = o_P / (o_P − o_T).
-template <class NT>
-std::pair<NT, NT> along_fraction(Point2 p, Point2 t, const Along& x) {
-  switch (x.kind) {
-    case Along::Kind::entry:
-      return {NT(0), NT(1)};
-    case Along::Kind::target:
-      return {NT(1), NT(1)};
-    case Along::Kind::edge:
-      break;
-  }
-  auto orient = [](Point2 a, Point2 b, Point2 c) -> NT {
-    return (NT(b.x) - NT(a.x)) * (NT(c.y) - NT(a.y)) - (NT(b.y) - NT(a.y)) * (NT(c.x) - NT(a.x));
-  };
-  const NT op = orient(x.a, x.b, p), ot = orient(x.a, x.b, t);
-  return {op, op - ot};
-}
-
-/// Sign of λ(x) − λ(y). Exact (interval filter, then rationals).
-Sign compare_along(Point2 p, Point2 t, const Along& x, const Along& y) {
-  return detail::filtered([&]<class NT>() {
-    const auto [nx, dx] = along_fraction<NT>(p, t, x);
-    const auto [ny, dy] = along_fraction<NT>(p, t, y);
-    const int s = static_cast<int>(detail::sign_of<NT>(nx * dy - ny * dx)) *
-                  static_cast<int>(detail::sign_of<NT>(dx)) * static_cast<int>(detail::sign_of<NT>(dy));
-    return static_cast<Sign>(s);
-  });
-}
-
-/// Whether the direction T − P lies strictly inside the counter-clockwise angular sector at P from
-/// the ray P→A to the ray P→B (A, B the heads of two darts consecutive counter-clockwise around the
-/// vertex at P). With `same_ray` (a vertex of degree one: A and B are the same neighbour) the sector is
-/// the full turn minus the ray P→A.
-bool in_open_sector(Point2 p, Point2 a, Point2 b, Point2 t, bool same_ray) {
-  const Sign a_t = orientation(p, a, t);  // positive: t strictly left of P→A
-  if (same_ray) return a_t != Sign::zero || dot_sign(p, a, t) == Sign::negative;
-  const Sign t_b = orientation(p, t, b);
-  switch (orientation(p, a, b)) {
-    case Sign::positive:  // convex sector (< π): strictly left of P→A and strictly right of P→B
-      return a_t == Sign::positive && t_b == Sign::positive;
-    case Sign::negative:  // reflex sector (> π): the complement of the closed convex sector B→A
-      return a_t == Sign::positive || t_b == Sign::positive;
-    case Sign::zero:
-      break;
-  }
-  // P→A and P→B collinear: a straight angle if they point opposite ways (the open half-plane left of
-  // P→A); pointing the same way (overlapping edges) or a zero-length edge has no sector in a plane
-  // drawing.
-  return dot_sign(p, a, b) == Sign::negative && a_t == Sign::positive;
-}
-
-// ---------------------------------------------------------------------------------------------------
-// Memoryless next-hop rules.
-// ---------------------------------------------------------------------------------------------------
-
-enum class Metric { power, euclid };
-
-template <Metric M>
-Approx approx_metric(Point2 t, const Circle& c) {
-  if constexpr (M == Metric::power) return approx_power(t, c);
-  else return approx_distance(t, centre(c));
-}
-
-template <Metric M>
-Sign exact_metric(Point2 t, const Circle& a, const Circle& b) {
-  // Equal radii cancel exactly in pow(t, a) − pow(t, b): the distance comparison is the same exact sign,
-  // and its interval filter settles exact ties of well-placed centres (grids, symmetric layouts) without
-  // falling back to rational arithmetic, which ties with a radius like 0.3 would otherwise force.
-  if constexpr (M == Metric::power) return a.r == b.r ? compare_distance(t, centre(a), centre(b)) : compare_power(t, a, b);
-  else return compare_distance(t, centre(a), centre(b));
-}
-
-/// The greedy rule: argmin over neighbours (smallest index among ties), if strictly better than `at`.
-/// (A two-pass variant, approximate argmin then certification, measured slower than this loop.)
-template <Metric M>
-Vertex greedy_next(const PlanarGraph& g, const CircleEmbedding& phi, Vertex at, Vertex target) {
-  if (at == target) return none;
-  const Point2 t = centre(phi[target]);
-  auto compare = [&](Vertex u, const Approx& au, Vertex w, const Approx& aw) {
-    if (const auto s = certified_sign(au, aw)) return *s;
-    return exact_metric<M>(t, phi[u], phi[w]);
-  };
-  Vertex best = none;
-  Approx best_approx;
-  for (const Vertex u : g.neighbours(at)) {
-    const Approx au = approx_metric<M>(t, phi[u]);
-    if (best != none) {
-      const Sign s = compare(u, au, best, best_approx);
-      if (s == Sign::positive || (s == Sign::zero && u > best)) continue;
-    }
-    best = u;
-    best_approx = au;
-  }
-  if (best == none) return none;
-  return compare(best, best_approx, at, approx_metric<M>(t, phi[at])) == Sign::negative ? best : none;
-}
-
-Vertex compass_next(const PlanarGraph& g, const CircleEmbedding& phi, Vertex at, Vertex target) {
-  if (at == target) return none;
-  const Point2 v = centre(phi[at]), t = centre(phi[target]);
-  Vertex best = none;
-  Approx best_approx;
-  for (const Vertex u : g.neighbours(at)) {
-    const Point2 pu = centre(phi[u]);
-    const Approx au = approx_alignment(v, t, pu);
-    if (best != none) {
-      // Larger alignment = smaller deviation; compare_deviation is negative when its first point
-      // deviates less.
-      Sign s;
-      if (const auto c = certified_sign(best_approx, au)) s = *c;
-      else s = compare_deviation(v, t, pu, centre(phi[best]));
-      if (s == Sign::positive || (s == Sign::zero && u > best)) continue;
-    }
-    best = u;
-    best_approx = au;
-  }
-  return best;
-}
 
 void check_embedding(const PlanarGraph& g, const CircleEmbedding& phi) {
   if (phi.size() != g.num_vertices())
@@ -270,17 +109,26 @@ void Router::check_vertex(Vertex v, const char* role) const {
                                 " vertices.");
 }
 
+Vertex Router::hop(Scheme s, Vertex at, Vertex target) const {
+  const GraphView view = view_of(at);
+  const Point2 t = centre((*phi_)[target]);
+  std::size_t i = view.degree();
+  switch (s) {
+    case Scheme::greedy_power: i = greedy_power_hop(view, t); break;
+    case Scheme::greedy_euclid: i = greedy_euclid_hop(view, t); break;
+    case Scheme::compass: i = compass_hop(view, t); break;
+    case Scheme::gfg: break;
+  }
+  return i == view.degree() ? none : g_->neighbours(at)[i];
+}
+
 Vertex Router::next_hop(Scheme s, Vertex at, Vertex target) const {
   check_vertex(at, "current");
   check_vertex(target, "target");
-  switch (s) {
-    case Scheme::greedy_power: return greedy_next<Metric::power>(*g_, *phi_, at, target);
-    case Scheme::greedy_euclid: return greedy_next<Metric::euclid>(*g_, *phi_, at, target);
-    case Scheme::compass: return compass_next(*g_, *phi_, at, target);
-    case Scheme::gfg: break;
-  }
-  throw std::invalid_argument("Greedy-face-greedy routing has no memoryless next hop: its decisions depend on the "
-                              "perimeter state carried by the packet.");
+  if (s == Scheme::gfg)
+    throw std::invalid_argument("Greedy-face-greedy routing has no memoryless next hop: its decisions depend on the "
+                                "perimeter state carried by the packet.");
+  return at == target ? none : hop(s, at, target);
 }
 
 Route Router::route(Scheme s, Vertex source, Vertex target, std::size_t ttl) {
@@ -322,13 +170,7 @@ void Router::route_memoryless(Scheme s, Vertex target, std::size_t ttl, Route& o
   };
   for (;;) {
     if (v == target) return stop(RouteOutcome::delivered, none);
-    Vertex u = none;
-    switch (s) {
-      case Scheme::greedy_power: u = greedy_next<Metric::power>(*g_, *phi_, v, target); break;
-      case Scheme::greedy_euclid: u = greedy_next<Metric::euclid>(*g_, *phi_, v, target); break;
-      case Scheme::compass: u = compass_next(*g_, *phi_, v, target); break;
-      case Scheme::gfg: break;
-    }
+    const Vertex u = hop(s, v, target);
     if (u == none) return stop(RouteOutcome::dead_end, v);
     if (out.hops() >= ttl) return stop(RouteOutcome::ttl_exceeded, v);
     out.path.push_back(u);
@@ -385,7 +227,7 @@ void Router::route_gfg(Vertex target, std::size_t ttl, Route& out) const {
     // Greedy mode.
     for (;;) {
       if (v == target) return stop(RouteOutcome::delivered, none);
-      const Vertex u = greedy_next<Metric::euclid>(g, *phi_, v, target);
+      const Vertex u = hop(Scheme::greedy_euclid, v, target);
       if (u == none) break;
       if (out.hops() >= ttl) return stop(RouteOutcome::ttl_exceeded, v);
       out.path.push_back(u);
@@ -395,39 +237,23 @@ void Router::route_gfg(Vertex target, std::size_t ttl, Route& out) const {
     // Perimeter mode at the local minimum `entry`.
     const Vertex entry = v;
     const Point2 p = pt(entry);
-    Dart d = none;
-    const std::uint32_t deg = g.degree(entry);
-    for (std::uint32_t i = 0; i < deg && d == none; ++i) {
-      const Dart a = g.first_dart(entry) + i, b = g.next_ccw(a);
-      if (in_open_sector(p, pt(g.head(a)), pt(g.head(b)), t, a == b)) d = b;
-    }
-    if (d == none) return stop(RouteOutcome::dead_end, entry);  // no face corner: not a plane drawing
+    const std::size_t first = first_face_hop(view_of(entry), t);
+    if (first == g.degree(entry)) return stop(RouteOutcome::dead_end, entry);  // no face corner: not a plane drawing
+    Dart d = g.first_dart(entry) + static_cast<Dart>(first);
 
     Dart walk_start = d;  // the walk since the last face change started with this dart
-    Along last{};         // position of the last face change: the entry point, λ = 0
-    const Along at_target{Along::Kind::target, {}, {}};
+    FaceChange last{};    // the last face change: the entry point, λ = 0
     for (;;) {
-      const Vertex a = g.tail(d), b = g.head(d);
-      const Point2 pa = pt(a), pb = pt(b);
-      const Sign sa = orientation(p, t, pa), sb = orientation(p, t, pb);
-      if (static_cast<int>(sa) * static_cast<int>(sb) < 0) {
-        const Along q{Along::Kind::edge, pa, pb};
-        if (compare_along(p, t, q, last) == Sign::positive && compare_along(p, t, q, at_target) != Sign::positive) {
-          last = q;
-          if (orientation(pa, pb, t) == Sign::positive) {
-            // T is left of a→b: continue in the face on the other side of the edge, from a.
-            d = g.next_ccw(d);
-            walk_start = d;
-            continue;
-          }
-          walk_start = d;  // T is right of a→b: the walked face contains the segment beyond q
-        }
-      }
+      const Vertex a = g.tail(d);
+      const FaceHop next = face_hop(view_of(a), p, t, last, d - g.first_dart(a));
+      d = g.first_dart(a) + static_cast<Dart>(next.next);
+      if (next.changed) walk_start = d;
       if (out.hops() >= ttl) return stop(RouteOutcome::ttl_exceeded, a);
+      const Vertex b = g.head(d);
       out.path.push_back(b);
       v = b;
       if (v == target) return stop(RouteOutcome::delivered, none);
-      if (compare_distance(t, pt(v), p) == Sign::negative) break;  // back to greedy mode
+      if (leaves_perimeter(pt(v), p, t)) break;  // back to greedy mode
       d = g.next_ccw(g.twin(d));
       if (d == walk_start) return stop(RouteOutcome::loop, v);
     }

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <random>
 #include <unordered_set>
 
+#include "laguerre/core/random/Random.hpp"
 #include "laguerre/core/routing/Router.hpp"
 
 namespace laguerre::core {
@@ -14,17 +14,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::size_t kMaxFailuresKept = 100;
-
-/// Uniform integer in [0, bound), bound ≥ 1, without bias: rejects the lowest 2^64 mod bound raw
-/// values so that the accepted range is a whole number of copies of [0, bound). Unlike
-/// std::uniform_int_distribution, the mapping is fixed, so a seed gives the same numbers everywhere.
-std::uint64_t bounded(std::mt19937_64& rng, std::uint64_t bound) {
-  const std::uint64_t threshold = (std::uint64_t{0} - bound) % bound;  // 2^64 mod bound
-  for (;;) {
-    const std::uint64_t x = rng();
-    if (x >= threshold) return x % bound;
-  }
-}
 
 /// Hop distances from `source` by breadth-first search.
 void bfs(const PlanarGraph& g, Vertex source, std::vector<std::uint32_t>& dist, std::vector<Vertex>& queue) {
@@ -65,13 +54,13 @@ std::vector<std::pair<Vertex, Vertex>> select_pairs(std::size_t n, const PairSel
   }
   // Floyd's algorithm: for j = N−k .. N−1 draw r uniform in [0, j]; take r, or j if r was taken. Every
   // k-subset is equally likely, k draws, no shuffling of the whole range.
-  std::mt19937_64 rng(selection.seed);
+  SeededRandom rng(selection.seed);
   std::unordered_set<std::uint64_t> chosen;
   chosen.reserve(selection.sample);
   std::vector<std::uint64_t> indices;
   indices.reserve(selection.sample);
   for (std::uint64_t j = total - selection.sample; j < total; ++j) {
-    const std::uint64_t r = bounded(rng, j + 1);
+    const std::uint64_t r = rng.below(j + 1);
     const std::uint64_t pick = chosen.insert(r).second ? r : j;
     if (pick == j) chosen.insert(j);
     indices.push_back(pick);

@@ -1,6 +1,6 @@
 #include "laguerre/scenarios/fields/Deployment.hpp"
 
-#include "laguerre/core/random/SeededRandom.hpp"
+#include "laguerre/core/random/Random.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,8 +17,6 @@ using core::Point2;
 
 namespace {
 
-using FieldRandom = core::SeededRandom;
-
 /// Draw budget shared by the rejection loops.
 std::size_t draw_budget(std::size_t n) { return 1000 * n + 1000000; }
 
@@ -29,7 +27,7 @@ std::size_t draw_budget(std::size_t n) { return 1000 * n + 1000000; }
 }
 
 /// Uniform point of the domain's bounding box, kept iff strictly inside; `budget` counts draws.
-bool draw_uniform(const core::Domain& domain, FieldRandom& random, Point2& out, std::size_t& budget) {
+bool draw_uniform(const core::Domain& domain, core::SeededRandom& random, Point2& out, std::size_t& budget) {
   const auto [xmin, ymin, xmax, ymax] = domain.bounding_box();
   while (budget > 0) {
     --budget;
@@ -64,7 +62,7 @@ void make_distinct(std::vector<Point2>& points, Draw&& draw) {
 
 std::vector<Point2> deploy_uniform(const core::Domain& domain, std::size_t n, std::uint64_t seed) {
   if (n == 0) throw std::invalid_argument("a deployment needs at least one point.");
-  FieldRandom random(seed);
+  core::SeededRandom random(seed);
   std::size_t budget = draw_budget(n);
   std::vector<Point2> points(n);
   for (std::size_t i = 0; i < n; ++i)
@@ -84,7 +82,7 @@ std::vector<Point2> deploy_clustered(const core::Domain& domain, std::size_t n, 
   if (!(options.spread > 0) || !std::isfinite(options.spread))
     throw std::invalid_argument("the cluster spread must be a positive finite number, not " +
                                 std::to_string(options.spread) + ".");
-  FieldRandom random(seed);
+  core::SeededRandom random(seed);
   std::size_t budget = draw_budget(n);
   std::vector<Point2> parents(options.clusters);
   for (std::size_t i = 0; i < parents.size(); ++i)

@@ -50,7 +50,7 @@ struct BinaryTree {
 
 /// A uniformly random binary tree with `nodes` nodes rooted at a leaf (Łukasiewicz word with `nodes`
 /// letters +1 and nodes + 1 letters −1, its unique good rotation, decoded in preorder).
-BinaryTree random_binary_tree(std::size_t nodes, detail::Random& random) {
+BinaryTree random_binary_tree(std::size_t nodes, core::SeededRandom& random) {
   const std::vector<std::uint8_t> word = random.binary_word(2 * nodes + 1, nodes);
   std::vector<int> steps(word.size());
   for (std::size_t i = 0; i < word.size(); ++i) steps[i] = word[i] ? 1 : -1;
@@ -85,7 +85,7 @@ BinaryTree random_binary_tree(std::size_t nodes, detail::Random& random) {
 /// of black grandchildren of each block gives a Łukasiewicz walk of total −1 over the blocks, whose
 /// unique good rotation (rotating both words consistently) is decoded in depth-first order of black
 /// nodes. The trees are counted by binomial(2a, b)·binomial(2b, a − 1)/a (a = black, b = white).
-BinaryTree random_bicoloured_tree(std::size_t black, std::size_t white, detail::Random& random) {
+BinaryTree random_bicoloured_tree(std::size_t black, std::size_t white, core::SeededRandom& random) {
   const std::vector<std::uint8_t> a_bits = random.binary_word(2 * black, white);
   const std::vector<std::uint8_t> w_bits = random.binary_word(2 * white, black - 1);
   std::vector<std::size_t> w_offset(black);
@@ -239,7 +239,7 @@ PlanarGraph uniform_three_connected(std::size_t n, std::uint64_t seed, std::size
     throw std::invalid_argument("A 3-connected planar graph with " + std::to_string(n) + " vertices has between " +
                                 std::to_string(lo_faces) + " and " + std::to_string(hi_faces) + " faces, not " +
                                 std::to_string(faces) + " (0 draws the number of faces).");
-  detail::Random random(seed);
+  core::SeededRandom random(seed);
   const std::size_t a = n - 3;
   std::vector<double> weights;
   double total = 0;
@@ -271,7 +271,7 @@ PlanarGraph uniform_three_connected_map_by_edges(std::size_t edges, std::uint64_
         "A uniform random 3-connected planar map needs 6 or at least 8 edges (and fewer than "
         "2^29), not " +
         std::to_string(edges) + ".");
-  detail::Random random(seed);
+  core::SeededRandom random(seed);
   for (std::size_t attempt = 1; attempt <= max_attempts; ++attempt) {
     const BinaryTree tree = random_binary_tree(edges - 4, random);
     PlanarGraph map = close_and_convert(tree, -1, static_cast<std::size_t>(random.below(6)));

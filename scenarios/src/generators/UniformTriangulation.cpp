@@ -56,7 +56,7 @@ core::PlanarGraph uniform_triangulation(std::size_t n, std::uint64_t seed) {
     throw std::invalid_argument("A uniform random triangulation needs between 3 and 2^30 - 1 vertices, not " +
                                 std::to_string(n) + ".");
   const std::size_t m = n - 2;  // tree nodes
-  detail::Random random(seed);
+  core::SeededRandom random(seed);
   // Uniform word with m - 1 nodes (+3) and 3m - 1 empty trees (-1); its 2 good rotations are the codes
   // of two quaternary trees, i.e. of a stem-rooted tree.
   const std::vector<std::uint8_t> word = random.binary_word(4 * m - 2, m - 1);

@@ -91,6 +91,21 @@ Tally run(const PlanarGraph& g, int trials, std::uint64_t seed, Place place) {
   return t;
 }
 
+/// Circles on a k×k lattice, vertex i + k·j: centre scale·(base(i, j) + amount·(u, u')), radius
+/// scale·exp(amount·u''), with u, u', u'' uniform in [−1, 1) drawn in that order.
+template <class Base>
+CircleEmbedding jittered_lattice(int k, double scale, double amount, std::mt19937_64& rng, const Base& base) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  CircleEmbedding phi(static_cast<std::size_t>(k * k));
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) {
+      const Point2 b = base(i, j);
+      phi[static_cast<std::size_t>(i + k * j)] = {scale * (b.x + amount * u(rng)), scale * (b.y + amount * u(rng)),
+                                                  scale * std::exp(amount * u(rng))};
+    }
+  return phi;
+}
+
 }  // namespace
 
 TEST(DeliveryProperty, LpdEverywhereDeliversOnJitteredHexagonalPackings) {
@@ -99,15 +114,9 @@ TEST(DeliveryProperty, LpdEverywhereDeliversOnJitteredHexagonalPackings) {
   ASSERT_TRUE(g.inner_faces_are_triangles());
   const double s = 1.0 / 12;  // the patch spans about 12 units: keep it inside the unit disc
   const Tally t = run(g, num_trials, 42, [&](std::mt19937_64& rng, int trial) {
-    std::uniform_real_distribution<double> u(-1, 1);
-    const double amount = 0.05 + 1.2 * (trial % 10) / 10.0;
-    CircleEmbedding phi(g.num_vertices());
-    for (int j = 0; j < k; ++j)
-      for (int i = 0; i < k; ++i)
-        phi[static_cast<std::size_t>(i + k * j)] = {s * (2 * i + j - 6 + amount * u(rng)),
-                                                    s * (std::sqrt(3.0) * j - 3.5 + amount * u(rng)),
-                                                    s * std::exp(amount * u(rng))};
-    return phi;
+    return jittered_lattice(k, s, 0.05 + 1.2 * (trial % 10) / 10.0, rng, [](int i, int j) {
+      return Point2{static_cast<double>(2 * i + j - 6), std::sqrt(3.0) * j - 3.5};
+    });
   });
   std::cout << "  all hold " << t.all_hold << ", some fail " << t.some_fail << " (greedy stuck in " << t.stuck << ")\n";
   EXPECT_GT(t.all_hold, num_trials / 10);
@@ -120,14 +129,9 @@ TEST(DeliveryProperty, GlpdEverywhereDeliversOnJitteredOrthogonalGrids) {
   ASSERT_FALSE(g.inner_faces_are_triangles());
   const double s = 1.0 / 8;
   const Tally t = run(g, num_trials, 43, [&](std::mt19937_64& rng, int trial) {
-    std::uniform_real_distribution<double> u(-1, 1);
-    const double amount = 0.02 + 0.6 * (trial % 10) / 10.0;
-    CircleEmbedding phi(g.num_vertices());
-    for (int j = 0; j < k; ++j)
-      for (int i = 0; i < k; ++i)
-        phi[static_cast<std::size_t>(i + k * j)] = {s * (2 * i - 4 + amount * u(rng)), s * (2 * j - 4 + amount * u(rng)),
-                                                    s * std::exp(amount * u(rng))};
-    return phi;
+    return jittered_lattice(k, s, 0.02 + 0.6 * (trial % 10) / 10.0, rng, [](int i, int j) {
+      return Point2{static_cast<double>(2 * i - 4), static_cast<double>(2 * j - 4)};
+    });
   });
   std::cout << "  all hold " << t.all_hold << ", some fail " << t.some_fail << " (greedy stuck in " << t.stuck << ")\n";
   EXPECT_GT(t.all_hold, num_trials / 10);

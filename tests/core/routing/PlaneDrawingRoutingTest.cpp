@@ -214,6 +214,21 @@ bool path_follows_edges(const PlanarGraph& g, const Route& r) {
   return true;
 }
 
+/// The sweep triangulation of n generic random points, thinned with probability p.
+Drawing thinned_sweep(std::size_t n, double p, std::mt19937_64& rng) {
+  Drawing d = sweep_triangulation(random_points(n, PointKind::generic, rng));
+  thin(d, p, rng);
+  return d;
+}
+
+/// Calls f(s, t) for every ordered pair of distinct vertices of an n-vertex graph.
+template <class F>
+void for_each_pair(std::size_t n, F&& f) {
+  for (Vertex s = 0; s < n; ++s)
+    for (Vertex t = 0; t < n; ++t)
+      if (s != t) f(s, t);
+}
+
 struct AllPairsResult {
   std::size_t pairs = 0, delivered = 0, greedy_failures = 0;
 };
@@ -226,19 +241,16 @@ AllPairsResult gfg_all_pairs(const Drawing& d, const std::string& label) {
   Router router(g, phi);
   AllPairsResult res;
   Route r;
-  const auto n = static_cast<Vertex>(g.num_vertices());
-  for (Vertex s = 0; s < n; ++s)
-    for (Vertex t = 0; t < n; ++t) {
-      if (s == t) continue;
-      ++res.pairs;
-      router.route(Scheme::gfg, s, t, 0, r);
-      if (r.outcome == RouteOutcome::delivered && r.path.back() == t && path_follows_edges(g, r)) ++res.delivered;
-      else
-        ADD_FAILURE() << label << ": gfg " << s << " -> " << t << " ended " << to_string(r.outcome) << " at "
-                      << r.stuck << " after " << r.hops() << " hops";
-      router.route(Scheme::greedy_euclid, s, t, 0, r);
-      if (r.outcome != RouteOutcome::delivered) ++res.greedy_failures;
-    }
+  for_each_pair(g.num_vertices(), [&](Vertex s, Vertex t) {
+    ++res.pairs;
+    router.route(Scheme::gfg, s, t, 0, r);
+    if (r.outcome == RouteOutcome::delivered && r.path.back() == t && path_follows_edges(g, r)) ++res.delivered;
+    else
+      ADD_FAILURE() << label << ": gfg " << s << " -> " << t << " ended " << to_string(r.outcome) << " at "
+                    << r.stuck << " after " << r.hops() << " hops";
+    router.route(Scheme::greedy_euclid, s, t, 0, r);
+    if (r.outcome != RouteOutcome::delivered) ++res.greedy_failures;
+  });
   return res;
 }
 
@@ -304,24 +316,21 @@ TEST(GreedyFaceGreedy, TerminatesOnNonPlaneDrawings) {
   std::size_t failures = 0;
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     std::mt19937_64 rng(seed + 500);
-    Drawing d = sweep_triangulation(random_points(30, PointKind::generic, rng));
-    thin(d, 0.4, rng);
+    const Drawing d = thinned_sweep(30, 0.4, rng);
     const PlanarGraph g = to_graph(d);
     CircleEmbedding phi = embedding_of(d);
     std::shuffle(phi.begin(), phi.end(), rng);
     Router router(g, phi);
     Route r;
-    for (Vertex s = 0; s < g.num_vertices(); ++s)
-      for (Vertex t = 0; t < g.num_vertices(); ++t) {
-        if (s == t) continue;
-        router.route(Scheme::gfg, s, t, 0, r);
-        EXPECT_NE(r.outcome, RouteOutcome::ttl_exceeded);
-        EXPECT_TRUE(path_follows_edges(g, r));
-        if (r.outcome != RouteOutcome::delivered) {
-          ++failures;
-          EXPECT_NE(r.stuck, none);
-        }
+    for_each_pair(g.num_vertices(), [&](Vertex s, Vertex t) {
+      router.route(Scheme::gfg, s, t, 0, r);
+      EXPECT_NE(r.outcome, RouteOutcome::ttl_exceeded);
+      EXPECT_TRUE(path_follows_edges(g, r));
+      if (r.outcome != RouteOutcome::delivered) {
+        ++failures;
+        EXPECT_NE(r.stuck, none);
       }
+    });
   }
   EXPECT_GT(failures, 0u);
 }
@@ -332,33 +341,30 @@ TEST(CompassRouting, LoopsAreDetectedOnRandomDrawings) {
   std::size_t loops = 0, delivered = 0;
   for (std::uint64_t seed = 1; seed <= 20 && loops < 20; ++seed) {
     std::mt19937_64 rng(seed * 17);
-    Drawing d = sweep_triangulation(random_points(50, PointKind::generic, rng));
-    thin(d, 0.3, rng);
+    const Drawing d = thinned_sweep(50, 0.3, rng);
     const PlanarGraph g = to_graph(d);
     const CircleEmbedding phi = embedding_of(d);
     Router router(g, phi);
     Route r;
-    for (Vertex s = 0; s < g.num_vertices(); ++s)
-      for (Vertex t = 0; t < g.num_vertices(); ++t) {
-        if (s == t) continue;
-        router.route(Scheme::compass, s, t, 0, r);
-        ASSERT_NE(r.outcome, RouteOutcome::ttl_exceeded);
-        ASSERT_NE(r.outcome, RouteOutcome::dead_end);  // every vertex of a connected graph has a neighbour
-        for (std::size_t i = 0; i + 1 < r.path.size(); ++i)
-          ASSERT_EQ(compass_next_hop(g, phi, r.path[i], t), r.path[i + 1]);
-        if (r.outcome == RouteOutcome::delivered) {
-          ++delivered;
-          continue;
-        }
-        ++loops;
-        ASSERT_EQ(r.stuck, r.path.back());
-        const auto first = std::find(r.path.begin(), r.path.end(), r.stuck);
-        ASSERT_LT(first - r.path.begin(), static_cast<std::ptrdiff_t>(r.path.size()) - 1);  // a genuine revisit
-        // No vertex is repeated before the last one: the loop is reported at its first revisit.
-        std::vector<Vertex> prefix(r.path.begin(), r.path.end() - 1);
-        std::sort(prefix.begin(), prefix.end());
-        ASSERT_EQ(std::adjacent_find(prefix.begin(), prefix.end()), prefix.end());
+    for_each_pair(g.num_vertices(), [&](Vertex s, Vertex t) {
+      router.route(Scheme::compass, s, t, 0, r);
+      ASSERT_NE(r.outcome, RouteOutcome::ttl_exceeded);
+      ASSERT_NE(r.outcome, RouteOutcome::dead_end);  // every vertex of a connected graph has a neighbour
+      for (std::size_t i = 0; i + 1 < r.path.size(); ++i)
+        ASSERT_EQ(compass_next_hop(g, phi, r.path[i], t), r.path[i + 1]);
+      if (r.outcome == RouteOutcome::delivered) {
+        ++delivered;
+        return;
       }
+      ++loops;
+      ASSERT_EQ(r.stuck, r.path.back());
+      const auto first = std::find(r.path.begin(), r.path.end(), r.stuck);
+      ASSERT_LT(first - r.path.begin(), static_cast<std::ptrdiff_t>(r.path.size()) - 1);  // a genuine revisit
+      // No vertex is repeated before the last one: the loop is reported at its first revisit.
+      std::vector<Vertex> prefix(r.path.begin(), r.path.end() - 1);
+      std::sort(prefix.begin(), prefix.end());
+      ASSERT_EQ(std::adjacent_find(prefix.begin(), prefix.end()), prefix.end());
+    });
   }
   EXPECT_GT(loops, 0u);
   EXPECT_GT(delivered, 0u);

@@ -5,11 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 
 #include "../SyncCompare.hpp"
 #include "../NullRuntime.hpp"
+#include "Outcomes.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/core/routing/Routing.hpp"
@@ -32,16 +34,6 @@ struct Recorder final : PacketSink {
     p.push_back(next);
   }
 };
-
-core::RouteOutcome as_core(PacketOutcome o) {
-  switch (o) {
-    case PacketOutcome::delivered: return core::RouteOutcome::delivered;
-    case PacketOutcome::dead_end: return core::RouteOutcome::dead_end;
-    case PacketOutcome::ttl_exceeded: return core::RouteOutcome::ttl_exceeded;
-    case PacketOutcome::loop: return core::RouteOutcome::loop;
-  }
-  return core::RouteOutcome::loop;
-}
 
 bool finite(const core::CircleEmbedding& c) {
   for (const core::Circle& x : c)
@@ -108,6 +100,26 @@ std::size_t expect_forwarding_equals_core(const core::PlanarGraph& g, const Pack
   return failed;
 }
 
+// The three comparisons run on each graph: the converged embedding with the default hop limit (where
+// the packing guarantees delivery), the converged one with the hop limit `tight_ttl`, and the
+// embedding after `steps` Thurston steps only (greedy may get stuck); each with its delivery shuffle.
+struct Cases {
+  std::size_t tight_ttl;
+  int steps;
+  std::array<std::uint64_t, 3> shuffles;
+};
+
+// Runs the cases on g; returns the failures of the last two.
+std::size_t expect_cases(const core::PlanarGraph& g, const std::string& label, const Cases& c, const char* guarantee) {
+  PackingParams p;
+  EXPECT_EQ(expect_forwarding_equals_core(g, p, 0, c.shuffles[0], label), 0u) << guarantee;
+  std::size_t failed = expect_forwarding_equals_core(g, p, c.tight_ttl, c.shuffles[1],
+                                                     label + " ttl=" + std::to_string(c.tight_ttl));
+  p.max_iterations = c.steps;
+  failed += expect_forwarding_equals_core(g, p, 0, c.shuffles[2], label + " " + std::to_string(c.steps) + " steps");
+  return failed;
+}
+
 }  // namespace
 
 TEST(Forwarding, EqualsCoreRouteOnTriangulations) {
@@ -115,12 +127,8 @@ TEST(Forwarding, EqualsCoreRouteOnTriangulations) {
   for (std::size_t n : {6, 12, 25})
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       const core::PlanarGraph g = core::prepare_for_packing(core::random_delaunay_triangulation(n, 50 * n + seed));
-      PackingParams p;
       const std::string label = "tri n=" + std::to_string(n) + " seed=" + std::to_string(seed);
-      EXPECT_EQ(expect_forwarding_equals_core(g, p, 0, 0, label), 0u) << "LPD guarantees delivery";
-      failed += expect_forwarding_equals_core(g, p, 2, seed, label + " ttl=2");
-      p.max_iterations = 1;  // not converged: greedy may get stuck
-      failed += expect_forwarding_equals_core(g, p, 0, seed, label + " 1 step");
+      failed += expect_cases(g, label, {2, 1, {0, seed, seed}}, "LPD guarantees delivery");
     }
   EXPECT_GT(failed, 0u) << "the tight hop limit and unconverged embeddings must exercise the failures";
 }
@@ -130,12 +138,8 @@ TEST(Forwarding, EqualsCoreRouteOnThreeConnectedGraphs) {
   for (std::size_t n : {8, 15, 25})
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       const core::PlanarGraph g = core::prepare_for_packing(core::random_three_connected(n, 70 * n + seed));
-      PackingParams p;
       const std::string label = "3c n=" + std::to_string(n) + " seed=" + std::to_string(seed);
-      EXPECT_EQ(expect_forwarding_equals_core(g, p, 0, seed, label), 0u) << "GLPD guarantees delivery";
-      failed += expect_forwarding_equals_core(g, p, 3, 0, label + " ttl=3");
-      p.max_iterations = 2;
-      failed += expect_forwarding_equals_core(g, p, 0, 0, label + " 2 steps");
+      failed += expect_cases(g, label, {3, 2, {seed, 0, 0}}, "GLPD guarantees delivery");
     }
   EXPECT_GT(failed, 0u);
 }

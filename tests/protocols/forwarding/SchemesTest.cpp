@@ -14,6 +14,7 @@
 
 #include "../NullRuntime.hpp"
 #include "../SyncHost.hpp"
+#include "Outcomes.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/core/packing/Packer.hpp"
@@ -35,16 +36,6 @@ struct Recorder final : PacketSink {
     hops[packet][hop] = next;
   }
 };
-
-core::RouteOutcome as_core(PacketOutcome o) {
-  switch (o) {
-    case PacketOutcome::delivered: return core::RouteOutcome::delivered;
-    case PacketOutcome::dead_end: return core::RouteOutcome::dead_end;
-    case PacketOutcome::ttl_exceeded: return core::RouteOutcome::ttl_exceeded;
-    case PacketOutcome::loop: return core::RouteOutcome::loop;
-  }
-  return core::RouteOutcome::dead_end;
-}
 
 // Tallies of core's outcomes (to check that the comparisons exercise every case).
 struct Tally {
@@ -148,6 +139,11 @@ void on_packing(const core::GraphInput& in, std::uint64_t seed, Tally& tally, co
   all_schemes(g, r.circles, centres_of(r.circles), seed, tally, label + " packing");
 }
 
+void on_drawing_and_packing(const core::GraphInput& in, std::uint64_t seed, Tally& tally, const std::string& label) {
+  on_drawing(in, seed, tally, label);
+  on_packing(in, seed, tally, label);
+}
+
 // A drawing moved by random offsets of the order of the edge lengths: no longer plane, yet the
 // hop-by-hop decisions must still be core's (loops and dead ends included).
 void on_jittered(const core::GraphInput& in, std::uint64_t seed, Tally& tally, const std::string& label) {
@@ -168,9 +164,7 @@ TEST(ForwardingSchemes, EqualCoreRouteOnTriangulations) {
   for (std::size_t n : {5, 12, 30})
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       const core::GraphInput in = core::random_delaunay_triangulation(n, 50 * n + seed);
-      const std::string label = "tri n=" + std::to_string(n) + " seed=" + std::to_string(seed);
-      on_drawing(in, seed, tally, label);
-      on_packing(in, seed, tally, label);
+      on_drawing_and_packing(in, seed, tally, "tri n=" + std::to_string(n) + " seed=" + std::to_string(seed));
     }
   EXPECT_GT(tally.outcomes[core::RouteOutcome::delivered], 0u);
   EXPECT_GT(tally.outcomes[core::RouteOutcome::ttl_exceeded], 0u);
@@ -181,9 +175,7 @@ TEST(ForwardingSchemes, EqualCoreRouteOnThreeConnectedGraphs) {
   for (std::size_t n : {8, 20, 35})
     for (std::uint64_t seed = 1; seed <= 4; ++seed) {
       const core::GraphInput in = core::random_three_connected(n, 70 * n + seed);
-      const std::string label = "3c n=" + std::to_string(n) + " seed=" + std::to_string(seed);
-      on_drawing(in, seed, tally, label);
-      on_packing(in, seed, tally, label);
+      on_drawing_and_packing(in, seed, tally, "3c n=" + std::to_string(n) + " seed=" + std::to_string(seed));
     }
   EXPECT_GT(tally.outcomes[core::RouteOutcome::dead_end], 0u) << "greedy Euclidean gets stuck on sparse drawings";
   EXPECT_GT(tally.perimeter, 0u) << "GFG's face routing must be exercised";

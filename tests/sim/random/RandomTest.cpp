@@ -141,8 +141,18 @@ TEST(RandomTest, UniformIntCoversItsInclusiveRange) {
   }
   EXPECT_EQ(seen.size(), 7u);
   EXPECT_EQ(rng.uniform_int(5, 5), 5);
-  const std::int64_t full = rng.uniform_int(INT64_MIN, INT64_MAX);  // the whole range
-  (void)full;
+  // The whole range: one raw word, offset from INT64_MIN (no rejection, no bound of 2^64 to overflow).
+  bool negative = false, positive = false;
+  for (int i = 0; i < 64; ++i) {
+    RandomStream copy = rng;
+    const std::uint64_t word = copy.next_u64();
+    const std::int64_t full = rng.uniform_int(INT64_MIN, INT64_MAX);
+    ASSERT_EQ(full, static_cast<std::int64_t>(static_cast<std::uint64_t>(INT64_MIN) + word));
+    ASSERT_EQ(rng.counter(), copy.counter()) << "exactly one draw";
+    negative |= full < 0;
+    positive |= full > 0;
+  }
+  EXPECT_TRUE(negative && positive) << "both halves of the range are reached";
   EXPECT_THROW(rng.uniform_int(2, 1), std::invalid_argument);
 }
 

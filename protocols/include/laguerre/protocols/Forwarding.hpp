@@ -5,13 +5,12 @@
 /// own local knowledge only: its circle and position, its neighbours' circles and positions, and the
 /// counter-clockwise rotation of its neighbours.
 ///
-/// Every decision is core's (core/routing/Routing.hpp), with the same exact predicates on the same
-/// doubles and the same tie rule, so a packet's path hop by hop is core::route's path:
-///  - greedy power: the neighbour u minimising pow(p(t), u) (core::compare_power), ties to the
-///    smallest id, if strictly better than the holder; otherwise a dead end;
-///  - greedy Euclidean: the same with |p(t) − p(u)|² (core::compare_distance) on the positions;
-///  - compass: the neighbour whose direction deviates least from that of p(t)
-///    (core::compare_deviation), ties to the smallest id;
+/// Every decision is core's: the rules of core/routing/NextHop.hpp over the node's neighbour view
+/// (the same functions core::Router decides with), so a packet's path hop by hop is core::route's:
+///  - greedy power: the neighbour u minimising pow(p(t), u), ties to the smallest id, if strictly
+///    better than the holder; otherwise a dead end;
+///  - greedy Euclidean: the same with |p(t) − p(u)|² on the positions;
+///  - compass: the neighbour whose direction deviates least from that of p(t), ties to the smallest id;
 ///  - gfg: greedy Euclidean until a local minimum, then face routing (below).
 /// Core breaks ties by vertex index, so the two agree when ids increase with indices. As core::route,
 /// a node checks in this order: it is the target (delivered), it has no admissible next hop (dead end),
@@ -27,7 +26,7 @@
 /// Greedy-face-greedy hop by hop (core's Router::route_gfg, one node's share). The packet (RouteMsg)
 /// carries its mode; in perimeter mode it also carries P (the entry node's position), the position of
 /// the last face change (P itself, or the crossing of the line PT with an edge, kept symbolically as
-/// that edge's end points and compared exactly), and the first edge of the walk since that change.
+/// that edge's end points: core::FaceChange), and the first edge of the walk since that change.
 ///  - greedy mode at v: the greedy Euclidean next hop if any; otherwise v enters perimeter mode: the
 ///    first face is the one whose corner at v (between two consecutive neighbours) contains the
 ///    direction of T (none: dead end).
@@ -58,6 +57,7 @@
 
 #include "laguerre/core/geometry/Circle.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
+#include "laguerre/core/routing/NextHop.hpp"
 #include "laguerre/core/routing/Routing.hpp"
 #include "laguerre/protocols/Codec.hpp"
 #include "laguerre/protocols/Runtime.hpp"
@@ -161,6 +161,7 @@ public:
 private:
   static constexpr std::size_t no_neighbour = static_cast<std::size_t>(-1);
 
+  core::NeighbourView view() const;
   void handle(const DataMsg& m);
   void handle(RouteMsg m, std::size_t from);
   void gfg(RouteMsg& m, std::size_t from);

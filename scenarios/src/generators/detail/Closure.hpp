@@ -22,13 +22,11 @@
 #include <vector>
 
 #include "laguerre/core/graph/PlanarGraph.hpp"
-#include "laguerre/core/random/SeededRandom.hpp"
+#include "laguerre/core/random/Random.hpp"
 
 namespace laguerre::scenarios::detail {
 
 using core::Vertex;
-
-using Random = core::SeededRandom;
 
 /// Cycle lemma. `steps` are the integer steps (each ≥ −1) of a cyclic walk of total −k (k ≥ 1). Returns
 /// the k starting positions p (0 ≤ p < size) from which the walk, read cyclically, first reaches −k at

@@ -80,15 +80,8 @@ public:
 
   /// Inserts `event` (sift-up with a hole: one move per level instead of a swap).
   void push(const Event& event) {
-    std::size_t hole = heap_.size();
     heap_.push_back(event);
-    while (hole > 0) {
-      const std::size_t parent = (hole - 1) / Arity;
-      if (!fires_before(event, heap_[parent])) break;
-      heap_[hole] = heap_[parent];
-      hole = parent;
-    }
-    heap_[hole] = event;
+    sift_up(heap_.size() - 1, event);
   }
 
   /// Removes the first event; requires !empty().
@@ -114,16 +107,21 @@ public:
       heap_[hole] = heap_[best];
       hole = best;
     }
-    while (hole > 0) {
-      const std::size_t parent = (hole - 1) / Arity;
-      if (!fires_before(last, heap_[parent])) break;
-      heap_[hole] = heap_[parent];
-      hole = parent;
-    }
-    heap_[hole] = last;
+    sift_up(hole, last);
   }
 
 private:
+  /// Moves the hole at `hole` up past the parents `event` fires before, then stores `event` there.
+  void sift_up(std::size_t hole, const Event& event) {
+    while (hole > 0) {
+      const std::size_t parent = (hole - 1) / Arity;
+      if (!fires_before(event, heap_[parent])) break;
+      heap_[hole] = heap_[parent];
+      hole = parent;
+    }
+    heap_[hole] = event;
+  }
+
   std::vector<Event> heap_;
 };
 

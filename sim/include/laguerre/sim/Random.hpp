@@ -4,8 +4,9 @@
 /// (seed, stream kind, id a, id b, n), so it does not depend on how events interleave.
 ///
 /// Construction (all arithmetic mod 2^64):
-///  - `mix64` is the SplitMix64 output finalizer (Stafford's "Mix13" variant): two xor-shift /
-///    odd-multiply rounds. It is a bijection of 64-bit words with full avalanche.
+///  - `mix64` is the SplitMix64 output finalizer of core/random/Random.hpp (Stafford's "Mix13"
+///    variant): two xor-shift / odd-multiply rounds. It is a bijection of 64-bit words with full
+///    avalanche.
 ///  - A stream key chains that bijection over the identifying words:
 ///        k0 = mix64(seed ^ c0),  k1 = mix64(k0 ^ kind),  k2 = mix64(k1 ^ a),  key = mix64(k2 ^ b),
 ///    with c0 a fixed odd constant (so seed 0 does not give key 0). Each step is injective in its new
@@ -22,7 +23,8 @@
 /// loss, duplication and latency are fixed by the link and the position of the message on it.
 ///
 /// Derived variates: `uniform01` uses the top 53 bits (all doubles k * 2^-53, k < 2^53, equally
-/// likely); `below(n)` is Lemire's multiply-shift with rejection (exactly uniform, no modulo bias);
+/// likely); `below(n)` is Lemire's multiply-shift with rejection (exactly uniform, no modulo bias;
+/// not core::uniform_below, whose other mapping would change every trace hash);
 /// `exponential` is inversion, -mean · log(v) with v = 1 − u = (k + 1) · 2^-53 ∈ (0, 1] computed
 /// exactly from the bits (so the logarithm is always finite; log is cheaper than log1p).
 
@@ -30,20 +32,13 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "laguerre/core/random/Random.hpp"
+
 namespace laguerre::sim {
 
-/// The SplitMix64 finalizer: a bijective 64-bit mixer with full avalanche.
-constexpr std::uint64_t mix64(std::uint64_t x) {
-  x ^= x >> 30;
-  x *= 0xbf58476d1ce4e5b9ULL;
-  x ^= x >> 27;
-  x *= 0x94d049bb133111ebULL;
-  x ^= x >> 31;
-  return x;
-}
-
-/// The Weyl increment of SplitMix64 (2^64 divided by the golden ratio, made odd).
-inline constexpr std::uint64_t golden_gamma = 0x9e3779b97f4a7c15ULL;
+using core::golden_gamma;
+using core::mix64;
+using core::to_unit_double;
 
 /// What a stream is attached to; part of its key, so node 3's stream differs from link (3, ·)'s.
 enum class StreamKind : std::uint64_t {
@@ -66,11 +61,6 @@ constexpr std::uint64_t stream_key(std::uint64_t seed, StreamKind kind, std::uin
 /// Value number `counter` (0-based) of the stream with key `key`: a pure function.
 constexpr std::uint64_t random_at(std::uint64_t key, std::uint64_t counter) {
   return mix64(key + (counter + 1) * golden_gamma);
-}
-
-/// The double k * 2^-53 in [0, 1) made of the top 53 bits of `bits`.
-constexpr double to_unit_double(std::uint64_t bits) {
-  return static_cast<double>(bits >> 11) * 0x1.0p-53;
 }
 
 /// A counter-based stream: a key and the index of the next value. Copying a stream copies its

@@ -17,21 +17,17 @@
 #include <span>
 #include <vector>
 
+#include "laguerre/core/random/Random.hpp"
 #include "laguerre/sim/Metrics.hpp"
 #include "laguerre/sim/Time.hpp"
 
 namespace laguerre::sim {
 
-/// FNV-1a 64 offset basis (the hash of nothing).
-inline constexpr std::uint64_t fnv1a_basis = 0xcbf29ce484222325ULL;
+using core::fnv1a_basis;
 
-/// Continues an FNV-1a 64 hash `h` over `bytes`.
+/// Continues an FNV-1a 64 hash `h` over `bytes` (core::fnv1a64).
 constexpr std::uint64_t fnv1a(std::span<const std::byte> bytes, std::uint64_t h = fnv1a_basis) {
-  for (std::byte b : bytes) {
-    h ^= static_cast<std::uint64_t>(b);
-    h *= 0x100000001b3ULL;
-  }
-  return h;
+  return core::fnv1a64(bytes, h);
 }
 
 /// How much of the trace a Simulator keeps.

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "laguerre/core/routing/NextHop.hpp"
 #include "laguerre/core/routing/Routing.hpp"
 
 namespace laguerre::core {
@@ -37,6 +38,8 @@ private:
   void route_memoryless(Scheme s, Vertex target, std::size_t ttl, Route& out);
   void route_gfg(Vertex target, std::size_t ttl, Route& out) const;
   void check_vertex(Vertex v, const char* role) const;
+  Vertex hop(Scheme s, Vertex at, Vertex target) const;
+  GraphView view_of(Vertex v) const { return {*g_, *phi_, v}; }
 
   const PlanarGraph* g_;
   const CircleEmbedding* phi_;

@@ -14,7 +14,7 @@ namespace laguerre::core {
 /// Which ordered pairs (s, t), s ≠ t, to route.
 struct PairSelection {
   std::size_t sample = 0;  ///< number of distinct pairs drawn uniformly; 0 (or ≥ n(n−1)) = all pairs
-  std::uint64_t seed = 1;  ///< seed of the std::mt19937_64 stream the sample is drawn from
+  std::uint64_t seed = 1;  ///< seed of the SeededRandom (std::mt19937_64) the sample is drawn from
 };
 
 /// One pair that was not delivered.
@@ -44,9 +44,9 @@ struct RoutingStats {
 
 /// The pairs `selection` designates on a graph of n vertices, sorted by (source, target):
 /// all n(n−1) ordered pairs when selection.sample is 0 or at least n(n−1); otherwise `sample`
-/// distinct pairs drawn without replacement (Floyd's algorithm) from a std::mt19937_64 seeded with
-/// selection.seed, with our own unbiased bounded-integer mapping, so the result depends on the seed
-/// only, not on the standard library.
+/// distinct pairs drawn without replacement (Floyd's algorithm) with SeededRandom::below from a
+/// SeededRandom seeded with selection.seed (core/random/Random.hpp), so the result depends on the
+/// seed only, not on the standard library.
 std::vector<std::pair<Vertex, Vertex>> select_pairs(std::size_t n, const PairSelection& selection);
 
 /// Nearest-rank percentile: the value of rank ⌈percent·N/100⌉ (1-based, at least 1) in ascending
