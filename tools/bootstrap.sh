@@ -33,6 +33,7 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+started=$SECONDS
 if [ ${#missing[@]} -gt 0 ]; then
   echo "bootstrap: installing ${missing[*]}"
   if [ "$(id -u)" -eq 0 ]; then sudo=(); elif command -v sudo >/dev/null; then sudo=(sudo); else
@@ -41,9 +42,13 @@ if [ ${#missing[@]} -gt 0 ]; then
   export DEBIAN_FRONTEND=noninteractive
   "${sudo[@]}" apt-get update -qq
   "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  echo "bootstrap: packages installed in $((SECONDS - started)) s"
 fi
 
 if [ "$build" -eq 1 ]; then
+  started=$SECONDS
   cmake --preset "$preset" >/dev/null
+  configured=$SECONDS
   cmake --build --preset "$preset" "${targets[@]}"
+  echo "bootstrap: $preset configured in $((configured - started)) s, built in $((SECONDS - configured)) s"
 fi
