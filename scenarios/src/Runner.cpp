@@ -8,6 +8,7 @@
 #include <mutex>
 #include <thread>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/scenarios/ProtocolRun.hpp"
@@ -194,7 +195,7 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
     const bool physical = cfg.routing.positions == GeometricPositions::physical ||
                           (cfg.routing.positions == GeometricPositions::automatic && !topo.positions.empty());
     if (physical && topo.positions.empty())
-      throw std::invalid_argument("routing.positions is physical but " + topo.name + " has no positions");
+      throw core::InputError("routing.positions", 0, "is physical but " + topo.name + " has no positions");
     const core::CircleEmbedding geo = physical ? point_circles(topo.positions) : core::CircleEmbedding{};
     const core::PairSelection selection{cfg.routing.pairs, plan.seed};
     for (core::Scheme s : cfg.routing.schemes) {

@@ -3,6 +3,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "laguerre/core/InputFile.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -16,7 +18,7 @@
 namespace laguerre::scenarios {
 
 ScenarioError::ScenarioError(std::vector<std::string> issues)
-    : std::runtime_error([&] {
+    : core::InputError([&] {
         std::string s;
         for (const auto& i : issues) s += (s.empty() ? "" : "\n") + i;
         return s;
@@ -74,6 +76,14 @@ public:
 
   void report(const YAML::Node& at, const YAML::Node& fallback, const std::string& path, const std::string& found,
               const std::string& expected) {
+    report_message(at, fallback, path, "found " + found + ", expected " + expected);
+  }
+  void report(const YAML::Node& at, const std::string& path, const std::string& found, const std::string& expected) {
+    report(at, YAML::Node(), path, found, expected);
+  }
+  /// As report, with the "found X, expected Y" part already written (a parser's InputError message).
+  void report_message(const YAML::Node& at, const YAML::Node& fallback, const std::string& path,
+                      const std::string& message) {
     std::string w = where(at);
     YAML::Mark mark = at.IsDefined() ? at.Mark() : YAML::Mark::null_mark();
     if (w.empty()) {
@@ -81,13 +91,10 @@ public:
       mark = fallback.IsDefined() ? fallback.Mark() : YAML::Mark::null_mark();
     }
     if (w.empty()) w = source_;
-    std::string msg = w + ": " + path + ": found " + found + ", expected " + expected;
+    std::string msg = w + ": " + path + ": " + message;
     // Messages in file order: by line and column; overrides and unlocated messages last.
     const bool in_file = w.rfind(source_ + ":", 0) == 0 && !mark.is_null();
     add(in_file ? mark.line : std::numeric_limits<int>::max(), in_file ? mark.column : 0, std::move(msg));
-  }
-  void report(const YAML::Node& at, const std::string& path, const std::string& found, const std::string& expected) {
-    report(at, YAML::Node(), path, found, expected);
   }
   /// A message not tied to a node.
   void report_plain(const std::string& msg) { add(std::numeric_limits<int>::max(), 0, msg); }
@@ -357,13 +364,15 @@ void parse_network(Context& ctx, const YAML::Node& n, NetworkSpec& out) {
   if (!expect_map(c, n, "network")) return;
   check_keys(c, n, "network", {"latency", "loss", "duplication", "crashes", "retransmit_after"});
   if (const YAML::Node v = lookup(n, "latency"); v.IsDefined()) {
-    try {
-      if (!v.IsScalar()) throw std::invalid_argument("");
-      out.latency = parse_latency(v.Scalar());
-      out.latency_text = v.Scalar();
-    } catch (const std::exception&) {
-      c.report(v, "network.latency", found(v),
-               "constant:D, uniform:LO:HI or distance:BASE:NS_PER_UNIT[:JITTER] (durations like 250us, 1ms, 2s)");
+    if (!v.IsScalar()) {
+      c.report(v, "network.latency", found(v), std::string(latency_forms));
+    } else {
+      try {
+        out.latency = parse_latency(v.Scalar());
+        out.latency_text = v.Scalar();
+      } catch (const core::InputError& e) {
+        c.report_message(v, YAML::Node(), "network.latency", e.message());
+      }
     }
   }
   if (const YAML::Node v = lookup(n, "loss"); v.IsDefined()) read_number(c, v, "network.loss", 0, 1, out.loss, true);
@@ -371,28 +380,32 @@ void parse_network(Context& ctx, const YAML::Node& n, NetworkSpec& out) {
     read_number(c, v, "network.duplication", 0, 1, out.duplication);
   if (const YAML::Node v = lookup(n, "crashes"); v.IsDefined()) {
     if (!v.IsSequence()) {
-      c.report(v, "network.crashes", found(v), "a list of crashes ID@TIME such as 17@40ms");
+      c.report(v, "network.crashes", found(v), "a list of crashes " + std::string(crash_forms));
     } else {
       for (std::size_t i = 0; i < v.size(); ++i) {
         const std::string path = "network.crashes[" + std::to_string(i) + "]";
+        if (!v[i].IsScalar()) {
+          c.report(v[i], v, path, found(v[i]), "a crash " + std::string(crash_forms));
+          continue;
+        }
         try {
-          if (!v[i].IsScalar()) throw std::invalid_argument("");
           out.crashes.push_back(parse_crash(v[i].Scalar()));
-        } catch (const std::exception&) {
-          c.report(v[i], v, path, found(v[i]), "a crash ID@TIME such as 17@40ms");
+        } catch (const core::InputError& e) {
+          c.report_message(v[i], v, path, e.message());
         }
       }
     }
   }
   if (const YAML::Node v = lookup(n, "retransmit_after"); v.IsDefined()) {
+    std::optional<sim::Duration> d;
     try {
-      if (!v.IsScalar()) throw std::invalid_argument("");
-      const sim::Duration d = parse_duration(v.Scalar());
-      if (d <= 0) throw std::invalid_argument("");
-      out.retransmit_after = d;
-    } catch (const std::exception&) {
-      c.report(v, "network.retransmit_after", found(v), "a positive duration such as 250us, 1ms or 2s");
+      if (v.IsScalar()) d = parse_duration(v.Scalar());
+    } catch (const core::InputError&) {
     }
+    if (d && *d > 0)
+      out.retransmit_after = d;
+    else
+      c.report(v, "network.retransmit_after", found(v), "a positive duration such as 250us, 1ms or 2s");
   }
 }
 
@@ -740,12 +753,14 @@ Scenario load_scenario_from_string(std::string_view text, const std::string& sou
 }
 
 Scenario load_scenario(const std::string& path, const LoadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError({path + ": found no readable file, expected a scenario file (YAML)"});
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::string text;
+  try {
+    text = core::read_input_file(path, "scenario file (YAML)");
+  } catch (const core::InputError& e) {
+    throw ScenarioError({e.what()});
+  }
   const fs::path parent = fs::path(path).parent_path();
-  return load_scenario_from_string(text.str(), path, parent.empty() ? "." : parent.string(), options);
+  return load_scenario_from_string(text, path, parent.empty() ? "." : parent.string(), options);
 }
 
 }  // namespace laguerre::scenarios

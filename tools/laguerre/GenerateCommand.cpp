@@ -6,6 +6,7 @@
 
 #include "Commands.hpp"
 #include "Common.hpp"
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/scenarios/Topology.hpp"
 
@@ -55,9 +56,9 @@ core::GraphInput make(const GenerateArgs& a, std::uint64_t seed) {
 
 int run_generate(const GenerateArgs& a) {
   if (uniform_family(a.family) && a.format == "coords")
-    throw std::invalid_argument("family " + a.family + " has no vertex positions; use --format edges or planar_code.");
+    throw core::InputError("--format", 0, "family " + a.family + " has no vertex positions; use --format edges or planar_code.");
   if (a.count != 1 && a.format != "planar_code")
-    throw std::invalid_argument("--count greater than 1 needs --format planar_code (the only multi-graph format).");
+    throw core::InputError("--count", 0, "greater than 1 needs --format planar_code (the only multi-graph format).");
   std::string text;
   if (a.format == "planar_code") {
     std::vector<core::PlanarGraph> graphs;
@@ -86,7 +87,7 @@ Action add_generate_command(CLI::App& app) {
                   "or uniform-three-connected (Fusy, largest face outside); the uniform ones have no positions")
       ->required()->check(CLI::IsMember({"delaunay", "three-connected", "uniform-triangulation", "uniform-three-connected"}));
   cmd->add_option("--size,-n", args->size, "Number of vertices")->check(CLI::Range(4, 100000000))->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Random seed")->check(seed_validator())->capture_default_str();
   cmd->add_option("--format", args->format, "coords (with positions), edges or planar_code (binary)")
       ->check(CLI::IsMember({"coords", "edges", "planar_code"}))->capture_default_str();
   cmd->add_option("--count", args->count, "Number of graphs (seeds SEED, SEED+1, ...; planar_code only)")

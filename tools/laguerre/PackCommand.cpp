@@ -18,9 +18,7 @@ namespace laguerre::tools {
 
 namespace {
 struct PackArgs {
-  std::string graph;
-  std::string format = "automatic";
-  std::size_t index = 1;
+  GraphArgs graph;
   std::string stop = "lpd";
   std::string sweep = "jacobi";
   std::string root = "deepest";
@@ -59,7 +57,7 @@ private:
 };
 
 int run_pack(const PackArgs& a) {
-  const LoadedGraph loaded = load_graph(a.graph, a.format, a.index);
+  const LoadedGraph loaded = load_graph(a.graph);
   const core::PlanarGraph& g = loaded.input.graph;
   core::PackOptions opt;
   opt.stop = core::parse_stop_rule(a.stop);
@@ -70,7 +68,7 @@ int run_pack(const PackArgs& a) {
   opt.angle_epsilon = a.epsilon;
   opt.acceleration = core::parse_acceleration(a.accelerate);
 
-  const std::string stem = a.out.empty() ? file_stem(a.graph) + "-packing" : a.out;
+  const std::string stem = a.out.empty() ? file_stem(a.graph.path) + "-packing" : a.out;
   if (!a.json_stdout) check_writable(stem + ".json", a.force);
   if (!a.no_picture) {
     check_writable(stem + ".svg", a.force);
@@ -151,9 +149,7 @@ Action add_pack_command(CLI::App& app) {
   auto args = std::make_shared<PackArgs>();
   CLI::App* cmd = app.add_subcommand("pack", "Compute a greedy power embedding of a planar graph (thesis §5.3).");
   cmd->footer("Exit status: 0 converged, 3 not converged (cap or precision loss), 2 bad input.");
-  cmd->add_option("graph", args->graph, "Graph file (edge list, coords or planar_code)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--format", args->format, "Input format: automatic, edges, coords, planar_code")->capture_default_str();
-  cmd->add_option("--index", args->index, "Which graph of a multi-graph file (from 1)")->capture_default_str();
+  add_graph_options(*cmd, args->graph, "graph", "Graph file (edge list, coords or planar_code)");
   cmd->add_option("--stop", args->stop, "Stopping rule: lpd (LPD/GLPD everywhere), exact, angle, cap")
       ->check(CLI::IsMember({"lpd", "exact", "angle", "cap"}))->capture_default_str();
   cmd->add_option("--sweep", args->sweep, "Update order: jacobi or gauss-seidel")
@@ -161,8 +157,8 @@ Action add_pack_command(CLI::App& app) {
   cmd->add_option("--root", args->root, "Layout root: deepest or smallest-id")
       ->check(CLI::IsMember({"deepest", "smallest-id"}))->capture_default_str();
   cmd->add_option("--steps-per-check,-N", args->steps, "Thurston sweeps between two layouts and checks")
-      ->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--max-iterations", args->max_iterations, "Cap on sweeps")->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(CLI::Range(1, 10000))->capture_default_str();
+  cmd->add_option("--max-iterations", args->max_iterations, "Cap on sweeps")->check(CLI::Range(1, 100000000))->capture_default_str();
   cmd->add_option("--epsilon", args->epsilon, "Angle-sum tolerance for --stop angle (radians)")->capture_default_str();
   cmd->add_option("-o,--out", args->out, "Output path stem (writes STEM.json, STEM.svg, STEM.png); default GRAPHNAME-packing");
   cmd->add_flag("--force", args->force, "Overwrite existing output files");

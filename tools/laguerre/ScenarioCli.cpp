@@ -8,6 +8,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/scenarios/ScenarioLoader.hpp"
 
 namespace laguerre::tools {
@@ -34,9 +35,9 @@ std::optional<std::vector<scenarios::Scenario>> load_scenarios(const std::vector
 void prepare_output_dir(const std::string& dir, bool force, const std::vector<std::string>& managed) {
   if (fs::exists(dir)) {
     if (!force)
-      throw std::invalid_argument("Refusing to overwrite the result folder " + dir +
+      throw core::InputError("Refusing to overwrite the result folder " + dir +
                                   " (it exists); pass --force to replace its results or -o to write elsewhere.");
-    if (!fs::is_directory(dir)) throw std::invalid_argument(dir + " exists and is not a folder.");
+    if (!fs::is_directory(dir)) throw core::InputError(dir, 0, "exists and is not a folder.");
     for (const auto& m : managed) fs::remove(fs::path(dir) / m);
     fs::remove_all(fs::path(dir) / "pictures");
     fs::remove_all(fs::path(dir) / "charts");

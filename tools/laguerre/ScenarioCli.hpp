@@ -17,7 +17,7 @@ namespace laguerre::tools {
 std::optional<std::vector<scenarios::Scenario>> load_scenarios(const std::vector<std::string>& files,
                                                               const std::vector<std::string>& overrides);
 
-/// Prepares output folder `dir`: refuses (std::invalid_argument, exit 2) if it exists and `force` is
+/// Prepares output folder `dir`: refuses (core::InputError, exit 2) if it exists and `force` is
 /// false; with `force` removes only the files `laguerre run`/`compare` write (`managed`, and the
 /// `pictures` and `charts` subfolders), then creates it.
 void prepare_output_dir(const std::string& dir, bool force, const std::vector<std::string>& managed);

@@ -97,7 +97,7 @@ int run_table(const TableArgs& a) {
     std::fprintf(stderr, "\n");
   } else {
     for (const auto& f : a.files) {
-      for (auto& in : core::read_graphs(f)) {
+      for (auto& in : read_graph_file(f)) {
         core::GraphKind kind{};
         const core::PlanarGraph g = core::prepare_for_packing(in, &kind);
         rows.push_back(measure(g, kind, in.name, a));
@@ -168,13 +168,14 @@ Action add_thesis_table_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("thesis-table", "Reproduce the experiment of thesis §5.4.1 (iterations to LPD vs exact packing).");
   cmd->footer("Without graph files: random Delaunay triangulations and 3-connected graphs obtained from them by\n"
               "deleting edges (the interim random families documented in RandomGraphs.hpp).");
-  cmd->add_option("graphs", args->files, "Graph files to use instead of the random families")->check(CLI::ExistingFile);
+  cmd->add_option("graphs", args->files, "Graph files to use instead of the random families");
   cmd->add_option("--count", args->count, "Graphs per family")->capture_default_str();
   cmd->add_option("--size", args->size, "Vertices per random graph")->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Seed of the first random graph")->capture_default_str();
-  cmd->add_option("--steps-per-check,-N", args->steps, "Sweeps between checks")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Seed of the first random graph")->check(seed_validator())->capture_default_str();
+  cmd->add_option("--steps-per-check,-N", args->steps, "Sweeps between checks")->check(CLI::Range(1, 10000))->capture_default_str();
   cmd->add_option("--sweep", args->sweep, "jacobi or gauss-seidel")->check(CLI::IsMember({"jacobi", "gauss-seidel"}))->capture_default_str();
-  cmd->add_option("--max-iterations", args->max_iterations, "Cap on sweeps per run")->capture_default_str();
+  cmd->add_option("--max-iterations", args->max_iterations, "Cap on sweeps per run")
+      ->check(CLI::Range(1, 100000000))->capture_default_str();
   cmd->add_flag("--json", args->json, "Machine-readable output");
   cmd->add_option("--accelerate", args->accelerate,
                   "Sweep acceleration: plain, superstep (Collins-Stephenson), anderson, or newton (damped Newton steps "

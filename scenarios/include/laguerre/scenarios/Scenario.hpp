@@ -32,7 +32,7 @@ struct NetworkSpec {
   sim::LatencyModel latency = sim::LatencyModel::constant(sim::milliseconds(1));  ///< parsed
   double loss = 0;                                 ///< loss probability per copy, [0, 1)
   double duplication = 0;                          ///< duplication probability per message, [0, 1]
-  std::vector<CrashSpec> crashes;                  ///< crashes for good
+  std::vector<CrashSpec> crashes;                  ///< outages, for good or with a recovery
   std::optional<sim::Duration> retransmit_after;   ///< first retransmission period (reliability layer)
   /// Whether the reliability layer is needed (loss, duplication, crashes or an explicit period).
   bool lossy() const { return loss > 0 || duplication > 0 || !crashes.empty() || retransmit_after.has_value(); }
