@@ -128,8 +128,8 @@ TEST(ScenarioLoader, NetworkForms) {
   } catch (const ScenarioError& e) {
     ASSERT_EQ(e.issues().size(), 2u);
     EXPECT_EQ(e.issues()[0],
-              "test.yaml:3:21: network.latency: found 'uniform:5ms:1ms', expected uniform:LO:HI with LO <= HI (5ms is above 1ms)");
-    EXPECT_EQ(e.issues()[1], "test.yaml:3:51: network.crashes[0]: found '-1@1ms', expected " + std::string(crash_forms));
+              "test.yaml:3:20: network.latency: found 'uniform:5ms:1ms', expected uniform:LO:HI with LO <= HI (5ms is above 1ms)");
+    EXPECT_EQ(e.issues()[1], "test.yaml:3:49: network.crashes[0]: found '-1@1ms', expected " + std::string(crash_forms));
   }
 }
 
