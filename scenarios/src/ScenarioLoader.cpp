@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "laguerre/core/InputFile.hpp"
+#include "laguerre/core/packing/PackingNames.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -422,8 +423,8 @@ void parse_protocol(Context& ctx, const YAML::Node& n, ProtocolSpec& out) {
     out.central = s == "central";
   }
   if (const YAML::Node v = lookup(n, "acceleration"); v.IsDefined()) {
-    if (read_choice(c, v, "protocol.acceleration", {"plain", "superstep", "anderson", "newton"}, s))
-      out.acceleration = core::parse_acceleration(s);
+    if (read_choice(c, v, "protocol.acceleration", core::names_of(core::acceleration_names), s))
+      out.acceleration = *core::find_name(core::acceleration_names, s);
     if (!out.central && out.acceleration != core::Acceleration::plain)
       c.report(v, "protocol.acceleration", "'" + s + "' with mode " + (out.asynchronous ? "async" : "sync"),
                "plain, or mode central (the distributed protocol has no acceleration)");
@@ -432,14 +433,15 @@ void parse_protocol(Context& ctx, const YAML::Node& n, ProtocolSpec& out) {
   if (const YAML::Node v = lookup(n, "steps_per_round");
       v.IsDefined() && read_integer(c, v, "protocol.steps_per_round", 1, 10000, i))
     out.steps_per_round = static_cast<int>(i);
-  if (const YAML::Node v = lookup(n, "stop"); v.IsDefined() && read_choice(c, v, "protocol.stop", {"lpd", "glpd", "exact"}, s))
-    out.stop = s == "lpd" ? StopSpec::lpd : s == "glpd" ? StopSpec::glpd : StopSpec::exact;
+  if (const YAML::Node v = lookup(n, "stop");
+      v.IsDefined() && read_choice(c, v, "protocol.stop", core::names_of(stop_spec_names), s))
+    out.stop = *core::find_name(stop_spec_names, s);
   if (const YAML::Node v = lookup(n, "max_iterations");
       v.IsDefined() && read_integer(c, v, "protocol.max_iterations", 1, 100000000, i))
     out.max_iterations = static_cast<int>(i);
   if (const YAML::Node v = lookup(n, "root");
-      v.IsDefined() && read_choice(c, v, "protocol.root", {"deepest", "smallest-id"}, s))
-    out.root = s == "deepest" ? core::RootRule::deepest : core::RootRule::smallest_id;
+      v.IsDefined() && read_choice(c, v, "protocol.root", core::names_of(core::root_rule_names), s))
+    out.root = *core::find_name(core::root_rule_names, s);
   if (const YAML::Node v = lookup(n, "exact_reference"); v.IsDefined())
     read_bool(c, v, "protocol.exact_reference", out.exact_reference);
 }
@@ -449,7 +451,7 @@ void parse_routing(Context& ctx, const YAML::Node& n, RoutingSpec& out) {
   if (!n.IsDefined()) return;
   if (!expect_map(c, n, "routing")) return;
   check_keys(c, n, "routing", {"schemes", "pairs", "positions", "sample_routes"});
-  const std::vector<std::string> names{"greedy-power", "greedy-euclid", "compass", "gfg"};
+  const std::vector<std::string> names = core::names_of(scheme_names);
   if (const YAML::Node v = lookup(n, "schemes"); v.IsDefined()) {
     if (v.IsScalar() && v.Scalar() == "all") {
       // default: all four
@@ -461,9 +463,7 @@ void parse_routing(Context& ctx, const YAML::Node& n, RoutingSpec& out) {
         std::string s;
         const std::string path = "routing.schemes[" + std::to_string(i) + "]";
         if (!read_choice(c, v[i], path, names, s)) continue;
-        for (char& ch : s)
-          if (ch == '-') ch = '_';
-        const core::Scheme sc = *core::parse_scheme(s);
+        const core::Scheme sc = *core::find_name(scheme_names, s);
         bool dup = false;
         for (auto x : out.schemes) dup = dup || x == sc;
         if (dup)
@@ -486,10 +486,8 @@ void parse_routing(Context& ctx, const YAML::Node& n, RoutingSpec& out) {
   }
   std::string s;
   if (const YAML::Node v = lookup(n, "positions");
-      v.IsDefined() && read_choice(c, v, "routing.positions", {"auto", "packing", "physical"}, s))
-    out.positions = s == "auto" ? GeometricPositions::automatic
-                    : s == "packing" ? GeometricPositions::packing
-                                     : GeometricPositions::physical;
+      v.IsDefined() && read_choice(c, v, "routing.positions", core::names_of(positions_names), s))
+    out.positions = *core::find_name(positions_names, s);
   std::int64_t k = 0;
   if (const YAML::Node v = lookup(n, "sample_routes");
       v.IsDefined() && read_integer(c, v, "routing.sample_routes", 0, 20, k))

@@ -5,6 +5,8 @@
 
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/InputFile.hpp"
+#include "laguerre/core/packing/PackingNames.hpp"
+#include "laguerre/scenarios/Scenario.hpp"
 
 namespace laguerre::tools {
 
@@ -32,11 +34,12 @@ LoadedGraph load_graph(const GraphArgs& args) {
 
 std::vector<core::Scheme> parse_schemes(const std::string& text, const std::string& option) {
   if (text == "all") return {core::all_schemes.begin(), core::all_schemes.end()};
-  std::string name = text;
+  std::string name = text;  // the underscore spelling of the outputs is accepted too
   for (char& c : name)
-    if (c == '-') c = '_';
-  if (const auto s = core::parse_scheme(name)) return {*s};
-  throw core::InputError(option, 0, "found '" + text + "', expected greedy-power, greedy-euclid, compass, gfg or all.");
+    if (c == '_') c = '-';
+  if (const auto s = core::find_name(scenarios::scheme_names, name)) return {*s};
+  throw core::InputError(option, 0,
+                         "found '" + text + "', expected " + core::listed_names(scenarios::scheme_names) + ", or all.");
 }
 
 core::PairSelection parse_pairs(const std::string& text, std::uint64_t seed, const std::string& option) {
@@ -46,6 +49,12 @@ core::PairSelection parse_pairs(const std::string& text, std::uint64_t seed, con
   if (!text.empty() && ec == std::errc() && ptr == text.data() + text.size() && n >= 1 && n <= 1000000000)
     return {static_cast<std::size_t>(n), seed};
   throw core::InputError(option, 0, "found '" + text + "', expected 'all' or a number of sampled pairs in [1, 1000000000].");
+}
+
+CLI::Option* add_acceleration_option(CLI::App& cmd, std::string& value) {
+  return add_choice(cmd, "--accelerate", value, core::acceleration_names,
+                    "Sweep acceleration: plain, superstep (Collins-Stephenson), anderson, or newton (damped Newton steps "
+                    "on the angle sums instead of sweeps; an iteration is then a Newton step)");
 }
 
 CLI::Validator seed_validator() {

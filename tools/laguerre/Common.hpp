@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "laguerre/core/EnumNames.hpp"
 #include "laguerre/core/graph/GraphIO.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/routing/Routing.hpp"
@@ -47,6 +48,16 @@ std::vector<core::Scheme> parse_schemes(const std::string& text, const std::stri
 /// --pairs (named `option` in messages): "all", or a number of pairs in [1, 10^9] sampled with `seed`
 /// (as the scenario key routing.pairs). Throws core::InputError.
 core::PairSelection parse_pairs(const std::string& text, std::uint64_t seed, const std::string& option);
+
+/// Option `name` bound to `value`, accepting exactly the names of `table` (CLI11 lists them on error).
+template <class E, std::size_t N>
+CLI::Option* add_choice(CLI::App& cmd, const std::string& name, std::string& value, const core::EnumNames<E, N>& table,
+                        const std::string& help) {
+  return cmd.add_option(name, value, help)->check(CLI::IsMember(core::names_of(table)))->capture_default_str();
+}
+
+/// --accelerate (core::acceleration_names), as `pack` and `thesis-table` offer it.
+CLI::Option* add_acceleration_option(CLI::App& cmd, std::string& value);
 
 /// A validator for --seed: an integer in [0, 2^64 − 1], written in decimal without a sign (as the
 /// scenario key seed).

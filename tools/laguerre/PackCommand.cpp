@@ -12,6 +12,7 @@
 #include "EmbeddingJson.hpp"
 #include "Render.hpp"
 #include "laguerre/core/packing/Packer.hpp"
+#include "laguerre/core/packing/PackingNames.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 
 namespace laguerre::tools {
@@ -60,13 +61,13 @@ int run_pack(const PackArgs& a) {
   const LoadedGraph loaded = load_graph(a.graph);
   const core::PlanarGraph& g = loaded.input.graph;
   core::PackOptions opt;
-  opt.stop = core::parse_stop_rule(a.stop);
-  opt.sweep = a.sweep == "gauss-seidel" ? core::Sweep::gauss_seidel : core::Sweep::jacobi;
-  opt.root = a.root == "smallest-id" ? core::RootRule::smallest_id : core::RootRule::deepest;
+  opt.stop = core::parse_name(core::stop_rule_names, a.stop, "--stop");
+  opt.sweep = core::parse_name(core::sweep_names, a.sweep, "--sweep");
+  opt.root = core::parse_name(core::root_rule_names, a.root, "--root");
   opt.steps_per_check = a.steps;
   opt.max_iterations = a.max_iterations;
   opt.angle_epsilon = a.epsilon;
-  opt.acceleration = core::parse_acceleration(a.accelerate);
+  opt.acceleration = core::parse_name(core::acceleration_names, a.accelerate, "--accelerate");
 
   const std::string stem = a.out.empty() ? file_stem(a.graph.path) + "-packing" : a.out;
   if (!a.json_stdout) check_writable(stem + ".json", a.force);
@@ -150,22 +151,17 @@ Action add_pack_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("pack", "Compute a greedy power embedding of a planar graph (thesis §5.3).");
   cmd->footer("Exit status: 0 converged, 3 not converged (cap or precision loss), 2 bad input.");
   add_graph_options(*cmd, args->graph, "graph", "Graph file (edge list, coords or planar_code)");
-  cmd->add_option("--stop", args->stop, "Stopping rule: lpd (LPD/GLPD everywhere), exact, angle, cap")
-      ->check(CLI::IsMember({"lpd", "exact", "angle", "cap"}))->capture_default_str();
-  cmd->add_option("--sweep", args->sweep, "Update order: jacobi or gauss-seidel")
-      ->check(CLI::IsMember({"jacobi", "gauss-seidel"}))->capture_default_str();
-  cmd->add_option("--root", args->root, "Layout root: deepest or smallest-id")
-      ->check(CLI::IsMember({"deepest", "smallest-id"}))->capture_default_str();
+  add_choice(*cmd, "--stop", args->stop, core::stop_rule_names,
+             "Stopping rule: lpd (LPD/GLPD everywhere), exact, angle, cap");
+  add_choice(*cmd, "--sweep", args->sweep, core::sweep_names, "Update order: jacobi or gauss-seidel");
+  add_choice(*cmd, "--root", args->root, core::root_rule_names, "Layout root: deepest or smallest-id");
   cmd->add_option("--steps-per-check,-N", args->steps, "Thurston sweeps between two layouts and checks")
       ->check(CLI::Range(1, 10000))->capture_default_str();
   cmd->add_option("--max-iterations", args->max_iterations, "Cap on sweeps")->check(CLI::Range(1, 100000000))->capture_default_str();
   cmd->add_option("--epsilon", args->epsilon, "Angle-sum tolerance for --stop angle (radians)")->capture_default_str();
   cmd->add_option("-o,--out", args->out, "Output path stem (writes STEM.json, STEM.svg, STEM.png); default GRAPHNAME-packing");
   cmd->add_flag("--force", args->force, "Overwrite existing output files");
-  cmd->add_option("--accelerate", args->accelerate,
-                  "Sweep acceleration: plain, superstep (Collins-Stephenson), anderson, or newton (damped Newton steps "
-                  "on the angle sums instead of sweeps; an iteration is then a Newton step)")
-      ->check(CLI::IsMember({"plain", "superstep", "anderson", "newton"}))->capture_default_str();
+  add_acceleration_option(*cmd, args->accelerate);
   cmd->add_flag("--json", args->json_stdout, "Print the embedding JSON on standard output instead of writing STEM.json");
   cmd->add_flag("--no-picture", args->no_picture, "Do not draw the SVG/PNG picture");
   return [args] { return run_pack(*args); };

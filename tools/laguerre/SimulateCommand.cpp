@@ -13,6 +13,7 @@
 
 #include "Commands.hpp"
 #include "Common.hpp"
+#include "laguerre/core/packing/PackingNames.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/protocols/Codec.hpp"
 #include "laguerre/scenarios/NetworkModel.hpp"
@@ -56,7 +57,7 @@ scenarios::ProtocolSetup setup_of(const SimulateArgs& a) {
   setup.asynchronous = a.mode == "async";
   setup.steps_per_round = a.steps;
   setup.max_iterations = a.max_iterations;
-  setup.root = a.root == "smallest-id" ? core::RootRule::smallest_id : core::RootRule::deepest;
+  setup.root = core::parse_name(core::root_rule_names, a.root, "--root");
   setup.link.latency = scenarios::parse_latency(a.latency, "--latency");
   setup.link.loss = a.loss;
   setup.link.duplication = a.dup;
@@ -272,8 +273,7 @@ Action add_simulate_command(CLI::App& app) {
       ->check(CLI::Range(1, 10000))->capture_default_str();
   cmd->add_option("--max-iterations", args->max_iterations, "Cap on Thurston steps")
       ->check(CLI::Range(1, 100000000))->capture_default_str();
-  cmd->add_option("--root", args->root, "Layout root election: deepest or smallest-id")
-      ->check(CLI::IsMember({"deepest", "smallest-id"}))->capture_default_str();
+  add_choice(*cmd, "--root", args->root, core::root_rule_names, "Layout root election: deepest or smallest-id");
   cmd->add_option("--pairs", args->pairs, "'all' ordered pairs, or a number sampled with --seed")->capture_default_str();
   cmd->add_option("--scheme", args->scheme, "Forwarding scheme: greedy-power, greedy-euclid, compass, gfg or all")
       ->capture_default_str();

@@ -11,6 +11,7 @@
 #include "Common.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/core/packing/Packer.hpp"
+#include "laguerre/core/packing/PackingNames.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 
 namespace laguerre::tools {
@@ -56,9 +57,9 @@ Summary summarize(const std::vector<double>& v) {
 Row measure(const core::PlanarGraph& g, core::GraphKind kind, const std::string& name, const TableArgs& a) {
   core::PackOptions opt;
   opt.steps_per_check = a.steps;
-  opt.sweep = a.sweep == "gauss-seidel" ? core::Sweep::gauss_seidel : core::Sweep::jacobi;
+  opt.sweep = core::parse_name(core::sweep_names, a.sweep, "--sweep");
   opt.max_iterations = a.max_iterations;
-  opt.acceleration = core::parse_acceleration(a.accelerate);
+  opt.acceleration = core::parse_name(core::acceleration_names, a.accelerate, "--accelerate");
   Row row;
   row.name = name;
   row.kind = kind;
@@ -173,14 +174,11 @@ Action add_thesis_table_command(CLI::App& app) {
   cmd->add_option("--size", args->size, "Vertices per random graph")->capture_default_str();
   cmd->add_option("--seed", args->seed, "Seed of the first random graph")->check(seed_validator())->capture_default_str();
   cmd->add_option("--steps-per-check,-N", args->steps, "Sweeps between checks")->check(CLI::Range(1, 10000))->capture_default_str();
-  cmd->add_option("--sweep", args->sweep, "jacobi or gauss-seidel")->check(CLI::IsMember({"jacobi", "gauss-seidel"}))->capture_default_str();
+  add_choice(*cmd, "--sweep", args->sweep, core::sweep_names, "jacobi or gauss-seidel");
   cmd->add_option("--max-iterations", args->max_iterations, "Cap on sweeps per run")
       ->check(CLI::Range(1, 100000000))->capture_default_str();
   cmd->add_flag("--json", args->json, "Machine-readable output");
-  cmd->add_option("--accelerate", args->accelerate,
-                  "Sweep acceleration: plain, superstep (Collins-Stephenson), anderson, or newton (damped Newton steps "
-                  "on the angle sums instead of sweeps; an iteration is then a Newton step)")
-      ->check(CLI::IsMember({"plain", "superstep", "anderson", "newton"}))->capture_default_str();
+  add_acceleration_option(*cmd, args->accelerate);
   return [args] { return run_table(*args); };
 }
 

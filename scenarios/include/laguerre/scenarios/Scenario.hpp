@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "laguerre/core/EnumNames.hpp"
 #include "laguerre/core/packing/Accelerator.hpp"
 #include "laguerre/core/packing/Layout.hpp"
 #include "laguerre/core/routing/Routing.hpp"
@@ -44,6 +45,9 @@ enum class StopSpec {
   glpd,   ///< synonym of lpd (the protocol picks the rule from the graph's kind)
   exact,  ///< continue centrally (core::pack) to the thesis's exact packing and route on it
 };
+/// StopSpec: lpd, glpd, exact.
+inline constexpr core::EnumNames<StopSpec, 3> stop_spec_names{
+    {{StopSpec::lpd, "lpd"}, {StopSpec::glpd, "glpd"}, {StopSpec::exact, "exact"}}};
 
 /// `protocol:` — the distributed packing protocol's parameters.
 struct ProtocolSpec {
@@ -66,8 +70,19 @@ enum class GeometricPositions {
   packing,    ///< the packing's centres
   physical,   ///< the physical positions (the generator must provide them)
 };
+/// GeometricPositions: auto, packing, physical.
+inline constexpr core::EnumNames<GeometricPositions, 3> positions_names{{{GeometricPositions::automatic, "auto"},
+                                                                         {GeometricPositions::packing, "packing"},
+                                                                         {GeometricPositions::physical, "physical"}}};
 
 /// `routing:` — schemes and pairs.
+/// The routing schemes as scenario files and the command line spell them (core::to_string(Scheme) is
+/// the underscore form of the outputs).
+inline constexpr core::EnumNames<core::Scheme, 4> scheme_names{{{core::Scheme::greedy_power, "greedy-power"},
+                                                                {core::Scheme::greedy_euclid, "greedy-euclid"},
+                                                                {core::Scheme::compass, "compass"},
+                                                                {core::Scheme::gfg, "gfg"}}};
+
 struct RoutingSpec {
   std::vector<core::Scheme> schemes{core::all_schemes.begin(), core::all_schemes.end()};  ///< in order
   std::size_t pairs = 0;                     ///< 0 = all ordered pairs, else a seeded sample of k
