@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,28 @@
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 
 namespace laguerre::tools {
+
+/// A registered subcommand and the storage its options write to.
+template <class Args>
+struct Command {
+  CLI::App* cmd;               ///< the subcommand
+  std::shared_ptr<Args> args;  ///< its options' values, shared with the action
+};
+
+/// What `--help` says of a subcommand.
+struct CommandHelp {
+  const char* name;         ///< the subcommand
+  const char* description;  ///< one line
+  const char* footer;       ///< after the options (empty: none)
+};
+
+/// Registers the subcommand `help` describes, with fresh storage for its options.
+template <class Args>
+Command<Args> add_command(CLI::App& app, const CommandHelp& help) {
+  Command<Args> c{app.add_subcommand(help.name, help.description), std::make_shared<Args>()};
+  if (*help.footer) c.cmd->footer(help.footer);
+  return c;
+}
 
 /// The options naming one graph of a graph file: the file, its format and the graph's index.
 struct GraphArgs {

@@ -18,6 +18,9 @@
 namespace laguerre::tools {
 
 namespace {
+constexpr CommandHelp pack_help{"pack", "Compute a greedy power embedding of a planar graph (thesis §5.3).",
+                                "Exit status: 0 converged, 3 not converged (cap or precision loss), 2 bad input."};
+
 struct PackArgs {
   GraphArgs graph;
   std::string stop = "lpd";
@@ -147,24 +150,22 @@ int run_pack(const PackArgs& a) {
 }  // namespace
 
 Action add_pack_command(CLI::App& app) {
-  auto args = std::make_shared<PackArgs>();
-  CLI::App* cmd = app.add_subcommand("pack", "Compute a greedy power embedding of a planar graph (thesis §5.3).");
-  cmd->footer("Exit status: 0 converged, 3 not converged (cap or precision loss), 2 bad input.");
-  add_graph_options(*cmd, args->graph, "graph", "Graph file (edge list, coords or planar_code)");
-  add_choice(*cmd, "--stop", args->stop, core::stop_rule_names,
+  const auto c = add_command<PackArgs>(app, pack_help);
+  add_graph_options(*c.cmd, c.args->graph, "graph", "Graph file (edge list, coords or planar_code)");
+  add_choice(*c.cmd, "--stop", c.args->stop, core::stop_rule_names,
              "Stopping rule: lpd (LPD/GLPD everywhere), exact, angle, cap");
-  add_choice(*cmd, "--sweep", args->sweep, core::sweep_names, "Update order: jacobi or gauss-seidel");
-  add_choice(*cmd, "--root", args->root, core::root_rule_names, "Layout root: deepest or smallest-id");
-  cmd->add_option("--steps-per-check,-N", args->steps, "Thurston sweeps between two layouts and checks")
+  add_choice(*c.cmd, "--sweep", c.args->sweep, core::sweep_names, "Update order: jacobi or gauss-seidel");
+  add_choice(*c.cmd, "--root", c.args->root, core::root_rule_names, "Layout root: deepest or smallest-id");
+  c.cmd->add_option("--steps-per-check,-N", c.args->steps, "Thurston sweeps between two layouts and checks")
       ->check(CLI::Range(1, 10000))->capture_default_str();
-  cmd->add_option("--max-iterations", args->max_iterations, "Cap on sweeps")->check(CLI::Range(1, 100000000))->capture_default_str();
-  cmd->add_option("--epsilon", args->epsilon, "Angle-sum tolerance for --stop angle (radians)")->capture_default_str();
-  cmd->add_option("-o,--out", args->out, "Output path stem (writes STEM.json, STEM.svg, STEM.png); default GRAPHNAME-packing");
-  cmd->add_flag("--force", args->force, "Overwrite existing output files");
-  add_acceleration_option(*cmd, args->accelerate);
-  cmd->add_flag("--json", args->json_stdout, "Print the embedding JSON on standard output instead of writing STEM.json");
-  cmd->add_flag("--no-picture", args->no_picture, "Do not draw the SVG/PNG picture");
-  return [args] { return run_pack(*args); };
+  c.cmd->add_option("--max-iterations", c.args->max_iterations, "Cap on sweeps")->check(CLI::Range(1, 100000000))->capture_default_str();
+  c.cmd->add_option("--epsilon", c.args->epsilon, "Angle-sum tolerance for --stop angle (radians)")->capture_default_str();
+  c.cmd->add_option("-o,--out", c.args->out, "Output path stem (writes STEM.json, STEM.svg, STEM.png); default GRAPHNAME-packing");
+  c.cmd->add_flag("--force", c.args->force, "Overwrite existing output files");
+  add_acceleration_option(*c.cmd, c.args->accelerate);
+  c.cmd->add_flag("--json", c.args->json_stdout, "Print the embedding JSON on standard output instead of writing STEM.json");
+  c.cmd->add_flag("--no-picture", c.args->no_picture, "Do not draw the SVG/PNG picture");
+  return [args = c.args] { return run_pack(*args); };
 }
 
 }  // namespace laguerre::tools

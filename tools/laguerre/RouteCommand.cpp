@@ -14,6 +14,11 @@
 namespace laguerre::tools {
 
 namespace {
+constexpr CommandHelp route_help{
+    "route",
+    "Route packets over an embedding and report delivery and hop stretch.",
+    "A graph file is first packed to LPD/GLPD; an embedding file from `laguerre pack` is used as is."};
+
 struct RouteArgs {
   GraphArgs input;
   std::string scheme = "all";
@@ -102,17 +107,15 @@ int run_route(const RouteArgs& a) {
 }  // namespace
 
 Action add_route_command(CLI::App& app) {
-  auto args = std::make_shared<RouteArgs>();
-  CLI::App* cmd = app.add_subcommand("route", "Route packets over an embedding and report delivery and hop stretch.");
-  cmd->footer("A graph file is first packed to LPD/GLPD; an embedding file from `laguerre pack` is used as is.");
-  add_graph_options(*cmd, args->input, "input", "Graph file, or embedding JSON written by `laguerre pack`");
-  cmd->add_option("--scheme", args->scheme, "greedy-power, greedy-euclid, compass, gfg or all")->capture_default_str();
-  cmd->add_option("--pairs", args->pairs, "'all' ordered pairs, or a number of pairs sampled with --seed")->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Seed of the pair sample")->check(seed_validator())->capture_default_str();
-  cmd->add_option("--positions", args->positions, "For a graph file: layout (pack first) or input (its coordinates)")
+  const auto c = add_command<RouteArgs>(app, route_help);
+  add_graph_options(*c.cmd, c.args->input, "input", "Graph file, or embedding JSON written by `laguerre pack`");
+  c.cmd->add_option("--scheme", c.args->scheme, "greedy-power, greedy-euclid, compass, gfg or all")->capture_default_str();
+  c.cmd->add_option("--pairs", c.args->pairs, "'all' ordered pairs, or a number of pairs sampled with --seed")->capture_default_str();
+  c.cmd->add_option("--seed", c.args->seed, "Seed of the pair sample")->check(seed_validator())->capture_default_str();
+  c.cmd->add_option("--positions", c.args->positions, "For a graph file: layout (pack first) or input (its coordinates)")
       ->check(CLI::IsMember({"layout", "input"}))->capture_default_str();
-  cmd->add_flag("--json", args->json, "Machine-readable output");
-  return [args] { return run_route(*args); };
+  c.cmd->add_flag("--json", c.args->json, "Machine-readable output");
+  return [args = c.args] { return run_route(*args); };
 }
 
 }  // namespace laguerre::tools

@@ -15,6 +15,17 @@ namespace laguerre::tools {
 
 namespace fs = std::filesystem;
 
+void add_scenario_run_options(CLI::App& cmd, ScenarioRunArgs& args, const std::string& name, bool several,
+                              const std::string& out_help, const std::string& set_help) {
+  CLI::Option* files = cmd.add_option(name, args.scenarios, several ? "Scenario files (YAML)" : "Scenario file (YAML)");
+  files->required();
+  if (!several) files->expected(1);
+  cmd.add_option("-o,--output", args.out, out_help);
+  cmd.add_option("--jobs,-j", args.jobs, "Worker threads (default: hardware threads)")->check(CLI::Range(1, 4096));
+  cmd.add_flag("--force", args.force, "Replace the results in an existing result folder");
+  cmd.add_option("--set", args.overrides, set_help);
+}
+
 std::optional<std::vector<scenarios::Scenario>> load_scenarios(const std::vector<std::string>& files,
                                                               const std::vector<std::string>& overrides) {
   std::vector<scenarios::Scenario> out;

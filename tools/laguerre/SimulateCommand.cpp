@@ -22,6 +22,17 @@
 namespace laguerre::tools {
 
 namespace {
+constexpr CommandHelp simulate_help{
+    "simulate",
+    "Run the distributed packing protocol, one actor per node, in the discrete-event simulator.",
+    "Then every selected pair sends a packet, forwarded hop by hop by the --scheme(s); the geometric\n"
+    "schemes use the file's coordinates, or the packing's centres when it has none.\n"
+    "With --loss, --dup or --crash the nodes run the reliability layer (acks, retransmissions,\n"
+    "duplicate detection, crash detection); a detected crash ends every survivor with neighbour_failed.\n"
+    "A recovering node keeps its state: an outage shorter than the detection time is masked (the run\n"
+    "converges); after a longer one it ends with neighbour_failed as well.\n"
+    "Exit status: 0 converged, 3 not converged or a node failed, 2 bad input."};
+
 struct SimulateArgs {
   GraphArgs graph;
   std::string mode = "sync";
@@ -240,46 +251,37 @@ int run_simulate(const SimulateArgs& a) {
 }  // namespace
 
 Action add_simulate_command(CLI::App& app) {
-  auto args = std::make_shared<SimulateArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "simulate", "Run the distributed packing protocol, one actor per node, in the discrete-event simulator.");
-  cmd->footer("Then every selected pair sends a packet, forwarded hop by hop by the --scheme(s); the geometric\n"
-              "schemes use the file's coordinates, or the packing's centres when it has none.\n"
-              "With --loss, --dup or --crash the nodes run the reliability layer (acks, retransmissions,\n"
-              "duplicate detection, crash detection); a detected crash ends every survivor with neighbour_failed.\n"
-              "A recovering node keeps its state: an outage shorter than the detection time is masked (the run\n"
-              "converges); after a longer one it ends with neighbour_failed as well.\n"
-              "Exit status: 0 converged, 3 not converged or a node failed, 2 bad input.");
-  add_graph_options(*cmd, args->graph, "graph", "Graph file (edge list, coords or planar_code)");
-  cmd->add_option("--mode", args->mode, "Protocol mode: sync (bit for bit with core::pack) or async (chaotic updates)")
+  const auto c = add_command<SimulateArgs>(app, simulate_help);
+  add_graph_options(*c.cmd, c.args->graph, "graph", "Graph file (edge list, coords or planar_code)");
+  c.cmd->add_option("--mode", c.args->mode, "Protocol mode: sync (bit for bit with core::pack) or async (chaotic updates)")
       ->check(CLI::IsMember({"sync", "async"}))
       ->capture_default_str();
-  cmd->add_option("--latency", args->latency, "constant:D, uniform:LO:HI or distance:BASE:NS_PER_UNIT[:JITTER]")
+  c.cmd->add_option("--latency", c.args->latency, "constant:D, uniform:LO:HI or distance:BASE:NS_PER_UNIT[:JITTER]")
       ->capture_default_str();
-  cmd->add_option("--loss", args->loss, "Loss probability per copy (turns the reliability layer on)")->capture_default_str();
-  cmd->add_option("--dup", args->dup, "Duplication probability per message (turns the reliability layer on)")
+  c.cmd->add_option("--loss", c.args->loss, "Loss probability per copy (turns the reliability layer on)")->capture_default_str();
+  c.cmd->add_option("--dup", c.args->dup, "Duplication probability per message (turns the reliability layer on)")
       ->capture_default_str();
-  cmd->add_option("--crash", args->crashes,
+  c.cmd->add_option("--crash", c.args->crashes,
                   "Crash node ID at TIME for good (17@40ms) or until T2 (17@40ms-90ms); repeatable");
-  cmd->add_option("--recover", args->recoveries,
+  c.cmd->add_option("--recover", c.args->recoveries,
                   "Bring a crashed node back, e.g. 17@90ms (its state survives; repeatable)");
-  cmd->add_option("--retransmit-after", args->retransmit_after,
+  c.cmd->add_option("--retransmit-after", c.args->retransmit_after,
                   "First retransmission period of the reliability layer (default: 3 × the longest latency)");
-  cmd->add_flag("--fixed-rto", args->fixed_rto,
+  c.cmd->add_flag("--fixed-rto", c.args->fixed_rto,
                 "Keep the retransmission timeout at --retransmit-after (no round-trip estimation)");
-  cmd->add_option("--seed", args->seed, "Seed of every random stream (and of the pair sample)")
+  c.cmd->add_option("--seed", c.args->seed, "Seed of every random stream (and of the pair sample)")
       ->check(seed_validator())->capture_default_str();
-  cmd->add_option("--steps-per-round,-N", args->steps, "Thurston steps per round")
+  c.cmd->add_option("--steps-per-round,-N", c.args->steps, "Thurston steps per round")
       ->check(CLI::Range(1, 10000))->capture_default_str();
-  cmd->add_option("--max-iterations", args->max_iterations, "Cap on Thurston steps")
+  c.cmd->add_option("--max-iterations", c.args->max_iterations, "Cap on Thurston steps")
       ->check(CLI::Range(1, 100000000))->capture_default_str();
-  add_choice(*cmd, "--root", args->root, core::root_rule_names, "Layout root election: deepest or smallest-id");
-  cmd->add_option("--pairs", args->pairs, "'all' ordered pairs, or a number sampled with --seed")->capture_default_str();
-  cmd->add_option("--scheme", args->scheme, "Forwarding scheme: greedy-power, greedy-euclid, compass, gfg or all")
+  add_choice(*c.cmd, "--root", c.args->root, core::root_rule_names, "Layout root election: deepest or smallest-id");
+  c.cmd->add_option("--pairs", c.args->pairs, "'all' ordered pairs, or a number sampled with --seed")->capture_default_str();
+  c.cmd->add_option("--scheme", c.args->scheme, "Forwarding scheme: greedy-power, greedy-euclid, compass, gfg or all")
       ->capture_default_str();
-  cmd->add_flag("--verify", args->verify, "Also run core::pack and check the nodes' circles are identical");
-  cmd->add_flag("--json", args->json, "Machine-readable output");
-  return [args] { return run_simulate(*args); };
+  c.cmd->add_flag("--verify", c.args->verify, "Also run core::pack and check the nodes' circles are identical");
+  c.cmd->add_flag("--json", c.args->json, "Machine-readable output");
+  return [args = c.args] { return run_simulate(*args); };
 }
 
 }  // namespace laguerre::tools

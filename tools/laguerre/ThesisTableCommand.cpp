@@ -17,6 +17,12 @@
 namespace laguerre::tools {
 
 namespace {
+constexpr CommandHelp thesis_table_help{
+    "thesis-table",
+    "Reproduce the experiment of thesis §5.4.1 (iterations to LPD vs exact packing).",
+    "Without graph files: random Delaunay triangulations and 3-connected graphs obtained from them by\n"
+    "deleting edges (the interim random families documented in RandomGraphs.hpp)."};
+
 struct TableArgs {
   std::size_t count = 20;
   std::size_t size = 50;
@@ -165,21 +171,18 @@ int run_table(const TableArgs& a) {
 }  // namespace
 
 Action add_thesis_table_command(CLI::App& app) {
-  auto args = std::make_shared<TableArgs>();
-  CLI::App* cmd = app.add_subcommand("thesis-table", "Reproduce the experiment of thesis §5.4.1 (iterations to LPD vs exact packing).");
-  cmd->footer("Without graph files: random Delaunay triangulations and 3-connected graphs obtained from them by\n"
-              "deleting edges (the interim random families documented in RandomGraphs.hpp).");
-  cmd->add_option("graphs", args->files, "Graph files to use instead of the random families");
-  cmd->add_option("--count", args->count, "Graphs per family")->capture_default_str();
-  cmd->add_option("--size", args->size, "Vertices per random graph")->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Seed of the first random graph")->check(seed_validator())->capture_default_str();
-  cmd->add_option("--steps-per-check,-N", args->steps, "Sweeps between checks")->check(CLI::Range(1, 10000))->capture_default_str();
-  add_choice(*cmd, "--sweep", args->sweep, core::sweep_names, "jacobi or gauss-seidel");
-  cmd->add_option("--max-iterations", args->max_iterations, "Cap on sweeps per run")
+  const auto c = add_command<TableArgs>(app, thesis_table_help);
+  c.cmd->add_option("graphs", c.args->files, "Graph files to use instead of the random families");
+  c.cmd->add_option("--count", c.args->count, "Graphs per family")->capture_default_str();
+  c.cmd->add_option("--size", c.args->size, "Vertices per random graph")->capture_default_str();
+  c.cmd->add_option("--seed", c.args->seed, "Seed of the first random graph")->check(seed_validator())->capture_default_str();
+  c.cmd->add_option("--steps-per-check,-N", c.args->steps, "Sweeps between checks")->check(CLI::Range(1, 10000))->capture_default_str();
+  add_choice(*c.cmd, "--sweep", c.args->sweep, core::sweep_names, "jacobi or gauss-seidel");
+  c.cmd->add_option("--max-iterations", c.args->max_iterations, "Cap on sweeps per run")
       ->check(CLI::Range(1, 100000000))->capture_default_str();
-  cmd->add_flag("--json", args->json, "Machine-readable output");
-  add_acceleration_option(*cmd, args->accelerate);
-  return [args] { return run_table(*args); };
+  c.cmd->add_flag("--json", c.args->json, "Machine-readable output");
+  add_acceleration_option(*c.cmd, c.args->accelerate);
+  return [args = c.args] { return run_table(*args); };
 }
 
 }  // namespace laguerre::tools

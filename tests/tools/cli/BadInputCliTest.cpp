@@ -14,13 +14,7 @@ using laguerre::cli_test::run;
 class CliBadInput : public laguerre::cli_test::ScratchDir {};
 
 const std::string graph = std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/graphs/delaunay-60.txt";
-
-// Runs `args`, expects status 2 and every one of `needles` in the output.
-void expect_bad(const std::string& args, std::initializer_list<const char*> needles) {
-  const Outcome r = run(args);
-  EXPECT_EQ(r.status, 2) << args << "\n" << r.out;
-  for (const char* n : needles) EXPECT_NE(r.out.find(n), std::string::npos) << args << "\n" << r.out;
-}
+const auto expect_bad = laguerre::cli_test::expect_bad_input;
 }  // namespace
 
 TEST_F(CliBadInput, PairsMustBeAllOrPositive) {
