@@ -418,15 +418,16 @@ void parse_protocol(Context& ctx, const YAML::Node& n, ProtocolSpec& out) {
              {"mode", "steps_per_round", "stop", "max_iterations", "root", "exact_reference", "acceleration"});
   std::string s;
   if (const YAML::Node v = lookup(n, "mode");
-      v.IsDefined() && read_choice(c, v, "protocol.mode", {"sync", "async", "central"}, s)) {
-    out.asynchronous = s == "async";
-    out.central = s == "central";
+      v.IsDefined() && read_choice(c, v, "protocol.mode", core::names_of(protocol_mode_names), s)) {
+    out.asynchronous = *core::find_name(protocol_mode_names, s) == ProtocolMode::async;
+    out.central = *core::find_name(protocol_mode_names, s) == ProtocolMode::central;
   }
   if (const YAML::Node v = lookup(n, "acceleration"); v.IsDefined()) {
     if (read_choice(c, v, "protocol.acceleration", core::names_of(core::acceleration_names), s))
       out.acceleration = *core::find_name(core::acceleration_names, s);
     if (!out.central && out.acceleration != core::Acceleration::plain)
-      c.report(v, "protocol.acceleration", "'" + s + "' with mode " + (out.asynchronous ? "async" : "sync"),
+      c.report(v, "protocol.acceleration", "'" + s + "' with mode " +
+                   std::string(core::name_of(protocol_mode_names, out.asynchronous ? ProtocolMode::async : ProtocolMode::sync)),
                "plain, or mode central (the distributed protocol has no acceleration)");
   }
   std::int64_t i = 0;

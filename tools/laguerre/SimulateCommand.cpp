@@ -18,6 +18,7 @@
 #include "laguerre/protocols/Codec.hpp"
 #include "laguerre/scenarios/NetworkModel.hpp"
 #include "laguerre/scenarios/ProtocolRun.hpp"
+#include "laguerre/scenarios/Scenario.hpp"
 
 namespace laguerre::tools {
 
@@ -65,7 +66,7 @@ std::string_view outcome_name(protocols::PackingOutcome o) {
 
 scenarios::ProtocolSetup setup_of(const SimulateArgs& a) {
   scenarios::ProtocolSetup setup;
-  setup.asynchronous = a.mode == "async";
+  setup.asynchronous = core::parse_name(scenarios::protocol_mode_names, a.mode, "--mode") == scenarios::ProtocolMode::async;
   setup.steps_per_round = a.steps;
   setup.max_iterations = a.max_iterations;
   setup.root = core::parse_name(core::root_rule_names, a.root, "--root");
@@ -253,8 +254,10 @@ int run_simulate(const SimulateArgs& a) {
 Action add_simulate_command(CLI::App& app) {
   const auto c = add_command<SimulateArgs>(app, simulate_help);
   add_graph_options(*c.cmd, c.args->graph, "graph", "Graph file (edge list, coords or planar_code)");
+  const std::string sync_name(core::name_of(scenarios::protocol_mode_names, scenarios::ProtocolMode::sync));
+  const std::string async_name(core::name_of(scenarios::protocol_mode_names, scenarios::ProtocolMode::async));
   c.cmd->add_option("--mode", c.args->mode, "Protocol mode: sync (bit for bit with core::pack) or async (chaotic updates)")
-      ->check(CLI::IsMember({"sync", "async"}))
+      ->check(CLI::IsMember({sync_name, async_name}))
       ->capture_default_str();
   c.cmd->add_option("--latency", c.args->latency, "constant:D, uniform:LO:HI or distance:BASE:NS_PER_UNIT[:JITTER]")
       ->capture_default_str();

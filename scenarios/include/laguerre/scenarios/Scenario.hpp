@@ -49,6 +49,12 @@ enum class StopSpec {
 inline constexpr core::EnumNames<StopSpec, 3> stop_spec_names{
     {{StopSpec::lpd, "lpd"}, {StopSpec::glpd, "glpd"}, {StopSpec::exact, "exact"}}};
 
+/// How the packing runs: the distributed protocol (synchronous or asynchronous updates), or centrally.
+enum class ProtocolMode { sync, async, central };
+/// ProtocolMode: sync, async, central (`laguerre simulate --mode` offers the first two).
+inline constexpr core::EnumNames<ProtocolMode, 3> protocol_mode_names{
+    {{ProtocolMode::sync, "sync"}, {ProtocolMode::async, "async"}, {ProtocolMode::central, "central"}}};
+
 /// `protocol:` — the distributed packing protocol's parameters.
 struct ProtocolSpec {
   bool asynchronous = false;                   ///< mode: sync (default) or async
