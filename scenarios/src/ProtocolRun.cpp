@@ -148,7 +148,6 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
     o.outcome = node.outcome();
     o.final = node.is_final();
   }
-  out.retransmissions = out.reliability.retransmissions;
   const auto& traffic = host.simulator().traffic();
   const sim::TrafficCounters total = traffic.total();
   out.messages = total.messages_sent;
@@ -160,7 +159,6 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
   }
   for (std::size_t p = 0; p < traffic.phase_count(); ++p) out.by_phase.push_back(traffic.phase_total(static_cast<sim::Phase>(p)));
   out.simulated_time = report.simulated_time;
-  out.simulated_seconds = sim::to_seconds(report.simulated_time);
   out.wall_seconds = report.wall_seconds;
   out.events = report.events_processed;
   out.events_per_second = report.events_per_second;

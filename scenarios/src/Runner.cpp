@@ -157,8 +157,8 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
     r.bytes = po.bytes;
     r.messages_per_node = n ? static_cast<double>(po.messages) / static_cast<double>(n) : 0.0;
     r.max_node_messages = po.max_node_messages;
-    r.retransmissions = po.retransmissions;
-    r.simulated_seconds = po.simulated_seconds;
+    r.retransmissions = po.reliability.retransmissions;
+    r.simulated_seconds = sim::to_seconds(po.simulated_time);
     r.events = po.events;
     if (po.failed_nodes > 0 || po.crashed_nodes > 0) {
       r.status = RunStatus::node_failed;

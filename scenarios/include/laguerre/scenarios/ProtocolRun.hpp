@@ -76,13 +76,11 @@ struct ProtocolOutcome {
   /// Traffic per phase (index: protocols::MessageType; frames under the type they carry).
   std::vector<sim::TrafficCounters> by_phase;
   protocols::PackingCounters reliability;     ///< the nodes' counters, summed (retransmissions, acks, …)
-  std::uint64_t retransmissions = 0;          ///< reliability layer: retransmitted frames
   bool lossy = false;                         ///< whether the reliability layer ran
   sim::Duration retransmit_after = 0;         ///< its first retransmission period (lossy runs)
   bool adaptive_rto = false;                  ///< whether its timeout followed the round trips
   sim::Time simulated_time = 0;               ///< simulated time at the end
   sim::Time finished_at = 0;                  ///< when the last node reached its final outcome
-  double simulated_seconds = 0;               ///< simulated time at the end, in seconds
   double wall_seconds = 0;                    ///< wall-clock time of the simulation
   std::uint64_t events = 0;                   ///< events processed
   double events_per_second = 0;               ///< events per wall-clock second
