@@ -1,8 +1,10 @@
 #include "laguerre/scenarios/NetworkModel.hpp"
 
+#include <charconv>
 #include <cmath>
-#include <stdexcept>
 #include <vector>
+
+#include "laguerre/core/Error.hpp"
 
 namespace laguerre::scenarios {
 
@@ -17,9 +19,21 @@ std::vector<std::string> split(std::string_view text, char sep) {
     }
   return parts;
 }
+
+[[noreturn]] void fail(const std::string& source, std::string_view found, std::string_view expected) {
+  throw core::InputError(source, 0, "found '" + std::string(found) + "', expected " + std::string(expected));
+}
+
+// A decimal user id (no sign, no spaces), or nothing.
+std::optional<std::uint64_t> parse_id(std::string_view text) {
+  std::uint64_t id = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), id);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size()) return std::nullopt;
+  return id;
+}
 }  // namespace
 
-sim::Duration parse_duration(std::string_view text) {
+sim::Duration parse_duration(std::string_view text, const std::string& source) {
   const std::string s(text);
   std::size_t used = 0;
   double value = 0;
@@ -35,48 +49,75 @@ sim::Duration parse_duration(std::string_view text) {
   else if (unit == "ms") scale = 1e6;
   else if (unit == "s") scale = 1e9;
   if (used == 0 || scale == 0 || !(value >= 0) || !std::isfinite(value * scale) || value * scale > 9e18)
-    throw std::invalid_argument("expected a non-negative duration such as 250us, 1ms or 2s, found '" + s + "'");
+    fail(source, s, "a non-negative duration such as 250us, 1ms or 2s");
   return static_cast<sim::Duration>(value * scale + 0.5);
 }
 
-sim::LatencyModel parse_latency(std::string_view spec) {
+sim::LatencyModel parse_latency(std::string_view spec, const std::string& source) {
   const auto parts = split(spec, ':');
-  const std::string expected =
-      "expected constant:D, uniform:LO:HI or distance:BASE:NS_PER_UNIT[:JITTER] (durations like 1ms), found '" +
-      std::string(spec) + "'";
-  try {
-    if (parts[0] == "constant" && parts.size() == 2) return sim::LatencyModel::constant(parse_duration(parts[1]));
-    if (parts[0] == "uniform" && parts.size() == 3) {
-      const sim::Duration lo = parse_duration(parts[1]), hi = parse_duration(parts[2]);
-      if (hi < lo) throw std::invalid_argument("");
-      return sim::LatencyModel::uniform(lo, hi);
+  const auto duration = [](const std::string& text) -> std::optional<sim::Duration> {
+    try {
+      return parse_duration(text);
+    } catch (const core::InputError&) {
+      return std::nullopt;
     }
-    if (parts[0] == "distance" && (parts.size() == 3 || parts.size() == 4)) {
-      std::size_t used = 0;
-      const double per_unit = std::stod(parts[2], &used);
-      if (used != parts[2].size() || !(per_unit >= 0) || !std::isfinite(per_unit)) throw std::invalid_argument("");
-      return sim::LatencyModel::distance(parse_duration(parts[1]), per_unit,
-                                         parts.size() == 4 ? parse_duration(parts[3]) : 0);
-    }
-  } catch (const std::exception&) {
+  };
+  if (parts[0] == "constant" && parts.size() == 2)
+    if (const auto d = duration(parts[1])) return sim::LatencyModel::constant(*d);
+  if (parts[0] == "uniform" && parts.size() == 3) {
+    const auto lo = duration(parts[1]), hi = duration(parts[2]);
+    if (lo && hi && *hi < *lo)
+      fail(source, spec, "uniform:LO:HI with LO <= HI (" + parts[1] + " is above " + parts[2] + ")");
+    if (lo && hi) return sim::LatencyModel::uniform(*lo, *hi);
   }
-  throw std::invalid_argument(expected);
+  if (parts[0] == "distance" && (parts.size() == 3 || parts.size() == 4)) {
+    const auto base = duration(parts[1]);
+    const auto jitter = parts.size() == 4 ? duration(parts[3]) : std::optional<sim::Duration>(0);
+    double per_unit = 0;
+    const char* end = parts[2].data() + parts[2].size();
+    const auto [ptr, ec] = std::from_chars(parts[2].data(), end, per_unit);
+    if (base && jitter && !parts[2].empty() && ec == std::errc() && ptr == end && per_unit >= 0 && std::isfinite(per_unit))
+      return sim::LatencyModel::distance(*base, per_unit, *jitter);
+  }
+  fail(source, spec, latency_forms);
 }
 
-CrashSpec parse_crash(std::string_view spec) {
-  const std::string s(spec);
-  const std::size_t at = s.find('@');
-  std::size_t used = 0;
+CrashSpec parse_crash(std::string_view spec, const std::string& source) {
+  const std::size_t at = spec.find('@');
+  const auto id = at == std::string_view::npos ? std::nullopt : parse_id(spec.substr(0, at));
+  if (!id) fail(source, spec, crash_forms);
   CrashSpec c;
+  c.node = *id;
+  const std::string_view when = spec.substr(at + 1);
+  const std::size_t dash = when.find('-');
   try {
-    if (at != std::string::npos && at > 0 && s[0] != '-') c.node = std::stoull(s.substr(0, at), &used);
-    if (used == at) c.at = parse_duration(s.substr(at + 1));
-  } catch (const std::exception&) {
-    used = 0;
+    c.at = parse_duration(when.substr(0, dash));
+    if (dash != std::string_view::npos) c.recover_at = parse_duration(when.substr(dash + 1));
+  } catch (const core::InputError&) {
+    fail(source, spec, crash_forms);
   }
-  if (at == std::string::npos || used == 0 || used != at)
-    throw std::invalid_argument("expected ID@TIME such as 17@40ms, found '" + s + "'");
+  if (c.recover_at && *c.recover_at <= c.at)
+    fail(source, spec, "ID@T1-T2 with the recovery time T2 after the crash time T1");
   return c;
+}
+
+void add_recovery(std::vector<CrashSpec>& crashes, std::string_view spec, const std::string& source) {
+  const std::size_t at = spec.find('@');
+  const auto id = at == std::string_view::npos ? std::nullopt : parse_id(spec.substr(0, at));
+  sim::Time t = 0;
+  try {
+    if (id) t = parse_duration(spec.substr(at + 1));
+  } catch (const core::InputError&) {
+    fail(source, spec, "ID@TIME such as 17@90ms");
+  }
+  if (!id) fail(source, spec, "ID@TIME such as 17@90ms");
+  CrashSpec* best = nullptr;
+  for (CrashSpec& c : crashes)
+    if (c.node == *id && !c.recover_at && c.at < t && (!best || c.at > best->at)) best = &c;
+  if (!best)
+    throw core::InputError(source, 0, std::string(spec) + ": node " + std::to_string(*id) +
+                                          " has no crash before that time without a recovery.");
+  best->recover_at = t;
 }
 
 std::string format_duration(sim::Duration d) {

@@ -1,12 +1,13 @@
-// The packing protocol on the simulator (what `laguerre simulate` does, as a library function).
+// The protocols on the simulator: the one wiring of `laguerre simulate` and the scenario runner.
 #include "laguerre/scenarios/ProtocolRun.hpp"
 
 #include <algorithm>
 #include <memory>
-#include <stdexcept>
 
+#include "laguerre/core/Error.hpp"
+#include "laguerre/core/packing/Packer.hpp"
+#include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/protocols/Codec.hpp"
-#include "laguerre/protocols/PackingNode.hpp"
 #include "laguerre/sim/SimHost.hpp"
 
 namespace laguerre::scenarios {
@@ -32,13 +33,54 @@ sim::Duration max_latency(const sim::Network& net, const sim::LinkModel& link) {
 }
 
 // Traffic is counted under the message type; a frame of the reliability layer under the type of the
-// message it carries, a probe (empty frame) and an ack under their own.
+// message it carries (retransmissions included), a probe (empty frame) and an ack under their own.
 sim::Phase phase_of(std::span<const std::byte> bytes) {
   const std::size_t frame_header = protocols::encoded_size(protocols::MessageType::frame);
   if (bytes.size() > frame_header + 1 && bytes[1] == static_cast<std::byte>(protocols::MessageType::frame))
     return static_cast<sim::Phase>(bytes[frame_header + 1]);
   return bytes.size() >= 2 ? static_cast<sim::Phase>(bytes[1]) : 0;
 }
+
+protocols::PackingParams packing_params(const ProtocolSetup& setup) {
+  protocols::PackingParams params;
+  params.steps_per_check = setup.steps_per_round;
+  params.max_iterations = setup.max_iterations;
+  params.root = setup.root;
+  params.asynchronous = setup.asynchronous;
+  return params;
+}
+
+std::string crash_text(const CrashSpec& c) {
+  return std::to_string(c.node) + "@" + format_duration(c.at) + (c.recover_at ? "-" + format_duration(*c.recover_at) : "");
+}
+
+// Hop distances (breadth-first search) from every source that appears in `pairs`; other rows empty.
+std::vector<std::vector<std::uint32_t>> bfs_from_sources(const core::PlanarGraph& g,
+                                                          const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs) {
+  const std::size_t n = g.num_vertices();
+  constexpr std::uint32_t unreached = 0xffffffffu;
+  std::vector<std::vector<std::uint32_t>> dist(n);
+  std::vector<core::Vertex> queue;
+  for (const auto& [s, t] : pairs) {
+    if (!dist[s].empty()) continue;
+    dist[s].assign(n, unreached);
+    dist[s][s] = 0;
+    queue.assign(1, s);
+    for (std::size_t head = 0; head < queue.size(); ++head)
+      for (const core::Vertex w : g.neighbours(queue[head]))
+        if (dist[s][w] == unreached) {
+          dist[s][w] = dist[s][queue[head]] + 1;
+          queue.push_back(w);
+        }
+  }
+  return dist;
+}
+
+class Collector : public protocols::PacketSink {
+public:
+  void on_packet_end(const protocols::PacketReport& r) override { reports.push_back(r); }
+  std::vector<protocols::PacketReport> reports;
+};
 }  // namespace
 
 ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
@@ -46,27 +88,29 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
   const std::size_t n = g.num_vertices();
   setup.link.validate();
   if (setup.link.latency.kind == sim::LatencyKind::distance && positions.empty())
-    throw std::invalid_argument("a distance latency needs node positions, and this topology has none");
-  protocols::PackingParams params;
-  params.steps_per_check = setup.steps_per_round;
-  params.max_iterations = setup.max_iterations;
-  params.root = setup.root;
-  params.asynchronous = setup.asynchronous;
+    throw core::InputError("a distance latency needs node positions, and this topology has none");
+  protocols::PackingParams params = packing_params(setup);
   sim::Network network = make_network(g, positions, setup.link);
-  std::vector<sim::NodeIndex> crashed;
+  ProtocolOutcome out;
+  std::vector<bool> down(n, false);  // down for good
   for (const CrashSpec& c : setup.crashes) {
     const auto v = network.index_of(c.node);
-    if (!v) throw std::invalid_argument("crash " + std::to_string(c.node) + "@" + format_duration(c.at) +
-                                        ": the graph has no node with id " + std::to_string(c.node));
-    network.add_crash(*v, c.at);
-    crashed.push_back(*v);
+    if (!v)
+      throw core::InputError("crash " + crash_text(c), 0, "the graph has no node with id " + std::to_string(c.node));
+    network.add_crash(*v, c.at, c.recover_at);
+    out.outages.push_back({c, *v, protocols::PackingOutcome::running, false});
+    if (!c.recover_at) down[*v] = true;
   }
-  const bool lossy = setup.link.loss > 0 || setup.link.duplication > 0 || !setup.crashes.empty() ||
-                     setup.retransmit_after.has_value();
-  if (lossy) {
+  // Loss, duplication and crashes need the reliability layer (PackingNode.hpp, "Loss, duplication and
+  // crashes"); on reliable links it stays off and the wire traffic is the synchronous protocol's.
+  out.lossy = setup.lossy();
+  if (out.lossy) {
     protocols::enable_lossy_links(params, max_latency(network, setup.link));
     if (setup.retransmit_after) params.retransmit_after = std::max<sim::Duration>(1, *setup.retransmit_after);
+    params.adaptive_rto = setup.adaptive_rto;
   }
+  out.retransmit_after = params.retransmit_after;
+  out.adaptive_rto = params.adaptive_rto;
   sim::SimConfig config;
   config.seed = setup.seed;
   sim::SimHost host(
@@ -77,7 +121,6 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
       phase_of);
   const sim::RunReport report = host.run();
 
-  ProtocolOutcome out;
   out.circles.resize(n);
   out.local.resize(n);
   for (core::Vertex v = 0; v < n; ++v) {
@@ -88,21 +131,141 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
     out.holds_nodes += node.local_condition() == core::LocalCondition::holds;
     out.iterations = std::max(out.iterations, node.steps());
     out.rounds = std::max(out.rounds, node.round());
-    out.retransmissions += node.counters().retransmissions;
-    if (std::find(crashed.begin(), crashed.end(), v) != crashed.end()) continue;
-    out.failed_nodes += node.outcome() == protocols::PackingOutcome::neighbour_failed;
+    out.reliability += node.counters();
+    if (node.finished_at() >= 0) out.finished_at = std::max(out.finished_at, node.finished_at());
+    // A node down for good is no survivor; a node that came back counts as one.
+    if (down[v]) {
+      ++out.crashed_nodes;
+      continue;
+    }
+    if (node.outcome() == protocols::PackingOutcome::neighbour_failed) {
+      ++out.failed_nodes;
+      ++out.suspects[node.suspect()];
+    }
   }
-  std::sort(crashed.begin(), crashed.end());
-  out.crashed_nodes = static_cast<std::size_t>(std::unique(crashed.begin(), crashed.end()) - crashed.begin());
+  for (OutageOutcome& o : out.outages) {
+    const auto& node = static_cast<const protocols::PackingNode&>(host.node(o.node));
+    o.outcome = node.outcome();
+    o.final = node.is_final();
+  }
   const auto& traffic = host.simulator().traffic();
   const sim::TrafficCounters total = traffic.total();
   out.messages = total.messages_sent;
   out.bytes = total.bytes_sent;
-  for (sim::NodeIndex v = 0; v < n; ++v) out.max_node_messages = std::max(out.max_node_messages, traffic.node_total(v).messages_sent);
-  out.simulated_seconds = sim::to_seconds(report.simulated_time);
+  for (sim::NodeIndex v = 0; v < n; ++v) {
+    const auto t = traffic.node_total(v);
+    out.max_node_messages = std::max(out.max_node_messages, t.messages_sent);
+    out.max_node_bytes = std::max(out.max_node_bytes, t.bytes_sent);
+  }
+  for (std::size_t p = 0; p < traffic.phase_count(); ++p) out.by_phase.push_back(traffic.phase_total(static_cast<sim::Phase>(p)));
+  out.simulated_time = report.simulated_time;
   out.wall_seconds = report.wall_seconds;
   out.events = report.events_processed;
+  out.events_per_second = report.events_per_second;
+  out.peak_memory_bytes = report.peak_memory_bytes;
   return out;
+}
+
+std::string verify_against_core(const core::PlanarGraph& g, core::GraphKind kind, const ProtocolSetup& setup,
+                                const ProtocolOutcome& outcome) {
+  const std::size_t n = g.num_vertices();
+  if (outcome.failed_nodes > 0) return "not applicable: the run was abandoned after a node failure";
+  if (setup.asynchronous) {
+    // The asynchronous iterates depend on timing: check the nodes' embedding with core's own checks.
+    const auto checks = core::check_all(g, outcome.circles);
+    const auto ok = static_cast<std::size_t>(std::count(checks.begin(), checks.end(), core::LocalCondition::holds));
+    return "asynchronous mode (not bit for bit by design): core's " +
+           std::string(kind == core::GraphKind::triangulated_disc ? "LPD" : "GLPD") + " check holds at " +
+           std::to_string(ok) + "/" + std::to_string(n) + " nodes";
+  }
+  core::PackOptions opt;
+  opt.steps_per_check = setup.steps_per_round;
+  opt.max_iterations = setup.max_iterations;
+  opt.root = setup.root;
+  const core::PackResult r = core::pack(g, opt);
+  const core::CircleEmbedding& phi = outcome.circles;
+  bool same = r.iterations == static_cast<int>(outcome.iterations);
+  for (core::Vertex v = 0; v < n && same; ++v)
+    same = r.circles[v].x == phi[v].x && r.circles[v].y == phi[v].y && r.circles[v].r == phi[v].r;
+  return same ? "identical to core::pack, bit for bit" : "DIFFERS from core::pack";
+}
+
+std::unique_ptr<protocols::Node> make_forwarding_node(protocols::Runtime& rt, protocols::PacketSink& sink,
+                                                      const core::PlanarGraph& g, core::Vertex v,
+                                                      const core::CircleEmbedding& circles,
+                                                      const std::vector<core::Point2>& positions) {
+  std::vector<protocols::NodeId> nb;
+  std::vector<core::Circle> nb_circles;
+  std::vector<core::Point2> nb_points;
+  for (core::Vertex w : g.neighbours(v)) {
+    nb.push_back(g.id(w));
+    nb_circles.push_back(circles[w]);
+    nb_points.push_back(positions[w]);
+  }
+  return std::make_unique<protocols::ForwardingNode>(rt, sink, g.id(v), nb, circles[v], nb_circles, positions[v],
+                                                     nb_points);
+}
+
+std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
+                                             const std::vector<core::Point2>& positions, const sim::LinkModel& link,
+                                             std::uint64_t seed, const std::vector<core::Scheme>& schemes,
+                                             const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs) {
+  const std::size_t n = g.num_vertices();
+  std::vector<core::Point2> pos(n);
+  for (core::Vertex v = 0; v < n; ++v) pos[v] = positions.empty() ? core::centre(circles[v]) : positions[v];
+  const std::vector<std::vector<std::uint32_t>> hop_distance = bfs_from_sources(g, pairs);
+  // Forwarding has no retransmission: packets travel over the same latencies without loss/duplication.
+  sim::LinkModel fwd_link = link;
+  fwd_link.loss = 0;
+  fwd_link.duplication = 0;
+  sim::SimConfig config;
+  config.seed = seed;
+  std::vector<ForwardingResult> results;
+  for (const core::Scheme scheme : schemes) {
+    ForwardingResult res;
+    res.scheme = scheme;
+    res.packets = pairs.size();
+    Collector sink;
+    sim::SimHost fwd(
+        make_network(g, positions, fwd_link), config,
+        [&](protocols::Runtime& rt, sim::NodeIndex v) { return make_forwarding_node(rt, sink, g, v, circles, pos); },
+        phase_of);
+    // core::route's default hop limit, so that the hop-by-hop outcomes are core's.
+    const auto ttl = static_cast<std::uint32_t>(std::min<std::size_t>(core::default_ttl(g, scheme), 0xffffffffu));
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const auto [s, t] = pairs[i];
+      static_cast<protocols::ForwardingNode&>(fwd.node(s)).originate({i, g.id(t), circles[t], ttl, scheme, pos[t]});
+    }
+    const sim::RunReport fwd_report = fwd.run();
+    res.simulated_seconds = sim::to_seconds(fwd_report.simulated_time);
+    std::vector<double> stretch;
+    double hops = 0;
+    for (const auto& r : sink.reports) {
+      switch (r.outcome) {
+        case protocols::PacketOutcome::delivered: {
+          ++res.delivered;
+          hops += r.hops;
+          const auto [s, t] = pairs[r.packet];
+          const std::uint32_t d = hop_distance[s][t];
+          if (d > 0) stretch.push_back(static_cast<double>(r.hops) / static_cast<double>(d));
+          break;
+        }
+        case protocols::PacketOutcome::dead_end: ++res.dead_ends; break;
+        case protocols::PacketOutcome::loop: ++res.loops; break;
+        case protocols::PacketOutcome::ttl_exceeded: ++res.ttl_exceeded; break;
+      }
+    }
+    res.hops_mean = res.delivered ? hops / static_cast<double>(res.delivered) : 0.0;
+    if (!stretch.empty()) {
+      double sum = 0;
+      for (double x : stretch) sum += x;
+      res.stretch_mean = sum / static_cast<double>(stretch.size());
+      res.stretch_max = *std::max_element(stretch.begin(), stretch.end());
+      res.stretch_p95 = core::nearest_rank_percentile(stretch, 95);
+    }
+    results.push_back(res);
+  }
+  return results;
 }
 
 }  // namespace laguerre::scenarios

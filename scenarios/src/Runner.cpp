@@ -8,6 +8,7 @@
 #include <mutex>
 #include <thread>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/random/Random.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
@@ -145,8 +146,8 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
     r.bytes = po.bytes;
     r.messages_per_node = n ? static_cast<double>(po.messages) / static_cast<double>(n) : 0.0;
     r.max_node_messages = po.max_node_messages;
-    r.retransmissions = po.retransmissions;
-    r.simulated_seconds = po.simulated_seconds;
+    r.retransmissions = po.reliability.retransmissions;
+    r.simulated_seconds = sim::to_seconds(po.simulated_time);
     r.events = po.events;
     if (po.failed_nodes > 0 || po.crashed_nodes > 0) {
       r.status = RunStatus::node_failed;
@@ -183,7 +184,7 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
     const bool physical = cfg.routing.positions == GeometricPositions::physical ||
                           (cfg.routing.positions == GeometricPositions::automatic && !topo.positions.empty());
     if (physical && topo.positions.empty())
-      throw std::invalid_argument("routing.positions is physical but " + topo.name + " has no positions");
+      throw core::InputError("routing.positions", 0, "is physical but " + topo.name + " has no positions");
     const core::CircleEmbedding geo = physical ? point_circles(topo.positions) : core::CircleEmbedding{};
     const core::PairSelection selection{cfg.routing.pairs, plan.seed};
     for (core::Scheme s : cfg.routing.schemes) {

@@ -2,29 +2,10 @@
 
 namespace laguerre::scenarios {
 
-std::string_view to_string(StopSpec stop) {
-  switch (stop) {
-    case StopSpec::lpd: return "lpd";
-    case StopSpec::glpd: return "glpd";
-    case StopSpec::exact: return "exact";
-  }
-  return "?";
-}
+std::string_view to_string(StopSpec stop) { return core::name_of(stop_spec_names, stop); }
 
-std::string_view to_string(GeometricPositions positions) {
-  switch (positions) {
-    case GeometricPositions::automatic: return "auto";
-    case GeometricPositions::packing: return "packing";
-    case GeometricPositions::physical: return "physical";
-  }
-  return "?";
-}
+std::string_view to_string(GeometricPositions positions) { return core::name_of(positions_names, positions); }
 
-std::string scheme_name(core::Scheme scheme) {
-  std::string s(core::to_string(scheme));
-  for (char& c : s)
-    if (c == '_') c = '-';
-  return s;
-}
+std::string scheme_name(core::Scheme scheme) { return std::string(core::name_of(scheme_names, scheme)); }
 
 }  // namespace laguerre::scenarios

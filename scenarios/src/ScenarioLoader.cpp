@@ -3,6 +3,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "laguerre/core/InputFile.hpp"
+#include "laguerre/core/packing/PackingNames.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -16,7 +19,7 @@
 namespace laguerre::scenarios {
 
 ScenarioError::ScenarioError(std::vector<std::string> issues)
-    : std::runtime_error([&] {
+    : core::InputError([&] {
         std::string s;
         for (const auto& i : issues) s += (s.empty() ? "" : "\n") + i;
         return s;
@@ -74,6 +77,14 @@ public:
 
   void report(const YAML::Node& at, const YAML::Node& fallback, const std::string& path, const std::string& found,
               const std::string& expected) {
+    report_message(at, fallback, path, "found " + found + ", expected " + expected);
+  }
+  void report(const YAML::Node& at, const std::string& path, const std::string& found, const std::string& expected) {
+    report(at, YAML::Node(), path, found, expected);
+  }
+  /// As report, with the "found X, expected Y" part already written (a parser's InputError message).
+  void report_message(const YAML::Node& at, const YAML::Node& fallback, const std::string& path,
+                      const std::string& message) {
     std::string w = where(at);
     YAML::Mark mark = at.IsDefined() ? at.Mark() : YAML::Mark::null_mark();
     if (w.empty()) {
@@ -81,13 +92,10 @@ public:
       mark = fallback.IsDefined() ? fallback.Mark() : YAML::Mark::null_mark();
     }
     if (w.empty()) w = source_;
-    std::string msg = w + ": " + path + ": found " + found + ", expected " + expected;
+    std::string msg = w + ": " + path + ": " + message;
     // Messages in file order: by line and column; overrides and unlocated messages last.
     const bool in_file = w.rfind(source_ + ":", 0) == 0 && !mark.is_null();
     add(in_file ? mark.line : std::numeric_limits<int>::max(), in_file ? mark.column : 0, std::move(msg));
-  }
-  void report(const YAML::Node& at, const std::string& path, const std::string& found, const std::string& expected) {
-    report(at, YAML::Node(), path, found, expected);
   }
   /// A message not tied to a node.
   void report_plain(const std::string& msg) { add(std::numeric_limits<int>::max(), 0, msg); }
@@ -357,13 +365,15 @@ void parse_network(Context& ctx, const YAML::Node& n, NetworkSpec& out) {
   if (!expect_map(c, n, "network")) return;
   check_keys(c, n, "network", {"latency", "loss", "duplication", "crashes", "retransmit_after"});
   if (const YAML::Node v = lookup(n, "latency"); v.IsDefined()) {
-    try {
-      if (!v.IsScalar()) throw std::invalid_argument("");
-      out.latency = parse_latency(v.Scalar());
-      out.latency_text = v.Scalar();
-    } catch (const std::exception&) {
-      c.report(v, "network.latency", found(v),
-               "constant:D, uniform:LO:HI or distance:BASE:NS_PER_UNIT[:JITTER] (durations like 250us, 1ms, 2s)");
+    if (!v.IsScalar()) {
+      c.report(v, "network.latency", found(v), std::string(latency_forms));
+    } else {
+      try {
+        out.latency = parse_latency(v.Scalar());
+        out.latency_text = v.Scalar();
+      } catch (const core::InputError& e) {
+        c.report_message(v, YAML::Node(), "network.latency", e.message());
+      }
     }
   }
   if (const YAML::Node v = lookup(n, "loss"); v.IsDefined()) read_number(c, v, "network.loss", 0, 1, out.loss, true);
@@ -371,28 +381,32 @@ void parse_network(Context& ctx, const YAML::Node& n, NetworkSpec& out) {
     read_number(c, v, "network.duplication", 0, 1, out.duplication);
   if (const YAML::Node v = lookup(n, "crashes"); v.IsDefined()) {
     if (!v.IsSequence()) {
-      c.report(v, "network.crashes", found(v), "a list of crashes ID@TIME such as 17@40ms");
+      c.report(v, "network.crashes", found(v), "a list of crashes " + std::string(crash_forms));
     } else {
       for (std::size_t i = 0; i < v.size(); ++i) {
         const std::string path = "network.crashes[" + std::to_string(i) + "]";
+        if (!v[i].IsScalar()) {
+          c.report(v[i], v, path, found(v[i]), "a crash " + std::string(crash_forms));
+          continue;
+        }
         try {
-          if (!v[i].IsScalar()) throw std::invalid_argument("");
           out.crashes.push_back(parse_crash(v[i].Scalar()));
-        } catch (const std::exception&) {
-          c.report(v[i], v, path, found(v[i]), "a crash ID@TIME such as 17@40ms");
+        } catch (const core::InputError& e) {
+          c.report_message(v[i], v, path, e.message());
         }
       }
     }
   }
   if (const YAML::Node v = lookup(n, "retransmit_after"); v.IsDefined()) {
+    std::optional<sim::Duration> d;
     try {
-      if (!v.IsScalar()) throw std::invalid_argument("");
-      const sim::Duration d = parse_duration(v.Scalar());
-      if (d <= 0) throw std::invalid_argument("");
-      out.retransmit_after = d;
-    } catch (const std::exception&) {
-      c.report(v, "network.retransmit_after", found(v), "a positive duration such as 250us, 1ms or 2s");
+      if (v.IsScalar()) d = parse_duration(v.Scalar());
+    } catch (const core::InputError&) {
     }
+    if (d && *d > 0)
+      out.retransmit_after = d;
+    else
+      c.report(v, "network.retransmit_after", found(v), "a positive duration such as 250us, 1ms or 2s");
   }
 }
 
@@ -404,29 +418,31 @@ void parse_protocol(Context& ctx, const YAML::Node& n, ProtocolSpec& out) {
              {"mode", "steps_per_round", "stop", "max_iterations", "root", "exact_reference", "acceleration"});
   std::string s;
   if (const YAML::Node v = lookup(n, "mode");
-      v.IsDefined() && read_choice(c, v, "protocol.mode", {"sync", "async", "central"}, s)) {
-    out.asynchronous = s == "async";
-    out.central = s == "central";
+      v.IsDefined() && read_choice(c, v, "protocol.mode", core::names_of(protocol_mode_names), s)) {
+    out.asynchronous = *core::find_name(protocol_mode_names, s) == ProtocolMode::async;
+    out.central = *core::find_name(protocol_mode_names, s) == ProtocolMode::central;
   }
   if (const YAML::Node v = lookup(n, "acceleration"); v.IsDefined()) {
-    if (read_choice(c, v, "protocol.acceleration", {"plain", "superstep", "anderson", "newton"}, s))
-      out.acceleration = core::parse_acceleration(s);
+    if (read_choice(c, v, "protocol.acceleration", core::names_of(core::acceleration_names), s))
+      out.acceleration = *core::find_name(core::acceleration_names, s);
     if (!out.central && out.acceleration != core::Acceleration::plain)
-      c.report(v, "protocol.acceleration", "'" + s + "' with mode " + (out.asynchronous ? "async" : "sync"),
+      c.report(v, "protocol.acceleration", "'" + s + "' with mode " +
+                   std::string(core::name_of(protocol_mode_names, out.asynchronous ? ProtocolMode::async : ProtocolMode::sync)),
                "plain, or mode central (the distributed protocol has no acceleration)");
   }
   std::int64_t i = 0;
   if (const YAML::Node v = lookup(n, "steps_per_round");
       v.IsDefined() && read_integer(c, v, "protocol.steps_per_round", 1, 10000, i))
     out.steps_per_round = static_cast<int>(i);
-  if (const YAML::Node v = lookup(n, "stop"); v.IsDefined() && read_choice(c, v, "protocol.stop", {"lpd", "glpd", "exact"}, s))
-    out.stop = s == "lpd" ? StopSpec::lpd : s == "glpd" ? StopSpec::glpd : StopSpec::exact;
+  if (const YAML::Node v = lookup(n, "stop");
+      v.IsDefined() && read_choice(c, v, "protocol.stop", core::names_of(stop_spec_names), s))
+    out.stop = *core::find_name(stop_spec_names, s);
   if (const YAML::Node v = lookup(n, "max_iterations");
       v.IsDefined() && read_integer(c, v, "protocol.max_iterations", 1, 100000000, i))
     out.max_iterations = static_cast<int>(i);
   if (const YAML::Node v = lookup(n, "root");
-      v.IsDefined() && read_choice(c, v, "protocol.root", {"deepest", "smallest-id"}, s))
-    out.root = s == "deepest" ? core::RootRule::deepest : core::RootRule::smallest_id;
+      v.IsDefined() && read_choice(c, v, "protocol.root", core::names_of(core::root_rule_names), s))
+    out.root = *core::find_name(core::root_rule_names, s);
   if (const YAML::Node v = lookup(n, "exact_reference"); v.IsDefined())
     read_bool(c, v, "protocol.exact_reference", out.exact_reference);
 }
@@ -436,7 +452,7 @@ void parse_routing(Context& ctx, const YAML::Node& n, RoutingSpec& out) {
   if (!n.IsDefined()) return;
   if (!expect_map(c, n, "routing")) return;
   check_keys(c, n, "routing", {"schemes", "pairs", "positions", "sample_routes"});
-  const std::vector<std::string> names{"greedy-power", "greedy-euclid", "compass", "gfg"};
+  const std::vector<std::string> names = core::names_of(scheme_names);
   if (const YAML::Node v = lookup(n, "schemes"); v.IsDefined()) {
     if (v.IsScalar() && v.Scalar() == "all") {
       // default: all four
@@ -448,9 +464,7 @@ void parse_routing(Context& ctx, const YAML::Node& n, RoutingSpec& out) {
         std::string s;
         const std::string path = "routing.schemes[" + std::to_string(i) + "]";
         if (!read_choice(c, v[i], path, names, s)) continue;
-        for (char& ch : s)
-          if (ch == '-') ch = '_';
-        const core::Scheme sc = *core::parse_scheme(s);
+        const core::Scheme sc = *core::find_name(scheme_names, s);
         bool dup = false;
         for (auto x : out.schemes) dup = dup || x == sc;
         if (dup)
@@ -473,10 +487,8 @@ void parse_routing(Context& ctx, const YAML::Node& n, RoutingSpec& out) {
   }
   std::string s;
   if (const YAML::Node v = lookup(n, "positions");
-      v.IsDefined() && read_choice(c, v, "routing.positions", {"auto", "packing", "physical"}, s))
-    out.positions = s == "auto" ? GeometricPositions::automatic
-                    : s == "packing" ? GeometricPositions::packing
-                                     : GeometricPositions::physical;
+      v.IsDefined() && read_choice(c, v, "routing.positions", core::names_of(positions_names), s))
+    out.positions = *core::find_name(positions_names, s);
   std::int64_t k = 0;
   if (const YAML::Node v = lookup(n, "sample_routes");
       v.IsDefined() && read_integer(c, v, "routing.sample_routes", 0, 20, k))
@@ -740,12 +752,14 @@ Scenario load_scenario_from_string(std::string_view text, const std::string& sou
 }
 
 Scenario load_scenario(const std::string& path, const LoadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError({path + ": found no readable file, expected a scenario file (YAML)"});
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::string text;
+  try {
+    text = core::read_input_file(path, "scenario file (YAML)");
+  } catch (const core::InputError& e) {
+    throw ScenarioError({e.what()});
+  }
   const fs::path parent = fs::path(path).parent_path();
-  return load_scenario_from_string(text.str(), path, parent.empty() ? "." : parent.string(), options);
+  return load_scenario_from_string(text, path, parent.empty() ? "." : parent.string(), options);
 }
 
 }  // namespace laguerre::scenarios

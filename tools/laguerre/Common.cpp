@@ -1,23 +1,76 @@
 #include "Common.hpp"
 
+#include <charconv>
 #include <filesystem>
-#include <stdexcept>
+
+#include "laguerre/core/Error.hpp"
+#include "laguerre/core/InputFile.hpp"
+#include "laguerre/core/packing/PackingNames.hpp"
+#include "laguerre/scenarios/Scenario.hpp"
 
 namespace laguerre::tools {
 
-LoadedGraph load_graph(const std::string& path, const std::string& format, std::size_t index) {
-  auto graphs = core::read_graphs(path, core::parse_graph_format(format));
-  if (index < 1 || index > graphs.size())
-    throw std::invalid_argument("Graph index " + std::to_string(index) + " is out of range: " + path + " holds " +
-                                std::to_string(graphs.size()) + " graph(s).");
-  LoadedGraph out{std::move(graphs[index - 1]), {}};
+void add_graph_options(CLI::App& cmd, GraphArgs& args, const std::string& name, const std::string& what) {
+  cmd.add_option(name, args.path, what)->required();
+  cmd.add_option("--format", args.format, "Graph format: automatic, edges, coords, planar_code")->capture_default_str();
+  cmd.add_option("--index", args.index, "Which graph of a multi-graph file (from 1)")->capture_default_str();
+}
+
+std::vector<core::GraphInput> read_graph_file(const std::string& path, const std::string& format) {
+  (void)core::open_input_file(path, "graph file");  // the one message for a missing file or a folder
+  return core::read_graphs(path, core::parse_graph_format(format));
+}
+
+LoadedGraph load_graph(const GraphArgs& args) {
+  auto graphs = read_graph_file(args.path, args.format);
+  if (args.index < 1 || args.index > graphs.size())
+    throw core::InputError("--index", 0,
+                           "graph index " + std::to_string(args.index) + " is out of range: " + args.path + " holds " +
+                               std::to_string(graphs.size()) + " graph(s).");
+  LoadedGraph out{std::move(graphs[args.index - 1]), {}};
   out.input.graph = core::prepare_for_packing(out.input, &out.kind);
   return out;
 }
 
+std::vector<core::Scheme> parse_schemes(const std::string& text, const std::string& option) {
+  if (text == "all") return {core::all_schemes.begin(), core::all_schemes.end()};
+  std::string name = text;  // the underscore spelling of the outputs is accepted too
+  for (char& c : name)
+    if (c == '_') c = '-';
+  if (const auto s = core::find_name(scenarios::scheme_names, name)) return {*s};
+  throw core::InputError(option, 0,
+                         "found '" + text + "', expected " + core::listed_names(scenarios::scheme_names) + ", or all.");
+}
+
+core::PairSelection parse_pairs(const std::string& text, std::uint64_t seed, const std::string& option) {
+  if (text == "all") return {0, seed};
+  std::uint64_t n = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (!text.empty() && ec == std::errc() && ptr == text.data() + text.size() && n >= 1 && n <= 1000000000)
+    return {static_cast<std::size_t>(n), seed};
+  throw core::InputError(option, 0, "found '" + text + "', expected 'all' or a number of sampled pairs in [1, 1000000000].");
+}
+
+CLI::Option* add_acceleration_option(CLI::App& cmd, std::string& value) {
+  return add_choice(cmd, "--accelerate", value, core::acceleration_names,
+                    "Sweep acceleration: plain, superstep (Collins-Stephenson), anderson, or newton (damped Newton steps "
+                    "on the angle sums instead of sweeps; an iteration is then a Newton step)");
+}
+
+CLI::Validator seed_validator() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::uint64_t x = 0;
+        const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
+        if (!text.empty() && ec == std::errc() && ptr == text.data() + text.size()) return {};
+        return "found '" + text + "', expected an integer in [0, 18446744073709551615]";
+      },
+      "UINT64");
+}
+
 void check_writable(const std::string& path, bool force) {
   if (!force && std::filesystem::exists(path))
-    throw std::invalid_argument("Refusing to overwrite " + path + "; pass --force to replace it or -o to write elsewhere.");
+    throw core::InputError("Refusing to overwrite " + path + "; pass --force to replace it or -o to write elsewhere.");
 }
 
 std::string file_stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }

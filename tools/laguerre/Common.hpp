@@ -1,13 +1,54 @@
 #pragma once
 /// @file
-/// Pieces shared by the subcommands: loading a graph ready for packing, output paths.
+/// Pieces shared by the subcommands: the graph-file options and loading a graph ready for packing,
+/// the option parsers and validators several commands use, output paths.
 
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "laguerre/core/EnumNames.hpp"
 #include "laguerre/core/graph/GraphIO.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
+#include "laguerre/core/routing/Routing.hpp"
+#include "laguerre/core/routing/RoutingMetrics.hpp"
 
 namespace laguerre::tools {
+
+/// A registered subcommand and the storage its options write to.
+template <class Args>
+struct Command {
+  CLI::App* cmd;               ///< the subcommand
+  std::shared_ptr<Args> args;  ///< its options' values, shared with the action
+};
+
+/// What `--help` says of a subcommand.
+struct CommandHelp {
+  const char* name;         ///< the subcommand
+  const char* description;  ///< one line
+  const char* footer;       ///< after the options (empty: none)
+};
+
+/// Registers the subcommand `help` describes, with fresh storage for its options.
+template <class Args>
+Command<Args> add_command(CLI::App& app, const CommandHelp& help) {
+  Command<Args> c{app.add_subcommand(help.name, help.description), std::make_shared<Args>()};
+  if (*help.footer) c.cmd->footer(help.footer);
+  return c;
+}
+
+/// The options naming one graph of a graph file: the file, its format and the graph's index.
+struct GraphArgs {
+  std::string path;                 ///< the graph file
+  std::string format = "automatic";  ///< --format
+  std::size_t index = 1;            ///< --index (from 1)
+};
+
+/// Registers GraphArgs on `cmd`: the positional `name` (described by `what`), --format and --index.
+void add_graph_options(CLI::App& cmd, GraphArgs& args, const std::string& name, const std::string& what);
 
 /// A graph read from a file and prepared for packing (kind decided, outer face chosen).
 struct LoadedGraph {
@@ -15,10 +56,38 @@ struct LoadedGraph {
   core::GraphKind kind{};  ///< triangulated disc or 3-connected
 };
 
-/// Reads graph number `index` (from 1) of `path` in `format` and prepares it for packing.
-LoadedGraph load_graph(const std::string& path, const std::string& format, std::size_t index);
+/// Every graph of `path` in `format`, the file opened as core::open_input_file does (core::InputError
+/// for a missing file or a folder).
+std::vector<core::GraphInput> read_graph_file(const std::string& path, const std::string& format = "automatic");
 
-/// Refuses (std::invalid_argument, a full sentence naming --force) to overwrite `path` unless `force`.
+/// Reads graph number `index` (from 1) of `path` in `format` (as read_graph_file) and prepares it for
+/// packing.
+LoadedGraph load_graph(const GraphArgs& args);
+
+/// --scheme (named `option` in messages): one scheme by name (dashes or underscores), or "all".
+/// Throws core::InputError.
+std::vector<core::Scheme> parse_schemes(const std::string& text, const std::string& option);
+
+/// --pairs (named `option` in messages): "all", or a number of pairs in [1, 10^9] sampled with `seed`
+/// (as the scenario key routing.pairs). Throws core::InputError.
+core::PairSelection parse_pairs(const std::string& text, std::uint64_t seed, const std::string& option);
+
+/// Option `name` bound to `value`, accepting exactly the names of `table` (CLI11 lists them on error).
+template <class E, std::size_t N>
+CLI::Option* add_choice(CLI::App& cmd, const std::string& name, std::string& value, const core::EnumNames<E, N>& table,
+                        const std::string& help) {
+  return cmd.add_option(name, value, help)->check(CLI::IsMember(core::names_of(table)))->capture_default_str();
+}
+
+/// --accelerate (core::acceleration_names), as `pack` and `thesis-table` offer it.
+CLI::Option* add_acceleration_option(CLI::App& cmd, std::string& value);
+
+/// A validator for --seed: an integer in [0, 2^64 − 1], written in decimal without a sign (as the
+/// scenario key seed).
+CLI::Validator seed_validator();
+
+/// Refuses (core::InputError, a full sentence naming `path` and --force) to overwrite
+/// `path` unless `force`.
 void check_writable(const std::string& path, bool force);
 
 /// "dir/name.ext" → "name".

@@ -26,7 +26,7 @@ const double palette[][3] = {{0.85, 0.1, 0.1}, {0.1, 0.45, 0.1}, {0.9, 0.55, 0.0
                              {0.5, 0.1, 0.7},  {0.3, 0.3, 0.3}};
 
 std::size_t colour_of(const std::string& scheme) {
-  static const std::vector<std::string> known{"greedy-power", "greedy-euclid", "compass", "gfg"};
+  static const std::vector<std::string> known = core::names_of(scenarios::scheme_names);
   for (std::size_t i = 0; i < known.size(); ++i)
     if (known[i] == scheme) return i;
   return 5;

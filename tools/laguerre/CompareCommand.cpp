@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "Commands.hpp"
+#include "Common.hpp"
 #include "RunPictures.hpp"
 #include "ScenarioCli.hpp"
 #include "laguerre/scenarios/Comparison.hpp"
@@ -13,29 +14,31 @@
 namespace laguerre::tools {
 
 namespace {
+constexpr CommandHelp compare_help{
+    "compare",
+    "Run scenario sweeps and compare routing schemes (delivery with 95% CI, stretch, cost) per family, size and network.",
+    "Delivery 95% CI: Student t-interval over repetitions (per-run delivery rates); with one repetition the\n"
+    "Wilson interval on that run's pairs (marked w). Exit status: 0 done, 2 bad input."};
+
 namespace fs = std::filesystem;
 
 struct CompareArgs {
-  std::vector<std::string> scenarios;
-  std::string out;
-  unsigned jobs = 0;
-  bool force = false;
+  ScenarioRunArgs run;
   bool charts = true;
-  std::vector<std::string> overrides;
 };
 
 int run_compare(const CompareArgs& a) {
-  auto loaded = load_scenarios(a.scenarios, a.overrides);
+  auto loaded = load_scenarios(a.run.scenarios, a.run.overrides);
   if (!loaded) return 2;
   const std::string dir =
-      a.out.empty() ? (fs::path("out") / (loaded->size() == 1 ? loaded->front().name + "-compare" : "compare")).string()
-                    : a.out;
-  prepare_output_dir(dir, a.force, {"comparison.csv", "comparison.json"});
+      a.run.out.empty() ? (fs::path("out") / (loaded->size() == 1 ? loaded->front().name + "-compare" : "compare")).string()
+                        : a.run.out;
+  prepare_output_dir(dir, a.run.force, {"comparison.csv", "comparison.json"});
   std::vector<scenarios::ComparisonRow> rows;
   for (const scenarios::Scenario& s : *loaded) {
     Progress progress(s.name);
     scenarios::RunnerOptions options;
-    options.jobs = a.jobs;
+    options.jobs = a.run.jobs;
     options.on_progress = [&](const scenarios::RunProgress& p) { progress.update(p); };
     const scenarios::ScenarioResults results = scenarios::run_scenario(s, options);
     progress.finish();
@@ -66,18 +69,11 @@ int run_compare(const CompareArgs& a) {
 }  // namespace
 
 Action add_compare_command(CLI::App& app) {
-  auto args = std::make_shared<CompareArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "compare", "Run scenario sweeps and compare routing schemes (delivery with 95% CI, stretch, cost) per family, size and network.");
-  cmd->footer("Delivery 95% CI: Student t-interval over repetitions (per-run delivery rates); with one repetition the\n"
-              "Wilson interval on that run's pairs (marked w). Exit status: 0 done, 2 bad input.");
-  cmd->add_option("scenarios", args->scenarios, "Scenario files (YAML)")->required();
-  cmd->add_option("-o,--output", args->out, "Result folder (default out/<name>-compare, or out/compare for several files)");
-  cmd->add_option("--jobs,-j", args->jobs, "Worker threads (default: hardware threads)")->check(CLI::PositiveNumber);
-  cmd->add_flag("--force", args->force, "Replace the results in an existing result folder");
-  cmd->add_flag("!--no-charts", args->charts, "Do not draw the charts");
-  cmd->add_option("--set", args->overrides, "Override a key in every scenario, e.g. --set topology.n=40 (repeatable)");
-  return [args] { return run_compare(*args); };
+  const auto c = add_command<CompareArgs>(app, compare_help);
+  add_scenario_run_options(*c.cmd, c.args->run, "scenarios", true, "Result folder (default out/<name>-compare, or out/compare for several files)",
+                           "Override a key in every scenario, e.g. --set topology.n=40 (repeatable)");
+  c.cmd->add_flag("!--no-charts", c.args->charts, "Do not draw the charts");
+  return [args = c.args] { return run_compare(*args); };
 }
 
 }  // namespace laguerre::tools

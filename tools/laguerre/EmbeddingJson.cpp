@@ -3,6 +3,7 @@
 #include <fstream>
 #include <unordered_map>
 
+#include "laguerre/core/InputFile.hpp"
 #include "laguerre/core/graph/GraphError.hpp"
 
 namespace laguerre::tools {
@@ -43,8 +44,7 @@ bool is_embedding_file(const std::string& path) {
 }
 
 EmbeddedGraph read_embedding(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw core::GraphInputError(path, 0, 0, "cannot open the embedding file");
+  std::ifstream in = core::open_input_file(path, "embedding file");
   json doc;
   try {
     doc = json::parse(in);

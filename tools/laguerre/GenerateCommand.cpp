@@ -6,12 +6,18 @@
 
 #include "Commands.hpp"
 #include "Common.hpp"
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/scenarios/Topology.hpp"
 
 namespace laguerre::tools {
 
 namespace {
+constexpr CommandHelp generate_help{
+    "generate",
+    "Write a random planar graph (RandomGraphs.hpp, or the uniform samplers of scenarios/).",
+    ""};
+
 struct GenerateArgs {
   std::string family;
   std::size_t size = 50;
@@ -55,9 +61,9 @@ core::GraphInput make(const GenerateArgs& a, std::uint64_t seed) {
 
 int run_generate(const GenerateArgs& a) {
   if (uniform_family(a.family) && a.format == "coords")
-    throw std::invalid_argument("family " + a.family + " has no vertex positions; use --format edges or planar_code.");
+    throw core::InputError("--format", 0, "family " + a.family + " has no vertex positions; use --format edges or planar_code.");
   if (a.count != 1 && a.format != "planar_code")
-    throw std::invalid_argument("--count greater than 1 needs --format planar_code (the only multi-graph format).");
+    throw core::InputError("--count", 0, "greater than 1 needs --format planar_code (the only multi-graph format).");
   std::string text;
   if (a.format == "planar_code") {
     std::vector<core::PlanarGraph> graphs;
@@ -79,21 +85,20 @@ int run_generate(const GenerateArgs& a) {
 }  // namespace
 
 Action add_generate_command(CLI::App& app) {
-  auto args = std::make_shared<GenerateArgs>();
-  CLI::App* cmd = app.add_subcommand("generate", "Write a random planar graph (RandomGraphs.hpp, or the uniform samplers of scenarios/).");
-  cmd->add_option("family", args->family,
+  const auto c = add_command<GenerateArgs>(app, generate_help);
+  c.cmd->add_option("family", c.args->family,
                   "delaunay (triangulated disc), three-connected, uniform-triangulation (Poulalhon-Schaeffer, punctured) "
                   "or uniform-three-connected (Fusy, largest face outside); the uniform ones have no positions")
       ->required()->check(CLI::IsMember({"delaunay", "three-connected", "uniform-triangulation", "uniform-three-connected"}));
-  cmd->add_option("--size,-n", args->size, "Number of vertices")->check(CLI::Range(4, 100000000))->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str();
-  cmd->add_option("--format", args->format, "coords (with positions), edges or planar_code (binary)")
+  c.cmd->add_option("--size,-n", c.args->size, "Number of vertices")->check(CLI::Range(4, 100000000))->capture_default_str();
+  c.cmd->add_option("--seed", c.args->seed, "Random seed")->check(seed_validator())->capture_default_str();
+  c.cmd->add_option("--format", c.args->format, "coords (with positions), edges or planar_code (binary)")
       ->check(CLI::IsMember({"coords", "edges", "planar_code"}))->capture_default_str();
-  cmd->add_option("--count", args->count, "Number of graphs (seeds SEED, SEED+1, ...; planar_code only)")
-      ->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("-o,--out", args->out, "Output file (default: standard output)");
-  cmd->add_flag("--force", args->force, "Overwrite an existing output file");
-  return [args] { return run_generate(*args); };
+  c.cmd->add_option("--count", c.args->count, "Number of graphs (seeds SEED, SEED+1, ...; planar_code only)")
+      ->check(CLI::Range(1, 100000))->capture_default_str();
+  c.cmd->add_option("-o,--out", c.args->out, "Output file (default: standard output)");
+  c.cmd->add_flag("--force", c.args->force, "Overwrite an existing output file");
+  return [args = c.args] { return run_generate(*args); };
 }
 
 }  // namespace laguerre::tools

@@ -12,15 +12,17 @@
 #include "EmbeddingJson.hpp"
 #include "Render.hpp"
 #include "laguerre/core/packing/Packer.hpp"
+#include "laguerre/core/packing/PackingNames.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 
 namespace laguerre::tools {
 
 namespace {
+constexpr CommandHelp pack_help{"pack", "Compute a greedy power embedding of a planar graph (thesis §5.3).",
+                                "Exit status: 0 converged, 3 not converged (cap or precision loss), 2 bad input."};
+
 struct PackArgs {
-  std::string graph;
-  std::string format = "automatic";
-  std::size_t index = 1;
+  GraphArgs graph;
   std::string stop = "lpd";
   std::string sweep = "jacobi";
   std::string root = "deepest";
@@ -59,18 +61,18 @@ private:
 };
 
 int run_pack(const PackArgs& a) {
-  const LoadedGraph loaded = load_graph(a.graph, a.format, a.index);
+  const LoadedGraph loaded = load_graph(a.graph);
   const core::PlanarGraph& g = loaded.input.graph;
   core::PackOptions opt;
-  opt.stop = core::parse_stop_rule(a.stop);
-  opt.sweep = a.sweep == "gauss-seidel" ? core::Sweep::gauss_seidel : core::Sweep::jacobi;
-  opt.root = a.root == "smallest-id" ? core::RootRule::smallest_id : core::RootRule::deepest;
+  opt.stop = core::parse_name(core::stop_rule_names, a.stop, "--stop");
+  opt.sweep = core::parse_name(core::sweep_names, a.sweep, "--sweep");
+  opt.root = core::parse_name(core::root_rule_names, a.root, "--root");
   opt.steps_per_check = a.steps;
   opt.max_iterations = a.max_iterations;
   opt.angle_epsilon = a.epsilon;
-  opt.acceleration = core::parse_acceleration(a.accelerate);
+  opt.acceleration = core::parse_name(core::acceleration_names, a.accelerate, "--accelerate");
 
-  const std::string stem = a.out.empty() ? file_stem(a.graph) + "-packing" : a.out;
+  const std::string stem = a.out.empty() ? file_stem(a.graph.path) + "-packing" : a.out;
   if (!a.json_stdout) check_writable(stem + ".json", a.force);
   if (!a.no_picture) {
     check_writable(stem + ".svg", a.force);
@@ -148,31 +150,22 @@ int run_pack(const PackArgs& a) {
 }  // namespace
 
 Action add_pack_command(CLI::App& app) {
-  auto args = std::make_shared<PackArgs>();
-  CLI::App* cmd = app.add_subcommand("pack", "Compute a greedy power embedding of a planar graph (thesis §5.3).");
-  cmd->footer("Exit status: 0 converged, 3 not converged (cap or precision loss), 2 bad input.");
-  cmd->add_option("graph", args->graph, "Graph file (edge list, coords or planar_code)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--format", args->format, "Input format: automatic, edges, coords, planar_code")->capture_default_str();
-  cmd->add_option("--index", args->index, "Which graph of a multi-graph file (from 1)")->capture_default_str();
-  cmd->add_option("--stop", args->stop, "Stopping rule: lpd (LPD/GLPD everywhere), exact, angle, cap")
-      ->check(CLI::IsMember({"lpd", "exact", "angle", "cap"}))->capture_default_str();
-  cmd->add_option("--sweep", args->sweep, "Update order: jacobi or gauss-seidel")
-      ->check(CLI::IsMember({"jacobi", "gauss-seidel"}))->capture_default_str();
-  cmd->add_option("--root", args->root, "Layout root: deepest or smallest-id")
-      ->check(CLI::IsMember({"deepest", "smallest-id"}))->capture_default_str();
-  cmd->add_option("--steps-per-check,-N", args->steps, "Thurston sweeps between two layouts and checks")
-      ->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--max-iterations", args->max_iterations, "Cap on sweeps")->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--epsilon", args->epsilon, "Angle-sum tolerance for --stop angle (radians)")->capture_default_str();
-  cmd->add_option("-o,--out", args->out, "Output path stem (writes STEM.json, STEM.svg, STEM.png); default GRAPHNAME-packing");
-  cmd->add_flag("--force", args->force, "Overwrite existing output files");
-  cmd->add_option("--accelerate", args->accelerate,
-                  "Sweep acceleration: plain, superstep (Collins-Stephenson), anderson, or newton (damped Newton steps "
-                  "on the angle sums instead of sweeps; an iteration is then a Newton step)")
-      ->check(CLI::IsMember({"plain", "superstep", "anderson", "newton"}))->capture_default_str();
-  cmd->add_flag("--json", args->json_stdout, "Print the embedding JSON on standard output instead of writing STEM.json");
-  cmd->add_flag("--no-picture", args->no_picture, "Do not draw the SVG/PNG picture");
-  return [args] { return run_pack(*args); };
+  const auto c = add_command<PackArgs>(app, pack_help);
+  add_graph_options(*c.cmd, c.args->graph, "graph", "Graph file (edge list, coords or planar_code)");
+  add_choice(*c.cmd, "--stop", c.args->stop, core::stop_rule_names,
+             "Stopping rule: lpd (LPD/GLPD everywhere), exact, angle, cap");
+  add_choice(*c.cmd, "--sweep", c.args->sweep, core::sweep_names, "Update order: jacobi or gauss-seidel");
+  add_choice(*c.cmd, "--root", c.args->root, core::root_rule_names, "Layout root: deepest or smallest-id");
+  c.cmd->add_option("--steps-per-check,-N", c.args->steps, "Thurston sweeps between two layouts and checks")
+      ->check(CLI::Range(1, 10000))->capture_default_str();
+  c.cmd->add_option("--max-iterations", c.args->max_iterations, "Cap on sweeps")->check(CLI::Range(1, 100000000))->capture_default_str();
+  c.cmd->add_option("--epsilon", c.args->epsilon, "Angle-sum tolerance for --stop angle (radians)")->capture_default_str();
+  c.cmd->add_option("-o,--out", c.args->out, "Output path stem (writes STEM.json, STEM.svg, STEM.png); default GRAPHNAME-packing");
+  c.cmd->add_flag("--force", c.args->force, "Overwrite existing output files");
+  add_acceleration_option(*c.cmd, c.args->accelerate);
+  c.cmd->add_flag("--json", c.args->json_stdout, "Print the embedding JSON on standard output instead of writing STEM.json");
+  c.cmd->add_flag("--no-picture", c.args->no_picture, "Do not draw the SVG/PNG picture");
+  return [args = c.args] { return run_pack(*args); };
 }
 
 }  // namespace laguerre::tools

@@ -5,6 +5,8 @@
 #include "Commands.hpp"
 #include "Common.hpp"
 #include "EmbeddingJson.hpp"
+#include "laguerre/core/Error.hpp"
+#include "laguerre/core/InputFile.hpp"
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/routing/Routing.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
@@ -12,10 +14,13 @@
 namespace laguerre::tools {
 
 namespace {
+constexpr CommandHelp route_help{
+    "route",
+    "Route packets over an embedding and report delivery and hop stretch.",
+    "A graph file is first packed to LPD/GLPD; an embedding file from `laguerre pack` is used as is."};
+
 struct RouteArgs {
-  std::string input;
-  std::string format = "automatic";
-  std::size_t index = 1;
+  GraphArgs input;
   std::string scheme = "all";
   std::string pairs = "all";
   std::uint64_t seed = 1;
@@ -23,47 +28,28 @@ struct RouteArgs {
   bool json = false;
 };
 
-std::vector<core::Scheme> parse_schemes(const std::string& s) {
-  if (s == "all") return {core::all_schemes.begin(), core::all_schemes.end()};
-  std::string name = s;
-  for (char& c : name)
-    if (c == '-') c = '_';
-  if (auto sc = core::parse_scheme(name)) return {*sc};
-  throw std::invalid_argument("Unknown routing scheme '" + s + "'; expected greedy-power, greedy-euclid, compass, gfg or all.");
-}
-
-core::PairSelection parse_pairs(const std::string& s, std::uint64_t seed) {
-  if (s == "all") return {0, seed};
-  try {
-    std::size_t used = 0;
-    const unsigned long long n = std::stoull(s, &used);
-    if (used == s.size() && n > 0) return {static_cast<std::size_t>(n), seed};
-  } catch (const std::exception&) {
-  }
-  throw std::invalid_argument("--pairs expects 'all' or a positive number of sampled pairs, found '" + s + "'.");
-}
-
 int run_route(const RouteArgs& a) {
-  const auto schemes = parse_schemes(a.scheme);
-  const core::PairSelection selection = parse_pairs(a.pairs, a.seed);
+  const auto schemes = parse_schemes(a.scheme, "--scheme");
+  const core::PairSelection selection = parse_pairs(a.pairs, a.seed, "--pairs");
   core::PlanarGraph g;
   core::CircleEmbedding phi;
   std::string name;
   std::string origin;
-  if (is_embedding_file(a.input)) {
-    EmbeddedGraph e = read_embedding(a.input);
+  (void)core::open_input_file(a.input.path, "graph or embedding file");
+  if (is_embedding_file(a.input.path)) {
+    EmbeddedGraph e = read_embedding(a.input.path);
     g = std::move(e.graph);
     phi = std::move(e.circles);
     name = e.name;
     origin = "embedding file";
   } else {
-    LoadedGraph loaded = load_graph(a.input, a.format, a.index);
+    LoadedGraph loaded = load_graph(a.input);
     g = loaded.input.graph;
     name = loaded.input.name;
     if (a.positions == "input") {
       if (loaded.input.positions.empty())
-        throw std::invalid_argument("--positions input needs a graph file with coordinates (coords format); " + a.input +
-                                    " has none.");
+        throw core::InputError("--positions", 0,
+                               "input needs a graph file with coordinates (coords format); " + a.input.path + " has none.");
       for (const auto& p : loaded.input.positions) phi.push_back({p.x, p.y, 0.0});
       origin = "input coordinates (radius 0)";
     } else {
@@ -121,19 +107,15 @@ int run_route(const RouteArgs& a) {
 }  // namespace
 
 Action add_route_command(CLI::App& app) {
-  auto args = std::make_shared<RouteArgs>();
-  CLI::App* cmd = app.add_subcommand("route", "Route packets over an embedding and report delivery and hop stretch.");
-  cmd->footer("A graph file is first packed to LPD/GLPD; an embedding file from `laguerre pack` is used as is.");
-  cmd->add_option("input", args->input, "Graph file, or embedding JSON written by `laguerre pack`")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--format", args->format, "Graph format: automatic, edges, coords, planar_code")->capture_default_str();
-  cmd->add_option("--index", args->index, "Which graph of a multi-graph file (from 1)")->capture_default_str();
-  cmd->add_option("--scheme", args->scheme, "greedy-power, greedy-euclid, compass, gfg or all")->capture_default_str();
-  cmd->add_option("--pairs", args->pairs, "'all' ordered pairs, or a number of pairs sampled with --seed")->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Seed of the pair sample")->capture_default_str();
-  cmd->add_option("--positions", args->positions, "For a graph file: layout (pack first) or input (its coordinates)")
+  const auto c = add_command<RouteArgs>(app, route_help);
+  add_graph_options(*c.cmd, c.args->input, "input", "Graph file, or embedding JSON written by `laguerre pack`");
+  c.cmd->add_option("--scheme", c.args->scheme, "greedy-power, greedy-euclid, compass, gfg or all")->capture_default_str();
+  c.cmd->add_option("--pairs", c.args->pairs, "'all' ordered pairs, or a number of pairs sampled with --seed")->capture_default_str();
+  c.cmd->add_option("--seed", c.args->seed, "Seed of the pair sample")->check(seed_validator())->capture_default_str();
+  c.cmd->add_option("--positions", c.args->positions, "For a graph file: layout (pack first) or input (its coordinates)")
       ->check(CLI::IsMember({"layout", "input"}))->capture_default_str();
-  cmd->add_flag("--json", args->json, "Machine-readable output");
-  return [args] { return run_route(*args); };
+  c.cmd->add_flag("--json", c.args->json, "Machine-readable output");
+  return [args = c.args] { return run_route(*args); };
 }
 
 }  // namespace laguerre::tools

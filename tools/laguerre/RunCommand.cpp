@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "Commands.hpp"
+#include "Common.hpp"
 #include "RunPictures.hpp"
 #include "ScenarioCli.hpp"
 #include "laguerre/scenarios/Results.hpp"
@@ -13,26 +14,29 @@
 namespace laguerre::tools {
 
 namespace {
+constexpr CommandHelp run_help{
+    "run",
+    "Run a scenario file: every sweep point and repetition, with results and pictures.",
+    "The scenario schema is documented in scenarios/README.md. Each run's seed is derived from the\n"
+    "scenario's seed, the sweep point and the repetition, so results do not depend on --jobs.\n"
+    "Exit status: 0 every run ended ok, 3 some run did not (not converged, failed, unsupported), 2 bad input."};
+
 namespace fs = std::filesystem;
 
 struct RunArgs {
-  std::string scenario;
-  std::string out;
-  unsigned jobs = 0;
-  bool force = false;
-  std::vector<std::string> overrides;
+  ScenarioRunArgs run;
 };
 
 int run_run(const RunArgs& a) {
-  auto loaded = load_scenarios({a.scenario}, a.overrides);
+  auto loaded = load_scenarios(a.run.scenarios, a.run.overrides);
   if (!loaded) return 2;
   const scenarios::Scenario& s = loaded->front();
-  const std::string dir = a.out.empty() ? (fs::path("out") / s.name).string() : a.out;
-  prepare_output_dir(dir, a.force, {"results.json", "results.csv"});
+  const std::string dir = a.run.out.empty() ? (fs::path("out") / s.name).string() : a.run.out;
+  prepare_output_dir(dir, a.run.force, {"results.json", "results.csv"});
   const scenarios::OutputSpec& outputs = s.points.front().config.outputs;
   Progress progress(s.name);
   scenarios::RunnerOptions options;
-  options.jobs = a.jobs;
+  options.jobs = a.run.jobs;
   options.on_progress = [&](const scenarios::RunProgress& p) { progress.update(p); };
   options.keep_artifacts = [&](const scenarios::RunPlan& p) {
     return p.repetition == 0 && s.points[p.point].config.outputs.pictures;
@@ -83,18 +87,10 @@ int run_run(const RunArgs& a) {
 }  // namespace
 
 Action add_run_command(CLI::App& app) {
-  auto args = std::make_shared<RunArgs>();
-  CLI::App* cmd = app.add_subcommand("run", "Run a scenario file: every sweep point and repetition, with results and pictures.");
-  cmd->footer("The scenario schema is documented in scenarios/README.md. Each run's seed is derived from the\n"
-              "scenario's seed, the sweep point and the repetition, so results do not depend on --jobs.\n"
-              "Exit status: 0 every run ended ok, 3 some run did not (not converged, failed, unsupported), 2 bad input.");
-  cmd->add_option("scenario", args->scenario, "Scenario file (YAML)")->required();
-  cmd->add_option("-o,--output", args->out, "Result folder (default out/<scenario name>)");
-  cmd->add_option("--jobs,-j", args->jobs, "Worker threads (default: hardware threads)")->check(CLI::PositiveNumber);
-  cmd->add_flag("--force", args->force, "Replace the results in an existing result folder");
-  cmd->add_option("--set", args->overrides,
-                  "Override a key for every sweep point, e.g. --set topology.n=40 --set repetitions=1 (repeatable)");
-  return [args] { return run_run(*args); };
+  const auto c = add_command<RunArgs>(app, run_help);
+  add_scenario_run_options(*c.cmd, c.args->run, "scenario", false, "Result folder (default out/<scenario name>)",
+                           "Override a key for every sweep point, e.g. --set topology.n=40 --set repetitions=1 (repeatable)");
+  return [args = c.args] { return run_run(*args); };
 }
 
 }  // namespace laguerre::tools

@@ -8,11 +8,23 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/scenarios/ScenarioLoader.hpp"
 
 namespace laguerre::tools {
 
 namespace fs = std::filesystem;
+
+void add_scenario_run_options(CLI::App& cmd, ScenarioRunArgs& args, const std::string& name, bool several,
+                              const std::string& out_help, const std::string& set_help) {
+  CLI::Option* files = cmd.add_option(name, args.scenarios, several ? "Scenario files (YAML)" : "Scenario file (YAML)");
+  files->required();
+  if (!several) files->expected(1);
+  cmd.add_option("-o,--output", args.out, out_help);
+  cmd.add_option("--jobs,-j", args.jobs, "Worker threads (default: hardware threads)")->check(CLI::Range(1, 4096));
+  cmd.add_flag("--force", args.force, "Replace the results in an existing result folder");
+  cmd.add_option("--set", args.overrides, set_help);
+}
 
 std::optional<std::vector<scenarios::Scenario>> load_scenarios(const std::vector<std::string>& files,
                                                               const std::vector<std::string>& overrides) {
@@ -34,9 +46,9 @@ std::optional<std::vector<scenarios::Scenario>> load_scenarios(const std::vector
 void prepare_output_dir(const std::string& dir, bool force, const std::vector<std::string>& managed) {
   if (fs::exists(dir)) {
     if (!force)
-      throw std::invalid_argument("Refusing to overwrite the result folder " + dir +
+      throw core::InputError("Refusing to overwrite the result folder " + dir +
                                   " (it exists); pass --force to replace its results or -o to write elsewhere.");
-    if (!fs::is_directory(dir)) throw std::invalid_argument(dir + " exists and is not a folder.");
+    if (!fs::is_directory(dir)) throw core::InputError(dir, 0, "exists and is not a folder.");
     for (const auto& m : managed) fs::remove(fs::path(dir) / m);
     fs::remove_all(fs::path(dir) / "pictures");
     fs::remove_all(fs::path(dir) / "charts");

@@ -3,6 +3,8 @@
 /// Pieces shared by `laguerre run` and `laguerre compare`: loading scenarios with their messages,
 /// the output folder rule, terminal progress and the runner options.
 
+#include <CLI/CLI.hpp>
+
 #include <memory>
 #include <optional>
 #include <string>
@@ -13,11 +15,25 @@
 
 namespace laguerre::tools {
 
+/// The options `laguerre run` and `laguerre compare` share.
+struct ScenarioRunArgs {
+  std::vector<std::string> scenarios;  ///< the scenario files (YAML)
+  std::string out;                     ///< -o: the result folder (empty: the command's default)
+  unsigned jobs = 0;                   ///< --jobs (0: hardware threads)
+  bool force = false;                  ///< --force: replace the results in an existing folder
+  std::vector<std::string> overrides;  ///< --set KEY=VALUE, repeatable
+};
+
+/// Registers the positional scenario file(s) (`name`, at most one unless `several`), -o (described by
+/// `out_help`), --jobs, --force and --set (described by `set_help`).
+void add_scenario_run_options(CLI::App& cmd, ScenarioRunArgs& args, const std::string& name, bool several,
+                              const std::string& out_help, const std::string& set_help);
+
 /// Loads every file with `overrides`; on problems prints them all to stderr and returns nothing.
 std::optional<std::vector<scenarios::Scenario>> load_scenarios(const std::vector<std::string>& files,
                                                               const std::vector<std::string>& overrides);
 
-/// Prepares output folder `dir`: refuses (std::invalid_argument, exit 2) if it exists and `force` is
+/// Prepares output folder `dir`: refuses (core::InputError, exit 2) if it exists and `force` is
 /// false; with `force` removes only the files `laguerre run`/`compare` write (`managed`, and the
 /// `pictures` and `charts` subfolders), then creates it.
 void prepare_output_dir(const std::string& dir, bool force, const std::vector<std::string>& managed);

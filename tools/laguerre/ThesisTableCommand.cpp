@@ -11,11 +11,18 @@
 #include "Common.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/core/packing/Packer.hpp"
+#include "laguerre/core/packing/PackingNames.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 
 namespace laguerre::tools {
 
 namespace {
+constexpr CommandHelp thesis_table_help{
+    "thesis-table",
+    "Reproduce the experiment of thesis §5.4.1 (iterations to LPD vs exact packing).",
+    "Without graph files: random Delaunay triangulations and 3-connected graphs obtained from them by\n"
+    "deleting edges (the interim random families documented in RandomGraphs.hpp)."};
+
 struct TableArgs {
   std::size_t count = 20;
   std::size_t size = 50;
@@ -56,9 +63,9 @@ Summary summarize(const std::vector<double>& v) {
 Row measure(const core::PlanarGraph& g, core::GraphKind kind, const std::string& name, const TableArgs& a) {
   core::PackOptions opt;
   opt.steps_per_check = a.steps;
-  opt.sweep = a.sweep == "gauss-seidel" ? core::Sweep::gauss_seidel : core::Sweep::jacobi;
+  opt.sweep = core::parse_name(core::sweep_names, a.sweep, "--sweep");
   opt.max_iterations = a.max_iterations;
-  opt.acceleration = core::parse_acceleration(a.accelerate);
+  opt.acceleration = core::parse_name(core::acceleration_names, a.accelerate, "--accelerate");
   Row row;
   row.name = name;
   row.kind = kind;
@@ -97,7 +104,7 @@ int run_table(const TableArgs& a) {
     std::fprintf(stderr, "\n");
   } else {
     for (const auto& f : a.files) {
-      for (auto& in : core::read_graphs(f)) {
+      for (auto& in : read_graph_file(f)) {
         core::GraphKind kind{};
         const core::PlanarGraph g = core::prepare_for_packing(in, &kind);
         rows.push_back(measure(g, kind, in.name, a));
@@ -164,23 +171,18 @@ int run_table(const TableArgs& a) {
 }  // namespace
 
 Action add_thesis_table_command(CLI::App& app) {
-  auto args = std::make_shared<TableArgs>();
-  CLI::App* cmd = app.add_subcommand("thesis-table", "Reproduce the experiment of thesis §5.4.1 (iterations to LPD vs exact packing).");
-  cmd->footer("Without graph files: random Delaunay triangulations and 3-connected graphs obtained from them by\n"
-              "deleting edges (the interim random families documented in RandomGraphs.hpp).");
-  cmd->add_option("graphs", args->files, "Graph files to use instead of the random families")->check(CLI::ExistingFile);
-  cmd->add_option("--count", args->count, "Graphs per family")->capture_default_str();
-  cmd->add_option("--size", args->size, "Vertices per random graph")->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Seed of the first random graph")->capture_default_str();
-  cmd->add_option("--steps-per-check,-N", args->steps, "Sweeps between checks")->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--sweep", args->sweep, "jacobi or gauss-seidel")->check(CLI::IsMember({"jacobi", "gauss-seidel"}))->capture_default_str();
-  cmd->add_option("--max-iterations", args->max_iterations, "Cap on sweeps per run")->capture_default_str();
-  cmd->add_flag("--json", args->json, "Machine-readable output");
-  cmd->add_option("--accelerate", args->accelerate,
-                  "Sweep acceleration: plain, superstep (Collins-Stephenson), anderson, or newton (damped Newton steps "
-                  "on the angle sums instead of sweeps; an iteration is then a Newton step)")
-      ->check(CLI::IsMember({"plain", "superstep", "anderson", "newton"}))->capture_default_str();
-  return [args] { return run_table(*args); };
+  const auto c = add_command<TableArgs>(app, thesis_table_help);
+  c.cmd->add_option("graphs", c.args->files, "Graph files to use instead of the random families");
+  c.cmd->add_option("--count", c.args->count, "Graphs per family")->capture_default_str();
+  c.cmd->add_option("--size", c.args->size, "Vertices per random graph")->capture_default_str();
+  c.cmd->add_option("--seed", c.args->seed, "Seed of the first random graph")->check(seed_validator())->capture_default_str();
+  c.cmd->add_option("--steps-per-check,-N", c.args->steps, "Sweeps between checks")->check(CLI::Range(1, 10000))->capture_default_str();
+  add_choice(*c.cmd, "--sweep", c.args->sweep, core::sweep_names, "jacobi or gauss-seidel");
+  c.cmd->add_option("--max-iterations", c.args->max_iterations, "Cap on sweeps per run")
+      ->check(CLI::Range(1, 100000000))->capture_default_str();
+  c.cmd->add_flag("--json", c.args->json, "Machine-readable output");
+  add_acceleration_option(*c.cmd, c.args->accelerate);
+  return [args = c.args] { return run_table(*args); };
 }
 
 }  // namespace laguerre::tools

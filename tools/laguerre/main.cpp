@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "Commands.hpp"
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/GraphError.hpp"
 #include "laguerre/core/meshing/Domain.hpp"
 #include "laguerre/core/meshing/Medit.hpp"
@@ -28,7 +29,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // CLI11's message, then the documented status: 0 for --help and --version, 2 for bad input.
+    const int status = app.exit(e);
+    return e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success) ? status : 2;
   }
   try {
     if (app.got_subcommand("pack")) return pack();
@@ -40,19 +43,22 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("compare")) return compare();
     if (app.got_subcommand("diagram")) return diagram();
     if (app.got_subcommand("mesh")) return mesh();
-  } catch (const laguerre::core::GraphInputError& e) {
+  } catch (const laguerre::core::InputError& e) {
     std::cerr << "laguerre: " << e.what() << '\n';
     return 2;
-  } catch (const laguerre::core::DomainError& e) {
+  } catch (const laguerre::core::GraphInputError& e) {  // until merged (derives from InputError on graphio)
     std::cerr << "laguerre: " << e.what() << '\n';
     return 2;
-  } catch (const laguerre::core::FieldError& e) {
+  } catch (const laguerre::core::DomainError& e) {  // until merged
     std::cerr << "laguerre: " << e.what() << '\n';
     return 2;
-  } catch (const laguerre::core::MeshInputError& e) {
+  } catch (const laguerre::core::FieldError& e) {  // until merged
     std::cerr << "laguerre: " << e.what() << '\n';
     return 2;
-  } catch (const std::invalid_argument& e) {
+  } catch (const laguerre::core::MeshInputError& e) {  // until merged
+    std::cerr << "laguerre: " << e.what() << '\n';
+    return 2;
+  } catch (const std::invalid_argument& e) {  // until merged (readers of other helpers still throw it)
     std::cerr << "laguerre: " << e.what() << '\n';
     return 2;
   } catch (const std::exception& e) {

@@ -1,4 +1,5 @@
 #include "laguerre/core/packing/Accelerator.hpp"
+#include "laguerre/core/packing/PackingNames.hpp"
 
 #include <Eigen/Dense>
 
@@ -9,22 +10,9 @@
 
 namespace laguerre::core {
 
-std::string_view to_string(Acceleration a) {
-  switch (a) {
-    case Acceleration::plain: return "plain";
-    case Acceleration::superstep: return "superstep";
-    case Acceleration::anderson: return "anderson";
-    case Acceleration::newton: return "newton";
-  }
-  return "?";
-}
+std::string_view to_string(Acceleration a) { return name_of(acceleration_names, a); }
 
-Acceleration parse_acceleration(std::string_view name) {
-  for (Acceleration a : {Acceleration::plain, Acceleration::superstep, Acceleration::anderson, Acceleration::newton})
-    if (to_string(a) == name) return a;
-  throw std::invalid_argument("Unknown acceleration '" + std::string(name) +
-                              "'; expected one of plain, superstep, anderson, newton.");
-}
+Acceleration parse_acceleration(std::string_view name) { return parse_name(acceleration_names, name); }
 
 bool Accelerator::after_sweep(const PackingComplex& k, const Radii& before, Radii& after) {
   switch (kind_) {

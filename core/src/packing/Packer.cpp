@@ -2,6 +2,7 @@
 
 #include "laguerre/core/packing/Accelerator.hpp"
 #include "laguerre/core/packing/Newton.hpp"
+#include "laguerre/core/packing/PackingNames.hpp"
 
 #include <cmath>
 #include <limits>
@@ -10,22 +11,9 @@
 
 namespace laguerre::core {
 
-std::string_view to_string(StopRule rule) {
-  switch (rule) {
-    case StopRule::lpd: return "lpd";
-    case StopRule::exact: return "exact";
-    case StopRule::angle: return "angle";
-    case StopRule::cap: return "cap";
-  }
-  return "?";
-}
+std::string_view to_string(StopRule rule) { return name_of(stop_rule_names, rule); }
 
-StopRule parse_stop_rule(std::string_view name) {
-  for (StopRule r : {StopRule::lpd, StopRule::exact, StopRule::angle, StopRule::cap})
-    if (to_string(r) == name) return r;
-  throw std::invalid_argument("Unknown stopping rule '" + std::string(name) +
-                              "'; expected one of lpd, exact, angle, cap.");
-}
+StopRule parse_stop_rule(std::string_view name) { return parse_name(stop_rule_names, name); }
 
 std::string_view to_string(PackStatus status) {
   switch (status) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/core/packing/Newton.hpp"
@@ -17,7 +18,7 @@ PlanarGraph three_connected(std::size_t n, std::uint64_t seed) { return prepare_
 TEST(Packer, StopRulesParseAndPrint) {
   for (StopRule r : {StopRule::lpd, StopRule::exact, StopRule::angle, StopRule::cap})
     EXPECT_EQ(parse_stop_rule(to_string(r)), r);
-  EXPECT_THROW(parse_stop_rule("soon"), std::invalid_argument);
+  EXPECT_THROW(parse_stop_rule("soon"), InputError);
 }
 
 TEST(Packer, EachRuleHoldsWhenItFires) {
@@ -91,7 +92,7 @@ TEST(Packer, IsDeterministic) {
 
 TEST(Packer, AccelerationsReachTheSamePackingInFewerSweeps) {
   EXPECT_EQ(parse_acceleration("anderson"), Acceleration::anderson);
-  EXPECT_THROW(parse_acceleration("warp"), std::invalid_argument);
+  EXPECT_THROW(parse_acceleration("warp"), InputError);
   const PlanarGraph g = delaunay(400, 21);
   PackOptions opt;
   opt.stop = StopRule::angle;

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
+#include "laguerre/scenarios/NetworkModel.hpp"
 #include "laguerre/scenarios/ScenarioLoader.hpp"
 
 namespace fs = std::filesystem;
@@ -87,7 +89,47 @@ TEST(ScenarioLoader, MissingFileIsReported) {
     FAIL() << "no error";
   } catch (const ScenarioError& e) {
     ASSERT_EQ(e.issues().size(), 1u);
-    EXPECT_NE(e.issues()[0].find("no readable file"), std::string::npos);
+    EXPECT_NE(e.issues()[0].find("no such scenario file"), std::string::npos) << e.issues()[0];
+  }
+  try {
+    (void)load_scenario(data_dir);
+    FAIL() << "a folder was read as a scenario";
+  } catch (const ScenarioError& e) {
+    ASSERT_EQ(e.issues().size(), 1u);
+    EXPECT_EQ(e.issues()[0], data_dir + ": is a directory; expected a scenario file (YAML).");
+  }
+}
+
+// Scenario errors are input errors (the CLI exits 2 on them), with what() the issues, one per line.
+TEST(ScenarioLoader, ScenarioErrorIsAnInputError) {
+  try {
+    (void)from_text("name: x\nseed: -1\nrepetitions: 0\n");
+    FAIL() << "no error";
+  } catch (const core::InputError& e) {
+    const auto* s = dynamic_cast<const ScenarioError*>(&e);
+    ASSERT_NE(s, nullptr);
+    ASSERT_GE(s->issues().size(), 2u);
+    EXPECT_EQ(std::string(e.what()).substr(0, s->issues()[0].size() + 1), s->issues()[0] + "\n");
+  }
+}
+
+// Latencies and crashes: the scenario keys accept what `laguerre simulate` accepts, with the same rules.
+TEST(ScenarioLoader, NetworkForms) {
+  const Scenario s = from_text("name: x\ntopology: {generator: delaunay, n: 10}\n"
+                               "network: {latency: 'uniform:1ms:1ms', crashes: [3@2ms-5ms, 4@1ms]}\n");
+  const auto& net = s.points[0].config.network;
+  ASSERT_EQ(net.crashes.size(), 2u);
+  EXPECT_EQ(net.crashes[0].recover_at, sim::Time{5000000});
+  EXPECT_FALSE(net.crashes[1].recover_at.has_value());
+  try {
+    (void)from_text("name: x\ntopology: {generator: delaunay, n: 10}\n"
+                    "network: {latency: 'uniform:5ms:1ms', crashes: [-1@1ms]}\n");
+    FAIL() << "no error";
+  } catch (const ScenarioError& e) {
+    ASSERT_EQ(e.issues().size(), 2u);
+    EXPECT_EQ(e.issues()[0],
+              "test.yaml:3:20: network.latency: found 'uniform:5ms:1ms', expected uniform:LO:HI with LO <= HI (5ms is above 1ms)");
+    EXPECT_EQ(e.issues()[1], "test.yaml:3:49: network.crashes[0]: found '-1@1ms', expected " + std::string(crash_forms));
   }
 }
 

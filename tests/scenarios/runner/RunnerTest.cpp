@@ -5,6 +5,7 @@
 #include <set>
 #include <string>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/scenarios/Comparison.hpp"
 #include "laguerre/scenarios/NetworkModel.hpp"
@@ -82,13 +83,49 @@ TEST(NetworkModel, Durations) {
   EXPECT_EQ(parse_duration("2s"), 2000000000);
   EXPECT_EQ(parse_duration("100"), 100);
   EXPECT_EQ(parse_duration("0.5ms"), 500000);
-  for (const char* bad : {"", "ms", "-1ms", "3h", "1e30s"}) EXPECT_THROW((void)parse_duration(bad), std::invalid_argument) << bad;
+  for (const char* bad : {"", "ms", "-1ms", "3h", "1e30s"}) EXPECT_THROW((void)parse_duration(bad), core::InputError) << bad;
   for (sim::Duration d : {sim::Duration{1}, sim::Duration{1000}, sim::Duration{250000}, sim::Duration{3000000000}})
     EXPECT_EQ(parse_duration(format_duration(d)), d);
   EXPECT_EQ(parse_crash("17@40ms").node, 17u);
   EXPECT_EQ(parse_crash("17@40ms").at, 40000000);
-  EXPECT_THROW((void)parse_crash("x@1ms"), std::invalid_argument);
-  EXPECT_THROW((void)parse_latency("uniform:3ms:1ms"), std::invalid_argument);
+  EXPECT_FALSE(parse_crash("17@40ms").recover_at.has_value());
+  EXPECT_EQ(parse_crash("17@40ms-90ms").recover_at, sim::Time{90000000});
+  for (const char* bad : {"x@1ms", "-1@1ms", "+1@1ms", "17", "17@", "17@1ms-", "17@2ms-1ms", "17@1ms-1ms", "@1ms"})
+    EXPECT_THROW((void)parse_crash(bad), core::InputError) << bad;
+  EXPECT_THROW((void)parse_latency("uniform:3ms:1ms"), core::InputError);
+  EXPECT_EQ(parse_latency("uniform:1ms:1ms").spread, 0);
+}
+
+// Messages name the source and say what was found and expected; LO > HI gets its own.
+TEST(NetworkModel, MessagesNameTheSource) {
+  try {
+    (void)parse_latency("uniform:5ms:1ms", "--latency");
+    FAIL() << "accepted";
+  } catch (const core::InputError& e) {
+    EXPECT_EQ(e.source(), "--latency");
+    EXPECT_EQ(std::string(e.what()),
+              "--latency: found 'uniform:5ms:1ms', expected uniform:LO:HI with LO <= HI (5ms is above 1ms)");
+  }
+  try {
+    (void)parse_crash("-1@1ms", "--crash");
+    FAIL() << "accepted";
+  } catch (const core::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "--crash: found '-1@1ms', expected " + std::string(crash_forms));
+  }
+}
+
+// --recover attaches to the latest earlier outage of the node that has no recovery yet.
+TEST(NetworkModel, RecoveryAttachesToTheLatestOpenOutage) {
+  std::vector<CrashSpec> crashes{parse_crash("3@10ms"), parse_crash("3@50ms"), parse_crash("4@1ms")};
+  add_recovery(crashes, "3@60ms");
+  EXPECT_FALSE(crashes[0].recover_at.has_value());
+  EXPECT_EQ(crashes[1].recover_at, sim::Time{60000000});
+  add_recovery(crashes, "3@40ms");
+  EXPECT_EQ(crashes[0].recover_at, sim::Time{40000000});
+  EXPECT_THROW(add_recovery(crashes, "3@70ms"), core::InputError);  // both outages have a recovery
+  EXPECT_THROW(add_recovery(crashes, "4@1ms"), core::InputError);   // not after the crash
+  EXPECT_THROW(add_recovery(crashes, "5@9ms"), core::InputError);   // no such outage
+  EXPECT_THROW(add_recovery(crashes, "4@"), core::InputError);
 }
 
 // The same results with 1 and 2 worker threads (wall times aside).

@@ -1,7 +1,8 @@
 // Hop-by-hop forwarding of every scheme hosted on the simulation kernel (random latencies, so packets
 // overtake each other): each packet's path, outcome, stopping node and hop count equal
 // core::route's, on random triangulations and 3-connected graphs, with the packing's circles for
-// greedy power and the graph's drawing (or the packing's centres) for the geometric schemes.
+// greedy power and the graph's drawing (or the packing's centres) for the geometric schemes. The nodes
+// are built as `laguerre simulate` builds them (scenarios::make_forwarding_node).
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,7 @@
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/protocols/Forwarding.hpp"
+#include "laguerre/scenarios/ProtocolRun.hpp"
 #include "laguerre/sim/SimHost.hpp"
 
 using namespace laguerre;
@@ -50,15 +52,7 @@ std::size_t expect_equal(const core::PlanarGraph& g, const core::CircleEmbedding
   config.seed = seed;
   Recorder sink;
   sim::SimHost host(sim::network_of(g, link), config, [&](protocols::Runtime& rt, sim::NodeIndex v) {
-    std::vector<protocols::NodeId> nb;
-    std::vector<core::Circle> circles;
-    std::vector<core::Point2> points;
-    for (core::Vertex w : g.neighbours(v)) {
-      nb.push_back(g.id(w));
-      circles.push_back(phi[w]);
-      points.push_back(pos[w]);
-    }
-    return std::make_unique<ForwardingNode>(rt, sink, g.id(v), nb, phi[v], circles, pos[v], points);
+    return scenarios::make_forwarding_node(rt, sink, g, v, phi, pos);
   });
   const auto pairs = core::select_pairs(n, {n <= 30 ? std::size_t{0} : std::size_t{400}, seed});
   std::uint64_t packet = 0;

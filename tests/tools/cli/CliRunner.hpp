@@ -4,11 +4,13 @@
 /// a scratch folder per test.
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -33,6 +35,23 @@ inline Outcome run(const std::string& args, bool with_stderr = true) {
   const int st = pclose(p);
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   return r;
+}
+
+/// Runs `laguerre ARGS` (standard output only), expects exit status `status` and parses the JSON
+/// it printed (null, and a failure, if it does not parse).
+inline nlohmann::json run_json(const std::string& args, int status = 0) {
+  const Outcome r = run(args, false);
+  EXPECT_EQ(r.status, status) << args << "\n" << r.out;
+  const auto doc = nlohmann::json::parse(r.out, nullptr, false);
+  if (doc.is_discarded()) ADD_FAILURE() << args << ": no JSON on standard output:\n" << r.out;
+  return doc.is_discarded() ? nlohmann::json() : doc;
+}
+
+/// Runs `laguerre ARGS` and expects exit status 2 (bad input) with each of `needles` in the output.
+inline void expect_bad_input(const std::string& args, std::initializer_list<const char*> needles) {
+  const Outcome r = run(args);
+  EXPECT_EQ(r.status, 2) << args << "\n" << r.out;
+  for (const char* n : needles) EXPECT_NE(r.out.find(n), std::string::npos) << args << "\n" << r.out;
 }
 
 /// A fixture with a fresh scratch folder per test, removed afterwards.

@@ -175,23 +175,16 @@ TEST_F(Cli, SimulateRunsTheProtocolAndMatchesTheCore) {
 
 TEST_F(Cli, SimulateRejectsWhatItCannotDoYet) {
   Outcome r = run("simulate " + example + " --mode sometimes");
-  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.out.find("--mode"), std::string::npos) << r.out;
-  r = run("simulate " + example + " --latency sometimes");
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.out.find("--latency"), std::string::npos) << r.out;
-  r = run("simulate " + example + " --crash 17x");
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.out.find("--crash"), std::string::npos) << r.out;
-  r = run("simulate " + example + " --crash 999@1ms");
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.out.find("no node with id 999"), std::string::npos) << r.out;
+  laguerre::cli_test::expect_bad_input("simulate " + example + " --latency sometimes", {"--latency"});
+  laguerre::cli_test::expect_bad_input("simulate " + example + " --crash 17x", {"--crash"});
+  laguerre::cli_test::expect_bad_input("simulate " + example + " --crash 999@1ms", {"no node with id 999"});
 }
 
 TEST_F(Cli, SimulateSurvivesLossAndDuplicationBitForBit) {
-  const Outcome r = run("simulate " + example + " --loss 0.2 --dup 0.05 --latency uniform:1ms:5ms --verify --pairs 50 --json");
-  ASSERT_EQ(r.status, 0) << r.out;
-  const auto doc = nlohmann::json::parse(r.out);
+  const auto doc =
+      laguerre::cli_test::run_json("simulate " + example + " --loss 0.2 --dup 0.05 --latency uniform:1ms:5ms --verify --pairs 50 --json");
   EXPECT_EQ(doc["converged_nodes"], 60);
   EXPECT_EQ(doc["verify"], "identical to core::pack, bit for bit");
   EXPECT_GT(doc["reliability"]["retransmissions"].get<int>(), 0);

@@ -78,16 +78,12 @@ TEST(CliSimulateSchemes, OneLinePerSchemeAndTheDefaultIsGreedyPower) {
   const Outcome dash = run("simulate " + graph_tri + " --scheme greedy-euclid --pairs 50 --json");
   ASSERT_EQ(dash.status, 0) << dash.out;
   EXPECT_EQ(nlohmann::json::parse(dash.out)["forwarding"][0]["scheme"], "greedy_euclid");
-  const Outcome bad = run("simulate " + graph_tri + " --scheme greedy");
-  EXPECT_EQ(bad.status, 2);
-  EXPECT_NE(bad.out.find("--scheme"), std::string::npos) << bad.out;
+  laguerre::cli_test::expect_bad_input("simulate " + graph_tri + " --scheme greedy", {"--scheme"});
 }
 
 TEST(CliSimulateSchemes, CrashWithRecovery) {
   // A 20 ms outage is masked by the reliability layer: the run converges, bit for bit.
-  const Outcome shortly = run("simulate " + graph_tri + " --crash 17@100ms-120ms --verify --pairs 5 --json");
-  ASSERT_EQ(shortly.status, 0) << shortly.out;
-  const auto a = nlohmann::json::parse(shortly.out);
+  const auto a = laguerre::cli_test::run_json("simulate " + graph_tri + " --crash 17@100ms-120ms --verify --pairs 5 --json");
   EXPECT_EQ(a["converged_nodes"], 60);
   EXPECT_EQ(a["verify"], "identical to core::pack, bit for bit");
   ASSERT_EQ(a["outages"].size(), 1u);
@@ -104,11 +100,7 @@ TEST(CliSimulateSchemes, CrashWithRecovery) {
   EXPECT_EQ(b["outages"][0]["final"], true);
   EXPECT_GT(b["finished_seconds"].get<double>(), 3.0);
   // Bad recoveries are refused with the option named.
-  for (const char* bad : {"--recover 17@3s", "--crash 17@100ms --recover 17@50ms", "--crash 17@100ms-50ms"}) {
-    const Outcome r = run("simulate " + graph_tri + " " + bad);
-    EXPECT_EQ(r.status, 2) << bad;
-    EXPECT_NE(r.out.find(std::string(bad).find("--recover") != std::string::npos ? "--recover" : "--crash"),
-              std::string::npos)
-        << r.out;
-  }
+  for (const char* bad : {"--recover 17@3s", "--crash 17@100ms --recover 17@50ms"})
+    laguerre::cli_test::expect_bad_input("simulate " + graph_tri + " " + bad, {"--recover"});
+  laguerre::cli_test::expect_bad_input("simulate " + graph_tri + " --crash 17@100ms-50ms", {"--crash"});
 }

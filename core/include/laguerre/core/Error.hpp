@@ -26,7 +26,8 @@ public:
   /// An error at `line` (one-based, 0 if not applicable) of `source` (a file name, an option such as
   /// `--latency`, a key such as `network.loss`, or empty).
   InputError(std::string source, std::size_t line, std::string message)
-      : InputError(compose(source, line, message), std::move(source), line, std::move(message)) {}
+      : std::runtime_error(compose(source, line, message)),  // before the members move from the arguments
+        source_(std::move(source)), message_(std::move(message)), line_(line) {}
   /// An error with no known location.
   explicit InputError(std::string message) : InputError(std::string(), 0, std::move(message)) {}
 

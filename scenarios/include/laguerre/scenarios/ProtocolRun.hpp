@@ -1,35 +1,60 @@
 #pragma once
 /// @file
-/// Runs the distributed packing protocol (protocols::PackingNode, one actor per node) on the
-/// discrete-event simulator and gathers what the nodes hold and what the network carried — the part
-/// of `laguerre simulate` that scenarios reuse.
+/// The distributed protocols on the discrete-event simulator, wired once for `laguerre simulate` and
+/// the scenario runner: the packing protocol (protocols::PackingNode, one actor per node) with its
+/// network model, outages and reliability layer, the check of its result against core::pack, and the
+/// hop-by-hop forwarding of packets (protocols::ForwardingNode) on the embedding it produced.
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
+#include <memory>
+#include <map>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "laguerre/core/geometry/Circle.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
+#include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/PlanarGraph.hpp"
 #include "laguerre/core/packing/Layout.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
+#include "laguerre/core/routing/Routing.hpp"
+#include "laguerre/protocols/Forwarding.hpp"
+#include "laguerre/protocols/PackingNode.hpp"
+#include "laguerre/protocols/Runtime.hpp"
 #include "laguerre/scenarios/NetworkModel.hpp"
 #include "laguerre/sim/Link.hpp"
+#include "laguerre/sim/Metrics.hpp"
 #include "laguerre/sim/Network.hpp"
 
 namespace laguerre::scenarios {
 
-/// How to run the protocol.
+/// How to run the packing protocol.
 struct ProtocolSetup {
   bool asynchronous = false;                    ///< asynchronous Thurston updates
   int steps_per_round = 1;                      ///< N
   int max_iterations = 100000;                  ///< cap on steps
   core::RootRule root = core::RootRule::deepest;  ///< root election
   sim::LinkModel link;                          ///< every link's model
-  std::vector<CrashSpec> crashes;               ///< crashes for good
+  std::vector<CrashSpec> crashes;               ///< outages, for good or with a recovery
   std::optional<sim::Duration> retransmit_after;  ///< explicit reliability period (else 3 × longest latency)
+  bool adaptive_rto = true;                     ///< false: the timeout stays at the period (no RTT estimation)
   std::uint64_t seed = 1;                       ///< root of the simulator's random streams
+  /// Whether the reliability layer runs: loss, duplication, outages or an explicit period.
+  bool lossy() const {
+    return link.loss > 0 || link.duplication > 0 || !crashes.empty() || retransmit_after.has_value();
+  }
+};
+
+/// One outage and how its node ended.
+struct OutageOutcome {
+  CrashSpec spec;                 ///< as scheduled
+  sim::NodeIndex node = 0;        ///< the node's index
+  protocols::PackingOutcome outcome = protocols::PackingOutcome::running;  ///< the node's final outcome
+  bool final = false;             ///< whether the node ended in a final state
 };
 
 /// What a protocol run produced.
@@ -39,28 +64,79 @@ struct ProtocolOutcome {
   std::size_t converged_nodes = 0;            ///< nodes that ended `converged`
   std::size_t holds_nodes = 0;                ///< nodes whose local condition holds
   std::size_t failed_nodes = 0;               ///< surviving nodes that ended `neighbour_failed`
-  std::size_t crashed_nodes = 0;              ///< nodes scheduled to crash
+  std::size_t crashed_nodes = 0;              ///< nodes down for good (an outage without recovery)
+  std::map<protocols::NodeId, std::size_t> suspects;  ///< failed survivors per suspected node id
+  std::vector<OutageOutcome> outages;         ///< the setup's outages, in order
   std::uint32_t iterations = 0;               ///< Thurston steps (the largest over the nodes)
   std::uint32_t rounds = 0;                   ///< rounds (the largest over the nodes)
   std::uint64_t messages = 0;                 ///< messages sent (all nodes, retransmissions included)
   std::uint64_t bytes = 0;                    ///< their bytes
   std::uint64_t max_node_messages = 0;        ///< most messages sent by one node
-  std::uint64_t retransmissions = 0;          ///< reliability layer: retransmitted frames
-  double simulated_seconds = 0;               ///< simulated time at the end
+  std::uint64_t max_node_bytes = 0;           ///< most bytes sent by one node
+  /// Traffic per phase (index: protocols::MessageType; frames under the type they carry).
+  std::vector<sim::TrafficCounters> by_phase;
+  protocols::PackingCounters reliability;     ///< the nodes' counters, summed (retransmissions, acks, …)
+  bool lossy = false;                         ///< whether the reliability layer ran
+  sim::Duration retransmit_after = 0;         ///< its first retransmission period (lossy runs)
+  bool adaptive_rto = false;                  ///< whether its timeout followed the round trips
+  sim::Time simulated_time = 0;               ///< simulated time at the end
+  sim::Time finished_at = 0;                  ///< when the last node reached its final outcome
   double wall_seconds = 0;                    ///< wall-clock time of the simulation
   std::uint64_t events = 0;                   ///< events processed
+  double events_per_second = 0;               ///< events per wall-clock second
+  std::size_t peak_memory_bytes = 0;          ///< peak resident memory of the process
   /// Whether every node converged.
   bool converged() const { return converged_nodes == circles.size(); }
+  /// Nodes not down for good.
+  std::size_t survivors() const { return circles.size() - crashed_nodes; }
 };
 
 /// The simulated network of `g` (same indices, user ids) with `link` on every link and `positions`
-/// (if not empty). Crashes are not added.
+/// (if not empty). Outages are not added.
 sim::Network make_network(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
                           const sim::LinkModel& link);
 
-/// Runs the protocol on `g` (prepared for packing). Throws std::invalid_argument if a crash names an
-/// unknown node or a distance latency is used without positions.
+/// Runs the protocol on `g` (prepared for packing). Throws core::InputError if an outage names an
+/// unknown node (source "crash ID@TIME") or a distance latency is used without positions.
 ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
                                      const ProtocolSetup& setup);
+
+/// The check of a run against the core: "not applicable: …" after a node failure; in asynchronous
+/// mode core's LPD/GLPD check (per `kind`) of the nodes' circles ("… holds at K/N nodes"); otherwise
+/// whether core::pack with the same N, cap and root gives the same circles and iterations bit for bit
+/// ("identical to core::pack, bit for bit" or "DIFFERS from core::pack").
+std::string verify_against_core(const core::PlanarGraph& g, core::GraphKind kind, const ProtocolSetup& setup,
+                                const ProtocolOutcome& outcome);
+
+/// A forwarding node for vertex `v` of `g`, knowing its own and its neighbours' circles and positions.
+std::unique_ptr<protocols::Node> make_forwarding_node(protocols::Runtime& rt, protocols::PacketSink& sink,
+                                                      const core::PlanarGraph& g, core::Vertex v,
+                                                      const core::CircleEmbedding& circles,
+                                                      const std::vector<core::Point2>& positions);
+
+/// Hop-by-hop forwarding of one scheme: outcomes and hop stretch against BFS shortest paths.
+struct ForwardingResult {
+  core::Scheme scheme = core::Scheme::greedy_power;  ///< the scheme
+  std::size_t packets = 0;        ///< packets sent (one per pair)
+  std::size_t delivered = 0;      ///< delivered
+  std::size_t dead_ends = 0;      ///< ended at a dead end
+  std::size_t loops = 0;          ///< ended in a loop
+  std::size_t ttl_exceeded = 0;   ///< ended at the hop limit
+  double hops_mean = 0;           ///< hops per delivered packet
+  double stretch_mean = std::numeric_limits<double>::quiet_NaN();  ///< hop stretch over delivered packets (NaN if none)
+  double stretch_p95 = std::numeric_limits<double>::quiet_NaN();   ///< its nearest-rank 95th percentile (NaN if none)
+  double stretch_max = std::numeric_limits<double>::quiet_NaN();   ///< its maximum (NaN if none)
+  double simulated_seconds = 0;   ///< simulated time of the forwarding run
+};
+
+/// Forwards one packet per pair in `pairs` hop by hop, one simulation per scheme, over the links of
+/// `link` without loss or duplication (forwarding has no retransmission) and the simulator seeded with
+/// `seed`. Greedy power routes on `circles`; the other schemes on `positions` if not empty (they also
+/// place the network's nodes for distance latencies), else on the circles' centres. Each packet's
+/// hop limit is core::default_ttl, so the outcomes are core::route's.
+std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
+                                             const std::vector<core::Point2>& positions, const sim::LinkModel& link,
+                                             std::uint64_t seed, const std::vector<core::Scheme>& schemes,
+                                             const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs);
 
 }  // namespace laguerre::scenarios

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "laguerre/core/EnumNames.hpp"
 #include "laguerre/core/packing/Accelerator.hpp"
 #include "laguerre/core/packing/Layout.hpp"
 #include "laguerre/core/routing/Routing.hpp"
@@ -32,7 +33,7 @@ struct NetworkSpec {
   sim::LatencyModel latency = sim::LatencyModel::constant(sim::milliseconds(1));  ///< parsed
   double loss = 0;                                 ///< loss probability per copy, [0, 1)
   double duplication = 0;                          ///< duplication probability per message, [0, 1]
-  std::vector<CrashSpec> crashes;                  ///< crashes for good
+  std::vector<CrashSpec> crashes;                  ///< outages, for good or with a recovery
   std::optional<sim::Duration> retransmit_after;   ///< first retransmission period (reliability layer)
   /// Whether the reliability layer is needed (loss, duplication, crashes or an explicit period).
   bool lossy() const { return loss > 0 || duplication > 0 || !crashes.empty() || retransmit_after.has_value(); }
@@ -44,6 +45,15 @@ enum class StopSpec {
   glpd,   ///< synonym of lpd (the protocol picks the rule from the graph's kind)
   exact,  ///< continue centrally (core::pack) to the thesis's exact packing and route on it
 };
+/// StopSpec: lpd, glpd, exact.
+inline constexpr core::EnumNames<StopSpec, 3> stop_spec_names{
+    {{StopSpec::lpd, "lpd"}, {StopSpec::glpd, "glpd"}, {StopSpec::exact, "exact"}}};
+
+/// How the packing runs: the distributed protocol (synchronous or asynchronous updates), or centrally.
+enum class ProtocolMode { sync, async, central };
+/// ProtocolMode: sync, async, central (`laguerre simulate --mode` offers the first two).
+inline constexpr core::EnumNames<ProtocolMode, 3> protocol_mode_names{
+    {{ProtocolMode::sync, "sync"}, {ProtocolMode::async, "async"}, {ProtocolMode::central, "central"}}};
 
 /// `protocol:` — the distributed packing protocol's parameters.
 struct ProtocolSpec {
@@ -66,8 +76,19 @@ enum class GeometricPositions {
   packing,    ///< the packing's centres
   physical,   ///< the physical positions (the generator must provide them)
 };
+/// GeometricPositions: auto, packing, physical.
+inline constexpr core::EnumNames<GeometricPositions, 3> positions_names{{{GeometricPositions::automatic, "auto"},
+                                                                         {GeometricPositions::packing, "packing"},
+                                                                         {GeometricPositions::physical, "physical"}}};
 
 /// `routing:` — schemes and pairs.
+/// The routing schemes as scenario files and the command line spell them (core::to_string(Scheme) is
+/// the underscore form of the outputs).
+inline constexpr core::EnumNames<core::Scheme, 4> scheme_names{{{core::Scheme::greedy_power, "greedy-power"},
+                                                                {core::Scheme::greedy_euclid, "greedy-euclid"},
+                                                                {core::Scheme::compass, "compass"},
+                                                                {core::Scheme::gfg, "gfg"}}};
+
 struct RoutingSpec {
   std::vector<core::Scheme> schemes{core::all_schemes.begin(), core::all_schemes.end()};  ///< in order
   std::size_t pairs = 0;                     ///< 0 = all ordered pairs, else a seeded sample of k

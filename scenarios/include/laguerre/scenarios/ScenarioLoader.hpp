@@ -13,12 +13,13 @@
 #include <string_view>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/scenarios/Scenario.hpp"
 
 namespace laguerre::scenarios {
 
 /// Every problem found in a scenario, one formatted message each, in file order.
-class ScenarioError : public std::runtime_error {
+class ScenarioError : public core::InputError {
 public:
   /// An error listing `issues` (what() joins them with newlines).
   explicit ScenarioError(std::vector<std::string> issues);

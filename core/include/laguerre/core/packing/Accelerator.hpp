@@ -21,7 +21,7 @@ enum class Acceleration {
 
 /// Name of an acceleration ("plain", "superstep", "anderson", "newton").
 std::string_view to_string(Acceleration a);
-/// Parses an acceleration name; throws std::invalid_argument listing the valid names.
+/// Parses an acceleration name; throws InputError listing the valid names (PackingNames.hpp).
 Acceleration parse_acceleration(std::string_view name);
 
 /// Accelerates the fixed-point iteration y ← F(y) that Thurston sweeps perform, in the variable

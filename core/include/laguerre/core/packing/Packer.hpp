@@ -24,7 +24,7 @@ enum class StopRule {
 
 /// Name of a stopping rule ("lpd", "exact", "angle", "cap").
 std::string_view to_string(StopRule rule);
-/// Parses a stopping rule name; throws std::invalid_argument listing the valid names.
+/// Parses a stopping rule name; throws InputError listing the valid names (PackingNames.hpp).
 StopRule parse_stop_rule(std::string_view name);
 
 /// How a packing run ended.

@@ -39,6 +39,7 @@
 /// gaps), and the positions are the points: the result is a straight-line drawing (GraphInput with
 /// positions, `outer_given` true, outer face the unbounded one).
 
+#include "laguerre/core/Error.hpp"
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -117,11 +118,11 @@ struct FieldGraph {
 
 /// The `fail` policy's error (also raised when a repair cannot help); what() is the full message,
 /// prefixed by the options' source.
-class FieldGraphError : public std::runtime_error {
+class FieldGraphError : public core::InputError {
 public:
   /// Builds the error with its report.
   FieldGraphError(const std::string& message, FieldGraphReport report)
-      : std::runtime_error(message), report_(std::move(report)) {}
+      : core::InputError(message), report_(std::move(report)) {}
   /// The report up to the failure.
   const FieldGraphReport& report() const noexcept { return report_; }
 

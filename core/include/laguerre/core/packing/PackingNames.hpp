@@ -1,0 +1,25 @@
+#pragma once
+/// @file
+/// The names of the packing enums (EnumNames.hpp): the spellings of the command line, the scenario
+/// files and the JSON outputs.
+
+#include "laguerre/core/EnumNames.hpp"
+#include "laguerre/core/packing/Packer.hpp"
+
+namespace laguerre::core {
+
+/// Acceleration: plain, superstep, anderson, newton.
+inline constexpr EnumNames<Acceleration, 4> acceleration_names{{{Acceleration::plain, "plain"},
+                                                                {Acceleration::superstep, "superstep"},
+                                                                {Acceleration::anderson, "anderson"},
+                                                                {Acceleration::newton, "newton"}}};
+/// StopRule: lpd, exact, angle, cap.
+inline constexpr EnumNames<StopRule, 4> stop_rule_names{
+    {{StopRule::lpd, "lpd"}, {StopRule::exact, "exact"}, {StopRule::angle, "angle"}, {StopRule::cap, "cap"}}};
+/// Sweep: jacobi, gauss-seidel.
+inline constexpr EnumNames<Sweep, 2> sweep_names{{{Sweep::jacobi, "jacobi"}, {Sweep::gauss_seidel, "gauss-seidel"}}};
+/// RootRule: deepest, smallest-id.
+inline constexpr EnumNames<RootRule, 2> root_rule_names{
+    {{RootRule::deepest, "deepest"}, {RootRule::smallest_id, "smallest-id"}}};
+
+}  // namespace laguerre::core
