@@ -10,30 +10,12 @@
 #include "laguerre/core/graph/GraphIO.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
+#include "GraphTestSupport.hpp"
 
 using namespace laguerre::core;
+using namespace laguerre::core::test;
 
 namespace {
-
-std::string data_path(const std::string& name) { return std::string(LAGUERRE_TEST_DATA) + "/graphs/" + name; }
-
-GraphInput read_one(std::string_view text, GraphFormat format = GraphFormat::automatic) {
-  auto graphs = read_graphs_from_string(text, "<input>", format);
-  EXPECT_EQ(graphs.size(), 1u);
-  return std::move(graphs.at(0));
-}
-
-/// Runs `f`, expects a GraphInputError and returns it.
-template <class F>
-GraphInputError expect_input_error(F&& f) {
-  try {
-    f();
-  } catch (const GraphInputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no GraphInputError was thrown";
-  return GraphInputError("<none>", 0, 0, "");
-}
 
 std::string bytes(std::initializer_list<int> values) {
   std::string out;
@@ -107,13 +89,22 @@ TEST(GraphIO, ParsesFormatNames) {
   EXPECT_EQ(parse_graph_format("edges"), GraphFormat::edges);
   EXPECT_EQ(parse_graph_format("planar_code"), GraphFormat::planar_code);
   EXPECT_EQ(parse_graph_format("coords"), GraphFormat::coords);
-  try {
-    parse_graph_format("gml");
-    FAIL() << "no exception";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(),
-                 "Unknown graph format 'gml'; expected one of automatic, edges, planar_code, coords, graphml, dot.");
-  }
+  for (GraphFormat f : {GraphFormat::automatic, GraphFormat::edges, GraphFormat::planar_code, GraphFormat::coords,
+                        GraphFormat::graphml, GraphFormat::dot})
+    EXPECT_EQ(parse_graph_format(to_string(f)), f);
+  const auto e = expect_input_error([] { parse_graph_format("gml"); });
+  EXPECT_STREQ(e.what(),
+               "format: unknown graph format 'gml'; expected one of automatic, edges, planar_code, coords, graphml, dot.");
+}
+
+TEST(GraphIO, GraphInputErrorIsAnInputErrorWithTheSameText) {
+  const GraphInputError e("g.pc", 0, 3, "graph 3 has no vertices.");
+  const InputError& base = e;
+  EXPECT_STREQ(base.what(), "g.pc#3: graph 3 has no vertices.");
+  EXPECT_EQ(base.source(), "g.pc");
+  EXPECT_EQ(base.message(), "graph 3 has no vertices.");
+  EXPECT_EQ(e.graph_index(), 3u);
+  EXPECT_STREQ(GraphInputError("g.txt", 12, 0, "bad.").what(), "g.txt:12: bad.");
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -230,9 +221,12 @@ TEST(GraphIO, EdgeListErrorsNameTheLine) {
   e = expect_input_error([] { read_one("1 4\n1 5\n1 6\n2 4\n2 5\n2 6\n3 4\n3 5\n3 6\n"); });  // K3,3
   EXPECT_EQ(e.message(), "the graph is not planar (the Boyer-Myrvold test found a Kuratowski subgraph).");
 
+  // Missing files and directories: core::open_input_file's sentences.
   e = expect_input_error([] { read_graphs(data_path("no-such-file.txt")); });
   EXPECT_EQ(e.source(), data_path("no-such-file.txt"));
-  EXPECT_NE(e.message().find("the file cannot be opened for reading"), std::string::npos);
+  EXPECT_EQ(e.message(), "no such graph file (the file does not exist).");
+  e = expect_input_error([] { read_graphs(std::string(LAGUERRE_TEST_DATA) + "/graphs"); });
+  EXPECT_STREQ(e.what(), (std::string(LAGUERRE_TEST_DATA) + "/graphs: is a directory; expected a graph file.").c_str());
 }
 
 TEST(GraphIO, OuterDirectiveErrors) {
@@ -403,6 +397,17 @@ TEST(GraphIO, PlanarCodeErrorsNameTheGraph) {
   e = expect_input_error([] { read_graphs_from_string(">>planar_code xx<<" + bytes({3}), "t.pc"); });
   EXPECT_EQ(e.graph_index(), 0u);
   EXPECT_NE(e.message().find("header"), std::string::npos);
+}
+
+TEST(GraphIO, PlanarCodeRequestedForATextFileSaysSo) {
+  auto e = expect_input_error([] { read_graphs_from_string("# a triangle\n1 2\n2 3\n3 1\n", "tri.txt", GraphFormat::planar_code); });
+  EXPECT_STREQ(e.what(), "tri.txt: expected a planar_code file (header '>>planar_code<<'), found '# a triangle' (no "
+                         "header, and none of the 0 bytes that end every vertex's neighbour list).");
+  e = expect_input_error([] { read_graphs(data_path("k5.txt"), GraphFormat::planar_code); });
+  EXPECT_EQ(e.source(), data_path("k5.txt"));
+  EXPECT_EQ(e.message().rfind("expected a planar_code file (header '>>planar_code<<'), found '", 0), 0u) << e.what();
+  // Headerless binary planar_code is still read when requested.
+  EXPECT_EQ(read_graphs_from_string(bytes({3, 2, 3, 0, 3, 1, 0, 1, 2, 0}), "tri.pc", GraphFormat::planar_code).size(), 1u);
 }
 
 TEST(GraphIO, AutomaticDetection) {

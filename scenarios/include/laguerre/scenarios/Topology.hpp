@@ -20,6 +20,7 @@
 #include <variant>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/PlanarGraph.hpp"
@@ -115,10 +116,11 @@ struct Topology {
   std::string note;                     ///< what the generator reports (e.g. a sensor field's repair), or ""
 };
 
-/// A topology that could not be built or is not packable (not a triangulated disc, not 3-connected).
-class TopologyError : public std::runtime_error {
+/// A topology that could not be built or is not packable (not a triangulated disc, not 3-connected):
+/// bad input, with no location of its own (`what()` is the message).
+class TopologyError : public core::InputError {
 public:
-  using std::runtime_error::runtime_error;
+  explicit TopologyError(const std::string& message) : core::InputError(message, std::string(), 0, message) {}
 };
 
 /// Every registered generator, in documentation order.

@@ -12,7 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "laguerre/core/graph/GraphIO.hpp"
+#include "laguerre/core/graph/Embedding.hpp"
 
 namespace laguerre::core {
 
