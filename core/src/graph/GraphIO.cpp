@@ -42,18 +42,17 @@ std::vector<GraphInput> one(GraphInput input) {
 }  // namespace
 
 GraphFormat parse_graph_format(std::string_view name) {
+  const auto named = [&](const auto& entry) { return entry.second == name; };
+  if (const auto it = std::find_if(format_names.begin(), format_names.end(), named); it != format_names.end())
+    return it->first;
   std::string expected;
-  for (const auto& [format, text] : format_names) {
-    if (text == name) return format;
-    expected += (expected.empty() ? "" : ", ") + std::string(text);
-  }
+  for (const auto& entry : format_names) expected += (expected.empty() ? "" : ", ") + std::string(entry.second);
   throw GraphInputError("format", 0, 0, "unknown graph format '" + std::string(name) + "'; expected one of " + expected + ".");
 }
 
 std::string_view to_string(GraphFormat format) {
-  for (const auto& [f, text] : format_names)
-    if (f == format) return text;
-  return "unknown";
+  const auto it = std::find_if(format_names.begin(), format_names.end(), [&](const auto& e) { return e.first == format; });
+  return it == format_names.end() ? std::string_view("unknown") : it->second;
 }
 
 std::vector<GraphInput> read_graphs_from_string(std::string_view data, const std::string& source_name,
@@ -63,8 +62,8 @@ std::vector<GraphInput> read_graphs_from_string(std::string_view data, const std
     case GraphFormat::planar_code: return detail::read_planar_code(data, source_name);
     case GraphFormat::coords:
       return one(detail::build_from_coords_text(detail::parse_coords_text(data, source_name), source_name));
-    case GraphFormat::graphml: return detail::read_graphml(data, source_name);
-    case GraphFormat::dot: return detail::read_dot(data, source_name);
+    case GraphFormat::graphml: return one(detail::read_graphml(data, source_name));
+    case GraphFormat::dot: return one(detail::read_dot(data, source_name));
     case GraphFormat::edges:
     case GraphFormat::automatic: break;
   }

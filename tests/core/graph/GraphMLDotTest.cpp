@@ -16,17 +16,6 @@ using namespace laguerre::core::test;
 
 namespace {
 
-/// The message of the GraphInputError that reading `text` throws ("" if none), and its line.
-std::string read_error(std::string_view text, std::size_t* line = nullptr, GraphFormat format = GraphFormat::automatic) {
-  try {
-    read_graphs_from_string(text, "in", format);
-  } catch (const GraphInputError& e) {
-    if (line) *line = e.line();
-    return e.what();
-  }
-  return "";
-}
-
 bool same_rotation(const PlanarGraph& a, const PlanarGraph& b) {
   if (a.num_vertices() != b.num_vertices() || a.ids() != b.ids()) return false;
   for (Vertex v = 0; v < a.num_vertices(); ++v) {

@@ -2,6 +2,7 @@
 // What the graph reader tests share: bundled files, reading one graph, catching the input error.
 #include <gtest/gtest.h>
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -30,6 +31,19 @@ GraphInputError expect_input_error(F&& f) {
   }
   ADD_FAILURE() << "no GraphInputError was thrown";
   return GraphInputError("<none>", 0, 0, "");
+}
+
+/// The what() of the GraphInputError that reading `text` (named "<input>") throws, "" if none; its line
+/// goes to `line` if given.
+inline std::string read_error(std::string_view text, std::size_t* line = nullptr,
+                              GraphFormat format = GraphFormat::automatic) {
+  try {
+    read_graphs_from_string(text, "<input>", format);
+  } catch (const GraphInputError& e) {
+    if (line) *line = e.line();
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace laguerre::core::test

@@ -20,7 +20,7 @@ struct DotNode {
 
 }  // namespace
 
-std::vector<GraphInput> read_dot(std::string_view data, const std::string& source) {
+GraphInput read_dot(std::string_view data, const std::string& source) {
   using DotGraph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, DotNode>;
   DotGraph g;
   std::string outer;
@@ -64,14 +64,12 @@ std::vector<GraphInput> read_dot(std::string_view data, const std::string& sourc
   }
   for (auto [it, end] = boost::edges(g); it != end; ++it) ng.edges.emplace_back(boost::source(*it, g), boost::target(*it, g));
   ng.outer = split_outer(outer);
-  std::vector<GraphInput> out;
-  out.push_back(build_named(ng, source));
-  return out;
+  return build_named(ng, source);
 }
 
 /// Whether the text starts (after a byte-order mark, blanks and comments) with a DOT graph keyword.
 bool looks_like_dot(std::string_view data) {
-  if (data.substr(0, 3) == "\xEF\xBB\xBF") data.remove_prefix(3);
+  data = without_bom(data);
   std::size_t i = 0;
   for (;;) {
     while (i < data.size() && std::isspace(static_cast<unsigned char>(data[i]))) ++i;

@@ -28,8 +28,8 @@ inline constexpr std::string_view planar_code_magic = ">>planar_code";
 std::vector<GraphInput> read_planar_code(std::string_view data, const std::string& source);
 
 // GraphML (GraphML.cpp) and DOT (Dot.cpp)
-std::vector<GraphInput> read_graphml(std::string_view data, const std::string& source);
-std::vector<GraphInput> read_dot(std::string_view data, const std::string& source);
+GraphInput read_graphml(std::string_view data, const std::string& source);
+GraphInput read_dot(std::string_view data, const std::string& source);
 /// Whether the text starts (after a byte-order mark and blanks) with an XML or GraphML tag.
 bool looks_like_xml(std::string_view data);
 /// Whether the text starts (after a byte-order mark, blanks and comments) with a DOT graph keyword.
@@ -52,7 +52,7 @@ std::vector<std::string> split_outer(const std::string& value);
 /// A position value, or GraphInputError naming `what`.
 std::optional<double> parse_position_value(const std::string& value, const std::string& what, const std::string& source);
 
-// Shared by the writers (Writers.cpp).
+// Shared by the writers (GraphIO.cpp).
 /// Edges by user ids (smaller first, sorted).
 std::vector<std::pair<std::uint64_t, std::uint64_t>> sorted_id_edges(const PlanarGraph& g);
 /// 17 significant digits (round-trips every double).

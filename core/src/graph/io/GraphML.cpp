@@ -80,7 +80,7 @@ void check_nesting_depth(std::string_view data, const std::string& source) {
 
 }  // namespace
 
-std::vector<GraphInput> read_graphml(std::string_view data, const std::string& source) {
+GraphInput read_graphml(std::string_view data, const std::string& source) {
   namespace pt = boost::property_tree;
   check_nesting_depth(data, source);
   pt::ptree tree;
@@ -160,17 +160,16 @@ std::vector<GraphInput> read_graphml(std::string_view data, const std::string& s
                                                 node_quoted(*end) + ", which is not declared.");
     ng.edges.emplace_back(index[*s], index[*t]);
   }
-  std::vector<GraphInput> out;
-  out.push_back(build_named(ng, source));
-  return out;
+  return build_named(ng, source);
 }
 
 /// Whether the text starts (after a byte-order mark and blanks) with an XML or GraphML tag.
 bool looks_like_xml(std::string_view data) {
-  if (data.substr(0, 3) == "\xEF\xBB\xBF") data.remove_prefix(3);
-  std::size_t i = 0;
-  while (i < data.size() && std::isspace(static_cast<unsigned char>(data[i]))) ++i;
-  return data.substr(i, 5) == "<?xml" || data.substr(i, 8) == "<graphml" || data.substr(i, 4) == "<!--";
+  data = without_bom(data);
+  const std::size_t start = data.find_first_not_of(" \t\n\r\v\f");
+  if (start == std::string_view::npos) return false;
+  const std::string_view rest = data.substr(start);
+  return rest.starts_with("<?xml") || rest.starts_with("<graphml") || rest.starts_with("<!--");
 }
 
 }  // namespace detail

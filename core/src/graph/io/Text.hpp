@@ -13,6 +13,11 @@
 
 namespace laguerre::core::detail {
 
+/// `data` without a leading UTF-8 byte-order mark.
+inline std::string_view without_bom(std::string_view data) {
+  return data.starts_with("\xEF\xBB\xBF") ? data.substr(3) : data;
+}
+
 /// `s` without leading and trailing blanks (space, tab, CR, VT, FF).
 std::string_view trim(std::string_view s);
 
