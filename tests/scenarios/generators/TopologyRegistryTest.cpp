@@ -14,7 +14,9 @@ TEST(TopologyRegistry, EveryAvailableGeneratorBuildsAndDocumentsItsDefaults) {
   for (const scenarios::GeneratorInfo& g : scenarios::topology_generators()) {
     EXPECT_EQ(static_cast<bool>(g.build), g.available) << g.name;
     for (const scenarios::ParamSpec& p : g.params) {
-      if (p.default_value) EXPECT_EQ(p.default_text, scenarios::describe(*p.default_value)) << g.name << "." << p.name;
+      if (p.default_value) {
+        EXPECT_EQ(p.default_text, scenarios::describe(*p.default_value)) << g.name << "." << p.name;
+      }
       EXPECT_FALSE(p.required && p.default_value) << g.name << "." << p.name;
     }
   }
