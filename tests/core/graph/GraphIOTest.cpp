@@ -285,14 +285,16 @@ TEST(GraphIO, CoordsErrors) {
   EXPECT_STREQ(e.what(), "<input>: the drawing is not plane: edges 1-2 and 3-4 cross or touch.");
   e = expect_input_error([] { read_one("vertices\n1 0 0\n2 1 0\n3 2 0\n4 0 1\nedges\n1 2\n1 3\n1 4\n2 4\n"); });
   EXPECT_NE(e.message().find("overlap"), std::string::npos) << e.what();
-  EXPECT_EQ(read_error("vertices\n1 0 0\n2 2 0\n3 1 0\n4 1 1\nedges\n1 2\n3 4\n1 4\n"),
-            "<input>: the drawing is not plane: edges 1-2 and 3-4 cross or touch.");  // 3 lies on 1-2
-  EXPECT_EQ(read_error("vertices\n1 0 0\n2 1 0\n3 0 0\nedges\n1 2\n2 3\n"),
-            "<input>: vertices 1 and 3 are both at (0, 0).");
-  EXPECT_EQ(read_error("1 2\n", nullptr, GraphFormat::coords),
-            "<input>:1: expected the section header 'vertices' before any data, found '1 2'.");
-  EXPECT_EQ(read_error("vertices\n1 0 0\n2 1 0\nedges\n1 3\n"),
-            "<input>:5: edge 1-3 uses vertex 3, which the 'vertices' section does not declare.");
+  // (drawing, the error it gets), read as coords.
+  const std::pair<const char*, const char*> cases[] = {
+      {"vertices\n1 0 0\n2 2 0\n3 1 0\n4 1 1\nedges\n1 2\n3 4\n1 4\n",  // 3 lies on 1-2
+       "<input>: the drawing is not plane: edges 1-2 and 3-4 cross or touch."},
+      {"vertices\n1 0 0\n2 1 0\n3 0 0\nedges\n1 2\n2 3\n", "<input>: vertices 1 and 3 are both at (0, 0)."},
+      {"1 2\n", "<input>:1: expected the section header 'vertices' before any data, found '1 2'."},
+      {"vertices\n1 0 0\n2 1 0\nedges\n1 3\n",
+       "<input>:5: edge 1-3 uses vertex 3, which the 'vertices' section does not declare."},
+  };
+  for (const auto& [text, expected] : cases) EXPECT_EQ(read_error(text, nullptr, GraphFormat::coords), expected);
   e = expect_input_error([] { read_one("# drawing\nvertices\n1 0 0\n2 1 nan\nedges\n1 2\n"); });
   EXPECT_EQ(e.line(), 4u);
   EXPECT_NE(e.message().find("expected a vertex line 'id x y'"), std::string::npos);
