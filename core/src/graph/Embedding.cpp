@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "detail/EmbeddingDetail.hpp"
+#include "laguerre/core/Error.hpp"
 
 namespace laguerre::core {
 
@@ -186,9 +187,9 @@ GraphInput detail::embed_combinatorial(const IndexEdges& edges, const std::vecto
 GraphInput graph_from_drawing(std::vector<std::uint64_t> ids, std::vector<Point2> positions, const IndexEdges& edges,
                               const std::string& source, bool check_crossings) {
   const std::size_t n = ids.size();
-  if (positions.size() != n)
-    throw std::invalid_argument("graph_from_drawing needs one position per id, got " +
-                                std::to_string(positions.size()) + " positions for " + std::to_string(n) + " ids.");
+  LAGUERRE_PRECONDITION(positions.size() == n, "graph_from_drawing needs one position per id, got " +
+                                                   std::to_string(positions.size()) + " positions for " +
+                                                   std::to_string(n) + " ids.");
   if (n == 0) throw GraphInputError(source, 0, 0, "the graph has no vertices.");
   for (std::size_t v = 0; v < n; ++v)
     if (!std::isfinite(positions[v].x) || !std::isfinite(positions[v].y))
@@ -207,7 +208,7 @@ GraphInput graph_from_drawing(std::vector<std::uint64_t> ids, std::vector<Point2
   }
   std::vector<std::vector<Vertex>> rotation(n);
   for (auto [a, b] : edges) {
-    if (a >= n || b >= n) throw std::invalid_argument("graph_from_drawing: an edge has a vertex index out of range.");
+    LAGUERRE_PRECONDITION(a < n && b < n, "graph_from_drawing: an edge has a vertex index out of range.");
     if (a == b)
       throw GraphInputError(source, 0, 0, "edge " + edge_name(ids[a], ids[b]) + " is a self-loop; the graph must be simple.");
     rotation[a].push_back(b);

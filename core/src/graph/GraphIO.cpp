@@ -99,9 +99,9 @@ std::string exact_number(double value) {
 }
 
 void check_positions(const PlanarGraph& g, const std::vector<Point2>& positions, const char* writer) {
-  if (!positions.empty() && positions.size() != g.num_vertices())
-    throw std::invalid_argument(std::string(writer) + " needs no positions or one per vertex, got " +
-                                std::to_string(positions.size()) + " for " + std::to_string(g.num_vertices()) + " vertices.");
+  LAGUERRE_PRECONDITION(positions.empty() || positions.size() == g.num_vertices(),
+                        std::string(writer) + " needs no positions or one per vertex, got " +
+                            std::to_string(positions.size()) + " for " + std::to_string(g.num_vertices()) + " vertices.");
 }
 
 std::string outer_ids(const PlanarGraph& g) {

@@ -401,6 +401,20 @@ TEST(GraphIO, PlanarCodeErrorsNameTheGraph) {
   EXPECT_NE(e.message().find("header"), std::string::npos);
 }
 
+TEST(GraphIO, PlanarCodeWriterRefusesMoreThan65535Vertices) {
+  std::vector<std::vector<Vertex>> star(65537);  // a star: one centre, 65536 leaves
+  for (Vertex v = 1; v < star.size(); ++v) {
+    star[0].push_back(v);
+    star[v] = {0};
+  }
+  const auto e = expect_input_error([&] { write_planar_code({PlanarGraph::from_rotation(star)}); });
+  EXPECT_STREQ(e.what(), "planar_code output: a graph has 65537 vertices; planar_code stores 1 to 65535.");
+  star.resize(65535);  // the largest planar_code stores
+  star[0].resize(65534);
+  EXPECT_EQ(read_graphs_from_string(write_planar_code({PlanarGraph::from_rotation(star)})).at(0).graph.num_vertices(),
+            65535u);
+}
+
 TEST(GraphIO, PlanarCodeRequestedForATextFileSaysSo) {
   auto e = expect_input_error([] { read_graphs_from_string("# a triangle\n1 2\n2 3\n3 1\n", "tri.txt", GraphFormat::planar_code); });
   EXPECT_STREQ(e.what(), "tri.txt: expected a planar_code file (header '>>planar_code<<'), found '# a triangle' (no "

@@ -206,5 +206,5 @@ TEST(GraphMLDot, AutomaticDetectionKeepsTheOtherFormats) {
   // A DOT text read as an edge list is an error of the edges format, as before.
   EXPECT_NE(read_error("graph { 1 -- 2 }", nullptr, GraphFormat::edges).find("expected two non-negative integer vertex ids"),
             std::string::npos);
-  EXPECT_THROW(write_graphml(random_delaunay_triangulation(5, 1).graph, {{0, 0}}), std::invalid_argument);
+  EXPECT_THROW(write_graphml(random_delaunay_triangulation(5, 1).graph, {{0, 0}}), InternalError);
 }

@@ -57,7 +57,7 @@ std::optional<double> parse_position_value(const std::string& value, const std::
 std::vector<std::pair<std::uint64_t, std::uint64_t>> sorted_id_edges(const PlanarGraph& g);
 /// 17 significant digits (round-trips every double).
 std::string exact_number(double value);
-/// std::invalid_argument unless `positions` is empty or has one entry per vertex.
+/// Precondition: `positions` is empty or has one entry per vertex.
 void check_positions(const PlanarGraph& g, const std::vector<Point2>& positions, const char* writer);
 /// The user ids of boundary_cycle(), separated by spaces.
 std::string outer_ids(const PlanarGraph& g);

@@ -113,7 +113,8 @@ std::string write_planar_code(const std::vector<PlanarGraph>& graphs) {
   for (const PlanarGraph& g : graphs) {
     const std::size_t n = g.num_vertices();
     if (n == 0 || n > 65535)
-      throw std::invalid_argument("planar_code stores graphs of 1 to 65535 vertices, not " + std::to_string(n) + ".");
+      throw GraphInputError("planar_code output", 0, 0,
+                            "a graph has " + std::to_string(n) + " vertices; planar_code stores 1 to 65535.");
     const bool wide = n > 255;
     auto put = [&](std::size_t value) {
       out.push_back(static_cast<char>(value & 0xff));

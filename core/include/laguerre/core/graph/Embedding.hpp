@@ -29,7 +29,7 @@ struct GraphInput {
 /// test sweeps the edges' bounding boxes in x order: O(m log m) plus one exact segment test per pair of
 /// edges whose boxes overlap (O(m²) in the worst case, about m√m for uniform random points); with
 /// `check_crossings` false it is skipped (for drawings known to be plane, e.g. Delaunay triangulations).
-/// Requires one position per id and edge indices below ids.size() (std::invalid_argument otherwise).
+/// Preconditions (LAGUERRE_PRECONDITION): one position per id, edge indices below ids.size().
 GraphInput graph_from_drawing(std::vector<std::uint64_t> ids, std::vector<Point2> positions,
                               const std::vector<std::pair<Vertex, Vertex>>& edges, const std::string& source,
                               bool check_crossings = true);

@@ -127,16 +127,17 @@ std::string write_edge_list(const PlanarGraph& g);
 
 /// Writes `g` as GraphML: nodes with the user ids as GraphML ids, undirected edges sorted as in
 /// write_edge_list, a graph key `outer` (boundary_cycle() order) and, when `positions` is not empty
-/// (one per vertex, else std::invalid_argument), node keys `x` and `y` with 17 significant digits.
+/// (one per vertex: a precondition), node keys `x` and `y` with 17 significant digits.
 std::string write_graphml(const PlanarGraph& g, const std::vector<Point2>& positions = {});
 
 /// Writes `g` as an undirected Graphviz graph: node names are user ids, `pos="x,y"` when `positions`
-/// is not empty (one per vertex, else std::invalid_argument), a graph attribute `outer`, edges sorted
+/// is not empty (one per vertex: a precondition), a graph attribute `outer`, edges sorted
 /// as in write_edge_list.
 std::string write_dot(const PlanarGraph& g, const std::vector<Point2>& positions = {});
 
 /// Writes graphs in planar_code with the header `>>planar_code le<<`; vertex i becomes i + 1 (user ids
-/// are not stored) and neighbours are listed clockwise. Throws std::invalid_argument beyond 65535 vertices.
+/// are not stored) and neighbours are listed clockwise. Throws GraphInputError (source "planar_code
+/// output") beyond 65535 vertices.
 std::string write_planar_code(const std::vector<PlanarGraph>& graphs);
 
 }  // namespace laguerre::core
