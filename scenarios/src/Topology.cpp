@@ -2,9 +2,14 @@
 #include "laguerre/scenarios/Topology.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
+#include <type_traits>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/GraphError.hpp"
 #include "laguerre/core/graph/GraphIO.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
@@ -84,19 +89,84 @@ std::string describe(const ParamValue& value) {
 }
 
 // ---------------------------------------------------------------------------------------------------
-// Registry
+// Registry: one table of generators, each with its typed parameters (defaults written once, in the
+// ParamSpec), its cross-parameter check and its build function. Builders and checks read parameters
+// through Args, which falls back to the table's defaults; the documentation comes from the same table.
 
 namespace {
 
-ParamSpec size_param(double min) {
-  ParamSpec p;
-  p.name = "n";
-  p.type = ParamType::integer;
-  p.help = "number of vertices";
-  p.min = min;
-  p.max = 1e7;
-  p.required = true;
-  return p;
+/// Validated parameters, with the defaults of the generator's table entry for the absent ones (and the
+/// zero of the type for a parameter with no default, e.g. a radius that only some graph types need).
+class Args {
+public:
+  Args(const std::vector<ParamSpec>& specs, const TopologyParams& given) : specs_(specs), given_(given) {}
+
+  bool has(std::string_view name) const { return given_.has(name); }
+  std::int64_t integer(std::string_view name) const { return given_.integer(name, fallback<std::int64_t>(name)); }
+  std::size_t size(std::string_view name) const { return static_cast<std::size_t>(integer(name)); }
+  double number(std::string_view name) const { return given_.number(name, fallback<double>(name)); }
+  bool boolean(std::string_view name) const { return given_.boolean(name, fallback<bool>(name)); }
+  std::string text(std::string_view name) const { return given_.text(name, fallback<std::string>(name)); }
+  Polygons polygons(std::string_view name) const { return given_.polygons(name); }
+
+private:
+  template <class T>
+  T fallback(std::string_view name) const {
+    for (const ParamSpec& spec : specs_)
+      if (spec.name == name) {
+        if (!spec.default_value) return T{};
+        if (const T* v = std::get_if<T>(&*spec.default_value)) return *v;
+        if constexpr (std::is_same_v<T, double>)
+          if (const auto* i = std::get_if<std::int64_t>(&*spec.default_value)) return static_cast<double>(*i);
+        LAGUERRE_PRECONDITION(false, "the default of '" + std::string(name) + "' has another type");
+      }
+    LAGUERRE_PRECONDITION(false, "'" + std::string(name) + "' is not a parameter of this generator");
+    return T{};
+  }
+
+  const std::vector<ParamSpec>& specs_;
+  const TopologyParams& given_;
+};
+
+/// A parameter spec, built in one expression.
+struct Param {
+  ParamSpec spec;
+  Param(std::string name, ParamType type, std::string help) {
+    spec.name = std::move(name);
+    spec.type = type;
+    spec.help = std::move(help);
+  }
+  Param& range(double min, double max = std::numeric_limits<double>::infinity()) {
+    spec.min = min;
+    spec.max = max;
+    return *this;
+  }
+  Param& choices(std::vector<std::string> values) {
+    spec.choices = std::move(values);
+    return *this;
+  }
+  Param& required() {
+    spec.required = true;
+    return *this;
+  }
+  /// The default builders use, documented as describe(value).
+  Param& fallback(ParamValue value) {
+    spec.default_text = describe(value);
+    spec.default_value = std::move(value);
+    return *this;
+  }
+  /// A default that is no value, documented as `text` (the builder knows it).
+  Param& documented_default(std::string text) {
+    spec.default_text = std::move(text);
+    return *this;
+  }
+  operator ParamSpec() const { return spec; }  // NOLINT(google-explicit-constructor)
+};
+
+Param size_param(double min, double max = 1e7) {
+  Param n("n", ParamType::integer, "number of vertices");
+  n.range(min, max).required();
+  return n;
 }
 
 std::vector<std::string> supported_formats() {
@@ -111,261 +181,291 @@ std::vector<std::string> supported_formats() {
   return out;
 }
 
-[[maybe_unused]] GeneratorInfo unavailable(std::string name, std::string summary, bool positions, std::string owner) {
+const std::vector<std::string> repair_policies = {"fail", "largest-block", "three-connected-core", "triangulate-faces"};
+
+Topology prepare(core::GraphInput input, std::string name, std::string_view family) {
+  Topology t;
+  try {
+    t.graph = core::prepare_for_packing(input, &t.kind);
+  } catch (const std::exception& e) {
+    throw TopologyError(name + " cannot be packed: " + e.what());
+  }
+  t.positions = std::move(input.positions);
+  t.name = std::move(name);
+  t.family = std::string(family);
+  return t;
+}
+
+/// A topology from a sensor-field graph (field and mesh): the repaired graph and the repair report.
+Topology from_field_graph(FieldGraph fg, std::string name, std::string_view family) {
+  Topology t;
+  t.graph = std::move(fg.input.graph);
+  t.kind = fg.kind;
+  t.positions = std::move(fg.input.positions);
+  t.note = fg.report.summary(name);
+  t.name = std::move(name);
+  t.family = std::string(family);
+  return t;
+}
+
+std::string sized_name(std::string_view generator, std::size_t n) {
+  return std::string(generator) + "(n=" + std::to_string(n) + ")";
+}
+
+// The build functions, one per generator.
+
+Topology build_delaunay(const Args& a, std::uint64_t seed, std::size_t) {
+  const std::size_t n = a.size("n");
+  return prepare(core::random_delaunay_triangulation(n, seed), sized_name("delaunay", n), "delaunay");
+}
+
+Topology build_three_connected(const Args& a, std::uint64_t seed, std::size_t) {
+  const std::size_t n = a.size("n");
+  return prepare(core::random_three_connected(n, seed, a.number("deletions_per_vertex"), a.size("max_face_size")),
+                 sized_name("three-connected", n), "three-connected");
+}
+
+Topology build_file(const Args& a, std::uint64_t, std::size_t repetition) {
+  const std::string path = a.text("path");
+  auto graphs = core::read_graphs(path, core::parse_graph_format(a.text("format")));
+  const std::size_t index = a.size("index");
+  if (graphs.empty()) throw TopologyError(path + " holds no graph");
+  const std::size_t k = index == 0 ? repetition % graphs.size() : index - 1;
+  if (k >= graphs.size())
+    throw TopologyError("graph index " + std::to_string(index) + " is out of range: " + path + " holds " +
+                        std::to_string(graphs.size()) + " graph(s)");
+  std::string name = graphs[k].name;
+  return prepare(std::move(graphs[k]), std::move(name), "file");
+}
+
+Topology build_uniform_triangulation(const Args& a, std::uint64_t seed, std::size_t) {
+  const std::size_t n = a.size("n");
+  const bool puncture = a.text("outer") == "puncture";
+  core::GraphInput in{puncture ? puncture_at_max_degree(uniform_triangulation(n + 1, seed)) : uniform_triangulation(n, seed),
+                      {}, "", true};
+  return prepare(std::move(in), sized_name("uniform-triangulation", n), "uniform-triangulation");
+}
+
+Topology build_uniform_three_connected(const Args& a, std::uint64_t seed, std::size_t) {
+  const std::size_t n = a.size("n");
+  core::PlanarGraph map = uniform_three_connected(n, seed, a.size("faces"));
+  if (a.text("outer") == "largest-face") map = with_largest_outer_face(map);
+  core::GraphInput in{std::move(map), {}, "", true};
+  return prepare(std::move(in), sized_name("uniform-three-connected", n), "uniform-three-connected");
+}
+
+Topology build_mesh(const Args& a, std::uint64_t seed, std::size_t) {
+  const core::Domain domain = a.has("domain") ? core::read_domain(a.text("domain")) : core::Domain::unit_square();
+  const auto field = core::parse_metric_field(a.text("metric"));
+  core::StarMeshOptions options;
+  options.size_bound = a.number("size_bound");
+  options.max_vertices = a.size("max_vertices");
+  options.seed = seed;
+  options.no_lonely_corners = a.boolean("refine_corners");
+  const core::StarMeshResult mesh = core::mesh_with_stars(domain, *field, options);
+  if (!mesh.converged) throw TopologyError("mesh: the refinement did not converge (" + mesh.status + ")");
+  std::vector<core::Point2> positions;
+  for (const auto& p : mesh.mesh.points) positions.push_back({p[0], p[1]});
+  EdgeList edges;
+  for (const auto& t : mesh.mesh.triangles)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto u = static_cast<core::Vertex>(t[k]), v = static_cast<core::Vertex>(t[(k + 1) % 3]);
+      edges.emplace_back(std::min(u, v), std::max(u, v));
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const std::string name = "mesh(" + field->describe() + ", " + std::to_string(positions.size()) + " vertices)";
+  // The report and repair of sensor fields (vertex ids = mesh indices). The drawing's unbounded face
+  // (the outer boundary) is the outer face, so holes stay inner faces. The mesh is plane by construction.
+  Topology t = from_field_graph(
+      field_graph_from_edges(positions, edges, parse_repair_policy(a.text("repair")), name, "mesh", false), name, "mesh");
+  if (options.no_lonely_corners) t.note += "; " + std::to_string(mesh.stats.corners) + " lonely corner(s) refined";
+  return t;
+}
+
+Topology build_field(const Args& a, std::uint64_t seed, std::size_t) {
+  const std::size_t n = a.size("n");
+  const Polygons polys = a.polygons("domain");
+  const core::Domain domain =
+      polys.empty() ? core::Domain::unit_square() : core::Domain(polys.front(), Polygons(polys.begin() + 1, polys.end()));
+  std::vector<core::Point2> points;
+  if (a.text("deployment") == "clustered") {
+    ClusterOptions co;
+    co.clusters = a.size("clusters");
+    co.spread = a.number("spread");
+    co.shape = a.text("cluster_shape") == "disc" ? ClusterShape::disc : ClusterShape::gaussian;
+    points = deploy_clustered(domain, n, co, seed);
+  } else {
+    points = deploy_uniform(domain, n, seed);
+  }
+  FieldGraphOptions fo;
+  fo.type = parse_field_graph_type(a.text("graph"));
+  fo.radius = a.number("radius");
+  fo.hops = static_cast<unsigned>(a.integer("hops"));
+  fo.repair = parse_repair_policy(a.text("repair"));
+  fo.source = "field(" + a.text("graph") + ", n=" + std::to_string(n) + ")";
+  return from_field_graph(build_field_graph(domain, points, fo), fo.source, "field");
+}
+
+// The cross-parameter checks.
+
+std::vector<ParamIssue> check_uniform_three_connected(const Args& a) {
+  std::vector<ParamIssue> out;
+  const std::int64_t n = a.integer("n"), f = a.integer("faces");
+  if (f != 0 && (n > 2 * f - 4 || f > 2 * n - 4))
+    out.push_back({"faces", "'" + std::to_string(f) + "' with n = " + std::to_string(n),
+                   "0 or a face count f with n <= 2f - 4 and f <= 2n - 4 (Steinitz)"});
+  return out;
+}
+
+std::vector<ParamIssue> check_mesh(const Args& a) {
+  std::vector<ParamIssue> out;
+  try {
+    (void)core::parse_metric_field(a.text("metric"));
+  } catch (const std::exception& e) {
+    out.push_back({"metric", "'" + a.text("metric") + "'", std::string("a metric field (") + e.what() + ")"});
+  }
+  if (a.has("domain")) try {
+      (void)core::read_domain(a.text("domain"));
+    } catch (const std::exception& e) {
+      out.push_back({"domain", "'" + a.text("domain") + "'", std::string("a valid domain (") + e.what() + ")"});
+    }
+  return out;
+}
+
+std::vector<ParamIssue> check_field(const Args& a) {
+  std::vector<ParamIssue> out;
+  const std::string graph_type = a.text("graph");
+  if (graph_type != "delaunay" && !a.has("radius"))
+    out.push_back({"radius", "nothing", "a radius > 0 for graph " + graph_type});
+  if (a.has("domain")) {
+    try {
+      const Polygons polys = a.polygons("domain");
+      (void)core::Domain(polys.front(), Polygons(polys.begin() + 1, polys.end()));
+    } catch (const std::exception& e) {
+      out.push_back({"domain", "an invalid domain (" + std::string(e.what()) + ")",
+                     "a simple outer polygon and disjoint simple holes strictly inside it"});
+    }
+  }
+  return out;
+}
+
+using BuildFn = Topology (*)(const Args&, std::uint64_t, std::size_t);
+using CheckFn = std::vector<ParamIssue> (*)(const Args&);
+
+GeneratorInfo generator(std::string name, std::string summary, bool positions, std::vector<ParamSpec> params,
+                        BuildFn build, CheckFn check = nullptr) {
   GeneratorInfo g;
   g.name = std::move(name);
   g.summary = std::move(summary);
   g.positions = positions;
-  g.available = false;
-  g.unavailable_reason = "generator '" + g.name + "' is not available yet (" + owner + " is not wired into the registry)";
+  g.params = std::move(params);
+  // The closures hold a copy of the parameter specs, so the defaults they read are the table's.
+  g.build = [specs = g.params, build](const TopologyParams& p, std::uint64_t seed, std::size_t repetition) {
+    return build(Args(specs, p), seed, repetition);
+  };
+  if (check) g.check = [specs = g.params, check](const TopologyParams& p) { return check(Args(specs, p)); };
   return g;
 }
 
 std::vector<GeneratorInfo> make_registry() {
+  using T = ParamType;
+  using I = std::int64_t;
   std::vector<GeneratorInfo> r;
-  {
-    GeneratorInfo g;
-    g.name = "delaunay";
-    g.summary = "Delaunay triangulation of n points uniform in the unit disc (core::random_delaunay_triangulation)";
-    g.params = {size_param(3)};
-    g.positions = true;
-    r.push_back(g);
-  }
-  {
-    GeneratorInfo g;
-    g.name = "three-connected";
-    g.summary = "random 3-connected plane graph: a Delaunay triangulation thinned by edge deletions "
-                "(core::random_three_connected)";
-    ParamSpec del;
-    del.name = "deletions_per_vertex";
-    del.type = ParamType::number;
-    del.help = "edge deletions attempted per vertex";
-    del.min = 0;
-    del.max = 3;
-    del.default_text = "0.75";
-    ParamSpec face;
-    face.name = "max_face_size";
-    face.type = ParamType::integer;
-    face.help = "largest face a deletion may create";
-    face.min = 4;
-    face.max = 1000;
-    face.default_text = "8";
-    g.params = {size_param(4), del, face};
-    g.positions = true;
-    r.push_back(g);
-  }
-  {
-    GeneratorInfo g;
-    g.name = "file";
-    g.summary = "a graph file (core::read_graphs): edge list, coords, planar_code, and the other formats GraphIO reads";
-    ParamSpec path;
-    path.name = "path";
-    path.type = ParamType::file;
-    path.help = "the file, relative to the scenario file's folder";
-    path.required = true;
-    ParamSpec format;
-    format.name = "format";
-    format.type = ParamType::choice;
-    format.help = "its format";
-    format.choices = supported_formats();
-    format.default_text = "automatic";
-    ParamSpec index;
-    index.name = "index";
-    index.type = ParamType::integer;
-    index.help = "which graph of a multi-graph file, from 1; 0 = graph (repetition mod count) + 1";
-    index.min = 0;
-    index.max = 1e9;
-    index.default_text = "1";
-    g.params = {path, format, index};
-    g.positions = false;  // only the coords format has positions; decided per file
-    r.push_back(g);
-  }
-  {
-    GeneratorInfo g;
-    g.name = "uniform-triangulation";
-    g.summary = "uniform random triangulation with n vertices (Poulalhon–Schaeffer); outer face: the link of a "
-                "punctured vertex, or the root face";
-    ParamSpec n = size_param(3);
-    n.max = 1e8;
-    ParamSpec outer;
-    outer.name = "outer";
-    outer.type = ParamType::choice;
-    outer.help = "puncture: sample n + 1 vertices and remove the one of largest degree (its neighbours become the "
-                 "boundary); root-face: keep the sampler's triangular root face";
-    outer.choices = {"puncture", "root-face"};
-    outer.default_text = "puncture";
-    g.params = {n, outer};
-    r.push_back(g);
-  }
-  {
-    GeneratorInfo g;
-    g.name = "uniform-three-connected";
-    g.summary = "uniform random 3-connected planar map with n vertices (Fusy); outer face: its largest face, or the "
-                "root face";
-    ParamSpec outer;
-    outer.name = "outer";
-    outer.type = ParamType::choice;
-    outer.help = "largest-face (the map's largest face) or root-face (the sampler's root face)";
-    outer.choices = {"largest-face", "root-face"};
-    outer.default_text = "largest-face";
-    ParamSpec faces;
-    faces.name = "faces";
-    faces.type = ParamType::integer;
-    faces.help = "number of faces (0 = any: uniform over all edge counts)";
-    faces.min = 0;
-    faces.max = 2e8;
-    faces.default_text = "0";
-    g.params = {size_param(4), faces, outer};
-    g.check = [](const TopologyParams& p) {
-      std::vector<ParamIssue> out;
-      const std::int64_t n = p.integer("n", 4), f = p.integer("faces", 0);
-      if (f != 0 && (n > 2 * f - 4 || f > 2 * n - 4))
-        out.push_back({"faces", "'" + std::to_string(f) + "' with n = " + std::to_string(n),
-                       "0 or a face count f with n <= 2f - 4 and f <= 2n - 4 (Steinitz)"});
-      return out;
-    };
-    r.push_back(g);
-  }
-  {
-    GeneratorInfo g;
-    g.name = "mesh";
-    g.summary = "anisotropic mesh of a polygonal domain under a metric field (core::mesh_with_stars, thesis ch. 3); "
-                "vertices keep their physical positions";
-    ParamSpec domain;
-    domain.name = "domain";
-    domain.type = ParamType::file;
-    domain.help = "a domain file (core/meshing/Domain.hpp: outer, hole, segment), relative to the scenario file";
-    domain.default_text = "the unit square";
-    ParamSpec metric;
-    metric.name = "metric";
-    metric.type = ParamType::text;
-    metric.help = "a metric-field specification: uniform:H1:H2[:DEG], shock[:…], thesis[:…], expr:…, sizes:…, mesh:FILE";
-    metric.default_text = "uniform:0.1:0.1";
-    ParamSpec bound;
-    bound.name = "size_bound";
-    bound.type = ParamType::number;
-    bound.help = "largest circumradius in the metric";
-    bound.min = 1e-6;
-    bound.max = 1e6;
-    bound.default_text = "1";
-    ParamSpec cap;
-    cap.name = "max_vertices";
-    cap.type = ParamType::integer;
-    cap.help = "refuse meshes larger than this";
-    cap.min = 3;
-    cap.max = 1e7;
-    cap.default_text = "200000";
-    ParamSpec corners;
-    corners.name = "refine_corners";
-    corners.type = ParamType::boolean;
-    corners.help = "refine every boundary corner left with a single triangle (core::StarMeshOptions::no_lonely_corners), "
-                   "so that a mesh of a domain with holes is 3-connected (its holes inner faces)";
-    corners.default_text = "true";
-    ParamSpec repair;
-    repair.name = "repair";
-    repair.type = ParamType::choice;
-    repair.help = "what to do with a mesh that is neither a triangulated disc nor 3-connected (as for field)";
-    repair.choices = {"fail", "largest-block", "three-connected-core", "triangulate-faces"};
-    repair.default_text = "fail";
-    g.params = {domain, metric, bound, cap, corners, repair};
-    g.positions = true;
-    g.check = [](const TopologyParams& p) {
-      std::vector<ParamIssue> out;
-      try {
-        (void)core::parse_metric_field(p.text("metric", "uniform:0.1:0.1"));
-      } catch (const std::exception& e) {
-        out.push_back({"metric", "'" + p.text("metric", "") + "'", std::string("a metric field (") + e.what() + ")"});
-      }
-      if (p.has("domain")) try {
-          (void)core::read_domain(p.text("domain", ""));
-        } catch (const std::exception& e) {
-          out.push_back({"domain", "'" + p.text("domain", "") + "'", std::string("a valid domain (") + e.what() + ")"});
-        }
-      return out;
-    };
-    r.push_back(g);
-  }
-  {
-    GeneratorInfo g;
-    g.name = "field";
-    g.summary = "sensor field: n sensors deployed in a polygonal domain with holes, joined by a proximity graph "
-                "(restricted Delaunay, unit-disk, Gabriel, RNG or local Delaunay), repaired if unpackable";
-    ParamSpec graph;
-    graph.name = "graph";
-    graph.type = ParamType::choice;
-    graph.help = "the proximity graph";
-    graph.choices = {"delaunay", "unit-disk", "gabriel", "rng", "local-delaunay"};
-    graph.default_text = "delaunay";
-    ParamSpec radius;
-    radius.name = "radius";
-    radius.type = ParamType::number;
-    radius.help = "unit-disk radius R (required by every graph but delaunay)";
-    radius.min = 1e-9;
-    ParamSpec hops;
-    hops.name = "hops";
-    hops.type = ParamType::integer;
-    hops.help = "k of the local Delaunay graph LDel^(k)";
-    hops.min = 1;
-    hops.max = 10;
-    hops.default_text = "2";
-    ParamSpec repair;
-    repair.name = "repair";
-    repair.type = ParamType::choice;
-    repair.help = "what to do with a graph that is neither a triangulated disc nor 3-connected";
-    repair.choices = {"fail", "largest-block", "three-connected-core", "triangulate-faces"};
-    repair.default_text = "fail";
-    ParamSpec domain;
-    domain.name = "domain";
-    domain.type = ParamType::polygons;
-    domain.help = "outer polygon, then holes: [[[x, y], ...], [[x, y], ...], ...]";
-    domain.default_text = "the unit square [0, 1]^2";
-    ParamSpec deployment;
-    deployment.name = "deployment";
-    deployment.type = ParamType::choice;
-    deployment.help = "how sensors are placed";
-    deployment.choices = {"uniform", "clustered"};
-    deployment.default_text = "uniform";
-    ParamSpec clusters;
-    clusters.name = "clusters";
-    clusters.type = ParamType::integer;
-    clusters.help = "number of cluster centres (clustered)";
-    clusters.min = 1;
-    clusters.max = 1e6;
-    clusters.default_text = "10";
-    ParamSpec spread;
-    spread.name = "spread";
-    spread.type = ParamType::number;
-    spread.help = "cluster standard deviation (gaussian) or radius (disc)";
-    spread.min = 1e-12;
-    spread.default_text = "0.05";
-    ParamSpec shape;
-    shape.name = "cluster_shape";
-    shape.type = ParamType::choice;
-    shape.help = "cluster shape (clustered)";
-    shape.choices = {"gaussian", "disc"};
-    shape.default_text = "gaussian";
-    g.params = {size_param(3), graph, radius, hops, repair, domain, deployment, clusters, spread, shape};
-    g.positions = true;
-    g.check = [](const TopologyParams& p) {
-      std::vector<ParamIssue> out;
-      const std::string graph_type = p.text("graph", "delaunay");
-      if (graph_type != "delaunay" && !p.has("radius"))
-        out.push_back({"radius", "nothing", "a radius > 0 for graph " + graph_type});
-      if (p.has("domain")) {
-        try {
-          const Polygons polys = p.polygons("domain");
-          (void)core::Domain(polys.front(), Polygons(polys.begin() + 1, polys.end()));
-        } catch (const std::exception& e) {
-          out.push_back({"domain", "an invalid domain (" + std::string(e.what()) + ")",
-                         "a simple outer polygon and disjoint simple holes strictly inside it"});
-        }
-      }
-      return out;
-    };
-    r.push_back(g);
-  }
+  r.push_back(generator("delaunay",
+                        "Delaunay triangulation of n points uniform in the unit disc (core::random_delaunay_triangulation)",
+                        true, {size_param(3)}, build_delaunay));
+  r.push_back(generator(
+      "three-connected",
+      "random 3-connected plane graph: a Delaunay triangulation thinned by edge deletions (core::random_three_connected)",
+      true,
+      {size_param(4),
+       Param("deletions_per_vertex", T::number, "edge deletions attempted per vertex").range(0, 3).fallback(0.75),
+       Param("max_face_size", T::integer, "largest face a deletion may create").range(4, 1000).fallback(I{8})},
+      build_three_connected));
+  r.push_back(generator(
+      "file", "a graph file (core::read_graphs): edge list, coords, planar_code, and the other formats GraphIO reads",
+      false,  // only the formats with positions have them; decided per file
+      {Param("path", T::file, "the file, relative to the scenario file's folder").required(),
+       Param("format", T::choice, "its format").choices(supported_formats()).fallback(std::string("automatic")),
+       Param("index", T::integer, "which graph of a multi-graph file, from 1; 0 = graph (repetition mod count) + 1")
+           .range(0, 1e9)
+           .fallback(I{1})},
+      build_file));
+  r.push_back(generator(
+      "uniform-triangulation",
+      "uniform random triangulation with n vertices (Poulalhon–Schaeffer); outer face: the link of a punctured vertex, "
+      "or the root face",
+      false,
+      {size_param(3, 1e8),
+       Param("outer", T::choice,
+             "puncture: sample n + 1 vertices and remove the one of largest degree (its neighbours become the "
+             "boundary); root-face: keep the sampler's triangular root face")
+           .choices({"puncture", "root-face"})
+           .fallback(std::string("puncture"))},
+      build_uniform_triangulation));
+  r.push_back(generator(
+      "uniform-three-connected",
+      "uniform random 3-connected planar map with n vertices (Fusy); outer face: its largest face, or the root face",
+      false,
+      {size_param(4),
+       Param("faces", T::integer, "number of faces (0 = any: uniform over all edge counts)").range(0, 2e8).fallback(I{0}),
+       Param("outer", T::choice, "largest-face (the map's largest face) or root-face (the sampler's root face)")
+           .choices({"largest-face", "root-face"})
+           .fallback(std::string("largest-face"))},
+      build_uniform_three_connected, check_uniform_three_connected));
+  r.push_back(generator(
+      "mesh",
+      "anisotropic mesh of a polygonal domain under a metric field (core::mesh_with_stars, thesis ch. 3); vertices "
+      "keep their physical positions",
+      true,
+      {Param("domain", T::file,
+             "a domain file (core/meshing/Domain.hpp: outer, hole, segment), relative to the scenario file")
+           .documented_default("the unit square"),
+       Param("metric", T::text,
+             "a metric-field specification: uniform:H1:H2[:DEG], shock[:…], thesis[:…], expr:…, sizes:…, mesh:FILE")
+           .fallback(std::string("uniform:0.1:0.1")),
+       Param("size_bound", T::number, "largest circumradius in the metric").range(1e-6, 1e6).fallback(1.0),
+       Param("max_vertices", T::integer, "refuse meshes larger than this").range(3, 1e7).fallback(I{200000}),
+       Param("refine_corners", T::boolean,
+             "refine every boundary corner left with a single triangle (core::StarMeshOptions::no_lonely_corners), "
+             "so that a mesh of a domain with holes is 3-connected (its holes inner faces)")
+           .fallback(true),
+       Param("repair", T::choice,
+             "what to do with a mesh that is neither a triangulated disc nor 3-connected (as for field)")
+           .choices(repair_policies)
+           .fallback(std::string("fail"))},
+      build_mesh, check_mesh));
+  r.push_back(generator(
+      "field",
+      "sensor field: n sensors deployed in a polygonal domain with holes, joined by a proximity graph (restricted "
+      "Delaunay, unit-disk, Gabriel, RNG or local Delaunay), repaired if unpackable",
+      true,
+      {size_param(3),
+       Param("graph", T::choice, "the proximity graph")
+           .choices({"delaunay", "unit-disk", "gabriel", "rng", "local-delaunay"})
+           .fallback(std::string("delaunay")),
+       Param("radius", T::number, "unit-disk radius R (required by every graph but delaunay)").range(1e-9),
+       Param("hops", T::integer, "k of the local Delaunay graph LDel^(k)").range(1, 10).fallback(I{2}),
+       Param("repair", T::choice, "what to do with a graph that is neither a triangulated disc nor 3-connected")
+           .choices(repair_policies)
+           .fallback(std::string("fail")),
+       Param("domain", T::polygons, "outer polygon, then holes: [[[x, y], ...], [[x, y], ...], ...]")
+           .documented_default("the unit square [0, 1]^2"),
+       Param("deployment", T::choice, "how sensors are placed")
+           .choices({"uniform", "clustered"})
+           .fallback(std::string("uniform")),
+       Param("clusters", T::integer, "number of cluster centres (clustered)").range(1, 1e6).fallback(I{10}),
+       Param("spread", T::number, "cluster standard deviation (gaussian) or radius (disc)").range(1e-12).fallback(0.05),
+       Param("cluster_shape", T::choice, "cluster shape (clustered)")
+           .choices({"gaussian", "disc"})
+           .fallback(std::string("gaussian"))},
+      build_field, check_field));
   return r;
 }
+
+/// The name of a parameter type in generators_help, in ParamType's order.
+constexpr std::array<std::string_view, 7> type_names{"integer", "number", "boolean", "choice", "file", "polygons", "text"};
 
 }  // namespace
 
@@ -387,132 +487,39 @@ std::string generator_names(bool available_only) {
   return out;
 }
 
-namespace {
-
-Topology prepare(core::GraphInput input, std::string name, std::string_view family) {
-  Topology t;
-  try {
-    t.graph = core::prepare_for_packing(input, &t.kind);
-  } catch (const std::exception& e) {
-    throw TopologyError(name + " cannot be packed: " + e.what());
+std::string generators_help() {
+  std::string out;
+  for (const GeneratorInfo& g : topology_generators()) {
+    out += g.name + ": " + g.summary + (g.positions ? " (with positions)" : "") + "\n";
+    for (const ParamSpec& p : g.params) {
+      std::string kind(type_names.at(static_cast<std::size_t>(p.type)));
+      if (!p.choices.empty()) {
+        std::string list;
+        for (const std::string& c : p.choices) list += (list.empty() ? "" : "|") + c;
+        kind += " " + list;
+      } else if (std::isfinite(p.min) || std::isfinite(p.max)) {
+        kind += " in [" + describe(p.min) + ", " + (std::isfinite(p.max) ? describe(p.max) : "inf") + "]";
+      }
+      kind += p.required ? "; required" : p.default_text.empty() ? "" : "; default " + p.default_text;
+      out += "  " + p.name + " (" + kind + "): " + p.help + "\n";
+    }
   }
-  t.positions = std::move(input.positions);
-  t.name = std::move(name);
-  t.family = std::string(family);
-  return t;
+  return out;
 }
-
-}  // namespace
 
 Topology build_topology(std::string_view generator, const TopologyParams& params, std::uint64_t seed,
                         std::size_t repetition) {
   const GeneratorInfo* info = find_generator(generator);
   if (!info) throw TopologyError("unknown topology generator '" + std::string(generator) + "'");
   if (!info->available) throw TopologyError(info->unavailable_reason);
-  const auto n = static_cast<std::size_t>(params.integer("n", 0));
+  if (!info->build) throw TopologyError("generator '" + std::string(generator) + "' is registered but has no builder");
   try {
-    if (generator == "delaunay")
-      return prepare(core::random_delaunay_triangulation(n, seed), "delaunay(n=" + std::to_string(n) + ")", generator);
-    if (generator == "three-connected")
-      return prepare(core::random_three_connected(n, seed, params.number("deletions_per_vertex", 0.75),
-                                                  static_cast<std::size_t>(params.integer("max_face_size", 8))),
-                     "three-connected(n=" + std::to_string(n) + ")", generator);
-    if (generator == "uniform-triangulation") {
-      const bool puncture = params.text("outer", "puncture") == "puncture";
-      core::GraphInput in{puncture ? puncture_at_max_degree(uniform_triangulation(n + 1, seed)) : uniform_triangulation(n, seed),
-                          {}, "", true};
-      return prepare(std::move(in), "uniform-triangulation(n=" + std::to_string(n) + ")", generator);
-    }
-    if (generator == "uniform-three-connected") {
-      core::PlanarGraph map = uniform_three_connected(n, seed, static_cast<std::size_t>(params.integer("faces", 0)));
-      if (params.text("outer", "largest-face") == "largest-face") map = with_largest_outer_face(map);
-      core::GraphInput in{std::move(map), {}, "", true};
-      return prepare(std::move(in), "uniform-three-connected(n=" + std::to_string(n) + ")", generator);
-    }
-    if (generator == "mesh") {
-      const core::Domain domain =
-          params.has("domain") ? core::read_domain(params.text("domain", "")) : core::Domain::unit_square();
-      const auto field = core::parse_metric_field(params.text("metric", "uniform:0.1:0.1"));
-      core::StarMeshOptions options;
-      options.size_bound = params.number("size_bound", 1);
-      options.max_vertices = static_cast<std::size_t>(params.integer("max_vertices", 200000));
-      options.seed = seed;
-      options.no_lonely_corners = params.boolean("refine_corners", true);
-      const core::StarMeshResult mesh = core::mesh_with_stars(domain, *field, options);
-      if (!mesh.converged) throw TopologyError("mesh: the refinement did not converge (" + mesh.status + ")");
-      std::vector<core::Point2> positions;
-      for (const auto& p : mesh.mesh.points) positions.push_back({p[0], p[1]});
-      EdgeList edges;
-      for (const auto& t : mesh.mesh.triangles)
-        for (std::size_t k = 0; k < 3; ++k) {
-          const auto a = static_cast<core::Vertex>(t[k]), b = static_cast<core::Vertex>(t[(k + 1) % 3]);
-          edges.emplace_back(std::min(a, b), std::max(a, b));
-        }
-      std::sort(edges.begin(), edges.end());
-      edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-      const std::string name = "mesh(" + field->describe() + ", " + std::to_string(positions.size()) + " vertices)";
-      // The report and repair of sensor fields (vertex ids = mesh indices). The drawing's unbounded face
-      // (the outer boundary) is the outer face, so holes stay inner faces. The mesh is plane by construction.
-      FieldGraph fg = field_graph_from_edges(positions, edges, parse_repair_policy(params.text("repair", "fail")), name,
-                                             "mesh", false);
-      Topology t;
-      t.graph = std::move(fg.input.graph);
-      t.kind = fg.kind;
-      t.positions = std::move(fg.input.positions);
-      t.name = name;
-      t.family = std::string(generator);
-      t.note = fg.report.summary(name);
-      if (options.no_lonely_corners) t.note += "; " + std::to_string(mesh.stats.corners) + " lonely corner(s) refined";
-      return t;
-    }
-    if (generator == "field") {
-      const Polygons polys = params.polygons("domain");
-      const core::Domain domain = polys.empty() ? core::Domain::unit_square()
-                                                : core::Domain(polys.front(), Polygons(polys.begin() + 1, polys.end()));
-      std::vector<core::Point2> points;
-      if (params.text("deployment", "uniform") == "clustered") {
-        ClusterOptions co;
-        co.clusters = static_cast<std::size_t>(params.integer("clusters", 10));
-        co.spread = params.number("spread", 0.05);
-        co.shape = params.text("cluster_shape", "gaussian") == "disc" ? ClusterShape::disc : ClusterShape::gaussian;
-        points = deploy_clustered(domain, n, co, seed);
-      } else {
-        points = deploy_uniform(domain, n, seed);
-      }
-      FieldGraphOptions fo;
-      fo.type = parse_field_graph_type(params.text("graph", "delaunay"));
-      fo.radius = params.number("radius", 0);
-      fo.hops = static_cast<unsigned>(params.integer("hops", 2));
-      fo.repair = parse_repair_policy(params.text("repair", "fail"));
-      fo.source = "field(" + params.text("graph", "delaunay") + ", n=" + std::to_string(n) + ")";
-      FieldGraph fg = build_field_graph(domain, points, fo);
-      Topology t;
-      t.graph = std::move(fg.input.graph);
-      t.kind = fg.kind;
-      t.positions = std::move(fg.input.positions);
-      t.name = fo.source;
-      t.family = std::string(generator);
-      t.note = fg.report.summary(fo.source);
-      return t;
-    }
-    if (generator == "file") {
-      const std::string path = params.text("path", "");
-      auto graphs = core::read_graphs(path, core::parse_graph_format(params.text("format", "automatic")));
-      const auto index = static_cast<std::size_t>(params.integer("index", 1));
-      if (graphs.empty()) throw TopologyError(path + " holds no graph");
-      const std::size_t k = index == 0 ? repetition % graphs.size() : index - 1;
-      if (k >= graphs.size())
-        throw TopologyError("graph index " + std::to_string(index) + " is out of range: " + path + " holds " +
-                            std::to_string(graphs.size()) + " graph(s)");
-      std::string name = graphs[k].name;
-      return prepare(std::move(graphs[k]), std::move(name), generator);
-    }
+    return info->build(params, seed, repetition);
   } catch (const TopologyError&) {
     throw;
   } catch (const std::exception& e) {
     throw TopologyError(std::string(generator) + ": " + e.what());
   }
-  throw TopologyError("generator '" + std::string(generator) + "' is registered but has no builder");
 }
 
 }  // namespace laguerre::scenarios

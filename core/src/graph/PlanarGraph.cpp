@@ -7,6 +7,8 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "detail/Connectivity.hpp"
+
 namespace laguerre::core {
 
 namespace {
@@ -61,26 +63,10 @@ PlanarGraph PlanarGraph::from_rotation(std::vector<std::vector<Vertex>> rotation
     g.twin_[d] = *it;
   }
   // Connectivity.
-  std::vector<std::uint8_t> seen(n, 0);
-  std::vector<Vertex> stack{0};
-  seen[0] = 1;
-  std::size_t reached = 1;
-  while (!stack.empty()) {
-    const Vertex v = stack.back();
-    stack.pop_back();
-    for (Vertex w : g.neighbours(v))
-      if (!seen[w]) {
-        seen[w] = 1;
-        ++reached;
-        stack.push_back(w);
-      }
-  }
-  if (reached != n) {
-    Vertex lost = 0;
-    while (seen[lost]) ++lost;
+  const auto neighbours = [&](std::size_t v) { return g.neighbours(static_cast<Vertex>(v)); };
+  if (const std::size_t lost = detail::first_unreached(n, neighbours); lost < n)
     fail("The graph is not connected: vertex " + std::to_string(g.ids_[lost]) + " cannot be reached from vertex " +
          std::to_string(g.ids_[0]) + ".");
-  }
   g.build_faces();
   const long long euler = static_cast<long long>(n) - static_cast<long long>(g.num_edges()) +
                           static_cast<long long>(g.num_faces());

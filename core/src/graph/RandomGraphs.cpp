@@ -170,8 +170,8 @@ private:
 
 GraphInput random_delaunay_triangulation(std::size_t n, std::uint64_t seed) {
   if (n < 3)
-    throw std::invalid_argument("A random Delaunay triangulation needs at least 3 vertices, not " +
-                                std::to_string(n) + ".");
+    throw GraphInputError(generator_name("random_delaunay_triangulation", n, seed), 0, 0,
+                          "a random Delaunay triangulation needs at least 3 vertices, not " + std::to_string(n) + ".");
   SeededRandom random(seed);
   std::vector<Point2> points;
   std::vector<std::pair<Vertex, Vertex>> edges;
@@ -182,15 +182,15 @@ GraphInput random_delaunay_triangulation(std::size_t n, std::uint64_t seed) {
 
 GraphInput random_three_connected(std::size_t n, std::uint64_t seed, double deletions_per_vertex,
                                   std::size_t max_face_size) {
-  if (n < 4)
-    throw std::invalid_argument("A random 3-connected graph needs at least 4 vertices, not " + std::to_string(n) +
-                                ".");
-  if (max_face_size < 4)
-    throw std::invalid_argument("The maximum face size of a random 3-connected graph must be at least 4, not " +
-                                std::to_string(max_face_size) + ".");
-  if (!(deletions_per_vertex >= 0) || !std::isfinite(deletions_per_vertex))
-    throw std::invalid_argument("The number of deletions per vertex must be a finite non-negative number.");
   const std::string name = generator_name("random_three_connected", n, seed);
+  if (n < 4)
+    throw GraphInputError(name, 0, 0, "a random 3-connected graph needs at least 4 vertices, not " + std::to_string(n) + ".");
+  if (max_face_size < 4)
+    throw GraphInputError(name, 0, 0,
+                          "the maximum face size of a random 3-connected graph must be at least 4, not " +
+                              std::to_string(max_face_size) + ".");
+  if (!(deletions_per_vertex >= 0) || !std::isfinite(deletions_per_vertex))
+    throw GraphInputError(name, 0, 0, "the number of deletions per vertex must be a finite non-negative number.");
   SeededRandom random(seed);
   std::vector<Point2> points;
   std::vector<std::pair<Vertex, Vertex>> edges;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <numeric>
 #include <optional>
 #include <sstream>
@@ -32,6 +33,25 @@ constexpr std::pair<RepairPolicy, std::string_view> policy_names[] = {
     {RepairPolicy::largest_block, "largest-block"},
     {RepairPolicy::three_connected_core, "three-connected-core"},
     {RepairPolicy::triangulate_faces, "triangulate-faces"}};
+
+/// The value called `name` in `names`, else std::invalid_argument listing the names.
+template <class E, std::size_t N>
+E value_named(const std::pair<E, std::string_view> (&names)[N], std::string_view name, const char* what) {
+  std::string expected;
+  for (const auto& [value, text] : names) {
+    if (text == name) return value;
+    expected += (expected.empty() ? "" : ", ") + std::string(text);
+  }
+  throw std::invalid_argument("unknown " + std::string(what) + " '" + std::string(name) + "'; expected one of " +
+                              expected + ".");
+}
+
+/// The name of `value` in `names`, or "unknown".
+template <class E, std::size_t N>
+std::string_view name_of(const std::pair<E, std::string_view> (&names)[N], E value) {
+  const auto* it = std::find_if(std::begin(names), std::end(names), [&](const auto& entry) { return entry.first == value; });
+  return it == std::end(names) ? std::string_view("unknown") : it->second;
+}
 
 /// Connected components by union–find: component label per vertex (labels by smallest member order).
 std::vector<std::size_t> component_labels(std::size_t n, const EdgeList& edges) {
@@ -254,31 +274,13 @@ EdgeList three_connected_core(std::size_t n, EdgeList edges, const std::function
 
 }  // namespace
 
-FieldGraphType parse_field_graph_type(std::string_view name) {
-  for (auto [t, s] : type_names)
-    if (s == name) return t;
-  throw std::invalid_argument("unknown field graph '" + std::string(name) +
-                              "'; expected one of delaunay, unit-disk, gabriel, rng, local-delaunay.");
-}
+FieldGraphType parse_field_graph_type(std::string_view name) { return value_named(type_names, name, "field graph"); }
 
-std::string_view to_string(FieldGraphType type) {
-  for (auto [t, s] : type_names)
-    if (t == type) return s;
-  return "unknown";
-}
+std::string_view to_string(FieldGraphType type) { return name_of(type_names, type); }
 
-RepairPolicy parse_repair_policy(std::string_view name) {
-  for (auto [p, s] : policy_names)
-    if (s == name) return p;
-  throw std::invalid_argument("unknown repair policy '" + std::string(name) +
-                              "'; expected one of fail, largest-block, three-connected-core, triangulate-faces.");
-}
+RepairPolicy parse_repair_policy(std::string_view name) { return value_named(policy_names, name, "repair policy"); }
 
-std::string_view to_string(RepairPolicy policy) {
-  for (auto [p, s] : policy_names)
-    if (p == policy) return s;
-  return "unknown";
-}
+std::string_view to_string(RepairPolicy policy) { return name_of(policy_names, policy); }
 
 std::string FieldGraphReport::summary(std::string_view name) const {
   std::string s = std::string(name) + ": " + std::to_string(points) + " points, " + std::to_string(edges) + " edges, ";

@@ -3,6 +3,8 @@
 // to the exact stage.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -34,10 +36,23 @@ TEST(DelaunayFacade, PredicatesAreExactOnNearDegenerateInputs) {
     const double t = static_cast<double>(engine() >> 11) * 0x1p-53 * 6.283185307179586;
     return Point2{std::round(radius * std::cos(t)) + shift, std::round(radius * std::sin(t)) + shift};
   };
+  // The images of p under the symmetries of the square centred at o (k = 1..7; 0 is p itself): all on
+  // the circle about o through p, so four distinct ones are exactly cocircular.
+  const auto image = [](Point2 o, Point2 p, int k) {
+    double u = p.x - o.x, v = p.y - o.y;
+    if (k & 4) std::swap(u, v);
+    return Point2{o.x + ((k & 1) ? -u : u), o.y + ((k & 2) ? -v : v)};
+  };
   int zeros = 0, positives = 0, negatives = 0;
   for (int i = 0; i < 20000; ++i) {
     const double shift = (i % 2) ? 0x1p26 : 0;  // far from the origin: the filters lose more bits
-    const Point2 a = on_circle(shift), b = on_circle(shift), c = on_circle(shift), d = on_circle(shift);
+    Point2 a = on_circle(shift), b = on_circle(shift), c = on_circle(shift), d = on_circle(shift);
+    if (i % 4 >= 2) {  // exactly cocircular: a and three of its images
+      std::array<int, 7> k{1, 2, 3, 4, 5, 6, 7};
+      std::shuffle(k.begin(), k.end(), engine);
+      const Point2 o{shift, shift};
+      b = image(o, a, k[0]), c = image(o, a, k[1]), d = image(o, a, k[2]);
+    }
     const Sign expected = sign_of(in_circle_exact(a, b, c, d));
     ASSERT_EQ(in_circle(a, b, c, d), expected) << i;
     zeros += expected == Sign::zero;
@@ -53,6 +68,7 @@ TEST(DelaunayFacade, PredicatesAreExactOnNearDegenerateInputs) {
   }
   EXPECT_GT(positives, 1000);
   EXPECT_GT(negatives, 1000);
+  EXPECT_GE(zeros, 10000);  // every one of the 10,000 cocircular quadruples
   // Exactly cocircular: the four corners of a rectangle, far from the origin.
   EXPECT_EQ(in_circle({0x1p40, 0x1p40}, {0x1p40 + 3, 0x1p40}, {0x1p40 + 3, 0x1p40 + 7}, {0x1p40, 0x1p40 + 7}), Sign::zero);
   EXPECT_EQ(in_circle({0, 0}, {1, 0}, {0, 1}, {0.5, 0.5}), Sign::positive);
@@ -62,5 +78,4 @@ TEST(DelaunayFacade, PredicatesAreExactOnNearDegenerateInputs) {
   EXPECT_EQ(compare_length({0, 0}, {3, 4}, 5), Sign::zero);
   EXPECT_EQ(compare_length({0, 0}, {0.1, 0}, 0.1), Sign::zero);
   EXPECT_EQ(compare_length({0, 0}, {0.1, 0.0}, std::nextafter(0.1, 1.0)), Sign::negative);
-  (void)zeros;
 }

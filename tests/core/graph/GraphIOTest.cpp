@@ -10,30 +10,12 @@
 #include "laguerre/core/graph/GraphIO.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
+#include "GraphTestSupport.hpp"
 
 using namespace laguerre::core;
+using namespace laguerre::core::test;
 
 namespace {
-
-std::string data_path(const std::string& name) { return std::string(LAGUERRE_TEST_DATA) + "/graphs/" + name; }
-
-GraphInput read_one(std::string_view text, GraphFormat format = GraphFormat::automatic) {
-  auto graphs = read_graphs_from_string(text, "<input>", format);
-  EXPECT_EQ(graphs.size(), 1u);
-  return std::move(graphs.at(0));
-}
-
-/// Runs `f`, expects a GraphInputError and returns it.
-template <class F>
-GraphInputError expect_input_error(F&& f) {
-  try {
-    f();
-  } catch (const GraphInputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no GraphInputError was thrown";
-  return GraphInputError("<none>", 0, 0, "");
-}
 
 std::string bytes(std::initializer_list<int> values) {
   std::string out;
@@ -107,13 +89,22 @@ TEST(GraphIO, ParsesFormatNames) {
   EXPECT_EQ(parse_graph_format("edges"), GraphFormat::edges);
   EXPECT_EQ(parse_graph_format("planar_code"), GraphFormat::planar_code);
   EXPECT_EQ(parse_graph_format("coords"), GraphFormat::coords);
-  try {
-    parse_graph_format("gml");
-    FAIL() << "no exception";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(),
-                 "Unknown graph format 'gml'; expected one of automatic, edges, planar_code, coords, graphml, dot.");
-  }
+  for (GraphFormat f : {GraphFormat::automatic, GraphFormat::edges, GraphFormat::planar_code, GraphFormat::coords,
+                        GraphFormat::graphml, GraphFormat::dot})
+    EXPECT_EQ(parse_graph_format(to_string(f)), f);
+  const auto e = expect_input_error([] { parse_graph_format("gml"); });
+  EXPECT_STREQ(e.what(),
+               "format: unknown graph format 'gml'; expected one of automatic, edges, planar_code, coords, graphml, dot.");
+}
+
+TEST(GraphIO, GraphInputErrorIsAnInputErrorWithTheSameText) {
+  const GraphInputError e("g.pc", 0, 3, "graph 3 has no vertices.");
+  const InputError& base = e;
+  EXPECT_STREQ(base.what(), "g.pc#3: graph 3 has no vertices.");
+  EXPECT_EQ(base.source(), "g.pc");
+  EXPECT_EQ(base.message(), "graph 3 has no vertices.");
+  EXPECT_EQ(e.graph_index(), 3u);
+  EXPECT_STREQ(GraphInputError("g.txt", 12, 0, "bad.").what(), "g.txt:12: bad.");
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -203,15 +194,15 @@ TEST(GraphIO, EdgeListErrorsNameTheLine) {
   EXPECT_EQ(e.source(), "<input>");
   EXPECT_STREQ(e.what(), "<input>:2: expected two non-negative integer vertex ids, found '2 x'.");
 
-  e = expect_input_error([] { read_one("1 2\n2 3 4\n"); });
-  EXPECT_STREQ(e.what(), "<input>:2: expected two non-negative integer vertex ids, found '2 3 4'.");
+  EXPECT_EQ(read_error("1 2\n2 3 4\n"),
+            "<input>:2: expected two non-negative integer vertex ids, found '2 3 4'.");
   e = expect_input_error([] { read_one("-1 2\n"); });
   EXPECT_EQ(e.line(), 1u);
   e = expect_input_error([] { read_one("1 2\n2 99999999999999999999\n"); });
   EXPECT_EQ(e.line(), 2u);
 
-  e = expect_input_error([] { read_one("1 2\n\n2 2\n"); });
-  EXPECT_STREQ(e.what(), "<input>:3: edge 2-2 is a self-loop; the graph must be simple.");
+  EXPECT_EQ(read_error("1 2\n\n2 2\n"),
+            "<input>:3: edge 2-2 is a self-loop; the graph must be simple.");
 
   e = expect_input_error([] { read_one("1 2\n2 3\n3 1\n# again\n2 1\n"); });
   EXPECT_EQ(e.line(), 5u);
@@ -221,8 +212,8 @@ TEST(GraphIO, EdgeListErrorsNameTheLine) {
   EXPECT_EQ(e.line(), 0u);
   EXPECT_STREQ(e.what(), "<input>: the graph is not connected: vertex 3 cannot be reached from vertex 1.");
 
-  e = expect_input_error([] { read_one("# nothing here\n\n"); });
-  EXPECT_STREQ(e.what(), "<input>: the input contains no edges.");
+  EXPECT_EQ(read_error("# nothing here\n\n"),
+            "<input>: the input contains no edges.");
 
   e = expect_input_error([] { read_graphs(data_path("k5.txt")); });
   EXPECT_EQ(e.source(), data_path("k5.txt"));
@@ -230,24 +221,27 @@ TEST(GraphIO, EdgeListErrorsNameTheLine) {
   e = expect_input_error([] { read_one("1 4\n1 5\n1 6\n2 4\n2 5\n2 6\n3 4\n3 5\n3 6\n"); });  // K3,3
   EXPECT_EQ(e.message(), "the graph is not planar (the Boyer-Myrvold test found a Kuratowski subgraph).");
 
+  // Missing files and directories: core::open_input_file's sentences.
   e = expect_input_error([] { read_graphs(data_path("no-such-file.txt")); });
   EXPECT_EQ(e.source(), data_path("no-such-file.txt"));
-  EXPECT_NE(e.message().find("the file cannot be opened for reading"), std::string::npos);
+  EXPECT_EQ(e.message(), "no such graph file (the file does not exist).");
+  e = expect_input_error([] { read_graphs(std::string(LAGUERRE_TEST_DATA) + "/graphs"); });
+  EXPECT_STREQ(e.what(), (std::string(LAGUERRE_TEST_DATA) + "/graphs: is a directory; expected a graph file.").c_str());
 }
 
 TEST(GraphIO, OuterDirectiveErrors) {
   const std::string octahedron = "0 1\n0 2\n0 3\n0 4\n1 2\n2 3\n3 4\n4 1\n5 1\n5 2\n5 3\n5 4\n";
   auto e = expect_input_error([] { read_one("1 2\n# outer: 1 2\n2 3\n3 1\n"); });
   EXPECT_STREQ(e.what(), "<input>:2: the '# outer:' directive must list a cycle of at least 3 vertices, found 2.");
-  e = expect_input_error([] { read_one("# outer: 1 2 9\n1 2\n2 3\n3 1\n"); });
-  EXPECT_STREQ(e.what(), "<input>:1: the '# outer:' directive lists vertex 9, which is on no edge.");
+  EXPECT_EQ(read_error("# outer: 1 2 9\n1 2\n2 3\n3 1\n"),
+            "<input>:1: the '# outer:' directive lists vertex 9, which is on no edge.");
   e = expect_input_error([] { read_one("# outer: 1 2 1\n1 2\n2 3\n3 1\n"); });
   EXPECT_EQ(e.line(), 1u);
   EXPECT_NE(e.message().find("twice"), std::string::npos);
-  e = expect_input_error([] { read_one("# outer: 1 x 3\n1 2\n2 3\n3 1\n"); });
-  EXPECT_STREQ(e.what(), "<input>:1: the '# outer:' directive expects non-negative integer vertex ids, found 'x'.");
-  e = expect_input_error([&] { read_one(octahedron + "# outer: 0 1 5\n"); });
-  EXPECT_STREQ(e.what(), "<input>:13: the '# outer:' cycle uses 5-0, which is not an edge of the graph.");
+  EXPECT_EQ(read_error("# outer: 1 x 3\n1 2\n2 3\n3 1\n"),
+            "<input>:1: the '# outer:' directive expects non-negative integer vertex ids, found 'x'.");
+  EXPECT_EQ(read_error(octahedron + "# outer: 0 1 5\n"),
+            "<input>:13: the '# outer:' cycle uses 5-0, which is not an edge of the graph.");
   e = expect_input_error([&] { read_one(octahedron + "# outer: 1 2 3 4\n"); });  // the equator is no face
   EXPECT_STREQ(e.what(),
                "<input>:13: the graph has no planar embedding in which the '# outer:' cycle bounds a face.");
@@ -291,19 +285,21 @@ TEST(GraphIO, CoordsErrors) {
   EXPECT_STREQ(e.what(), "<input>: the drawing is not plane: edges 1-2 and 3-4 cross or touch.");
   e = expect_input_error([] { read_one("vertices\n1 0 0\n2 1 0\n3 2 0\n4 0 1\nedges\n1 2\n1 3\n1 4\n2 4\n"); });
   EXPECT_NE(e.message().find("overlap"), std::string::npos) << e.what();
-  e = expect_input_error([] { read_one("vertices\n1 0 0\n2 2 0\n3 1 0\n4 1 1\nedges\n1 2\n3 4\n1 4\n"); });
-  EXPECT_STREQ(e.what(), "<input>: the drawing is not plane: edges 1-2 and 3-4 cross or touch.");  // 3 lies on 1-2
-  e = expect_input_error([] { read_one("vertices\n1 0 0\n2 1 0\n3 0 0\nedges\n1 2\n2 3\n"); });
-  EXPECT_STREQ(e.what(), "<input>: vertices 1 and 3 are both at (0, 0).");
-  e = expect_input_error([] { read_one("1 2\n", GraphFormat::coords); });
-  EXPECT_STREQ(e.what(), "<input>:1: expected the section header 'vertices' before any data, found '1 2'.");
-  e = expect_input_error([] { read_one("vertices\n1 0 0\n2 1 0\nedges\n1 3\n"); });
-  EXPECT_STREQ(e.what(), "<input>:5: edge 1-3 uses vertex 3, which the 'vertices' section does not declare.");
+  // (drawing, the error it gets), read as coords.
+  const std::pair<const char*, const char*> cases[] = {
+      {"vertices\n1 0 0\n2 2 0\n3 1 0\n4 1 1\nedges\n1 2\n3 4\n1 4\n",  // 3 lies on 1-2
+       "<input>: the drawing is not plane: edges 1-2 and 3-4 cross or touch."},
+      {"vertices\n1 0 0\n2 1 0\n3 0 0\nedges\n1 2\n2 3\n", "<input>: vertices 1 and 3 are both at (0, 0)."},
+      {"1 2\n", "<input>:1: expected the section header 'vertices' before any data, found '1 2'."},
+      {"vertices\n1 0 0\n2 1 0\nedges\n1 3\n",
+       "<input>:5: edge 1-3 uses vertex 3, which the 'vertices' section does not declare."},
+  };
+  for (const auto& [text, expected] : cases) EXPECT_EQ(read_error(text, nullptr, GraphFormat::coords), expected);
   e = expect_input_error([] { read_one("# drawing\nvertices\n1 0 0\n2 1 nan\nedges\n1 2\n"); });
   EXPECT_EQ(e.line(), 4u);
   EXPECT_NE(e.message().find("expected a vertex line 'id x y'"), std::string::npos);
-  e = expect_input_error([] { read_one("vertices\n1 0 0\n1 1 0\n"); });
-  EXPECT_STREQ(e.what(), "<input>:3: vertex 1 is declared twice (first on line 2).");
+  EXPECT_EQ(read_error("vertices\n1 0 0\n1 1 0\n"),
+            "<input>:3: vertex 1 is declared twice (first on line 2).");
   e = expect_input_error([] { read_one("vertices\n1 0 0\n2 1 0\nedges\n1 2\n2 1\n"); });
   EXPECT_EQ(e.line(), 6u);
   e = expect_input_error([] { read_one("edges\n1 2\nvertices\n", GraphFormat::coords); });
@@ -403,6 +399,31 @@ TEST(GraphIO, PlanarCodeErrorsNameTheGraph) {
   e = expect_input_error([] { read_graphs_from_string(">>planar_code xx<<" + bytes({3}), "t.pc"); });
   EXPECT_EQ(e.graph_index(), 0u);
   EXPECT_NE(e.message().find("header"), std::string::npos);
+}
+
+TEST(GraphIO, PlanarCodeWriterRefusesMoreThan65535Vertices) {
+  std::vector<std::vector<Vertex>> star(65537);  // a star: one centre, 65536 leaves
+  for (Vertex v = 1; v < star.size(); ++v) {
+    star[0].push_back(v);
+    star[v] = {0};
+  }
+  const auto e = expect_input_error([&] { write_planar_code({PlanarGraph::from_rotation(star)}); });
+  EXPECT_STREQ(e.what(), "planar_code output: a graph has 65537 vertices; planar_code stores 1 to 65535.");
+  star.resize(65535);  // the largest planar_code stores
+  star[0].resize(65534);
+  EXPECT_EQ(read_graphs_from_string(write_planar_code({PlanarGraph::from_rotation(star)})).at(0).graph.num_vertices(),
+            65535u);
+}
+
+TEST(GraphIO, PlanarCodeRequestedForATextFileSaysSo) {
+  auto e = expect_input_error([] { read_graphs_from_string("# a triangle\n1 2\n2 3\n3 1\n", "tri.txt", GraphFormat::planar_code); });
+  EXPECT_STREQ(e.what(), "tri.txt: expected a planar_code file (header '>>planar_code<<'), found '# a triangle' (no "
+                         "header, and none of the 0 bytes that end every vertex's neighbour list).");
+  e = expect_input_error([] { read_graphs(data_path("k5.txt"), GraphFormat::planar_code); });
+  EXPECT_EQ(e.source(), data_path("k5.txt"));
+  EXPECT_EQ(e.message().rfind("expected a planar_code file (header '>>planar_code<<'), found '", 0), 0u) << e.what();
+  // Headerless binary planar_code is still read when requested.
+  EXPECT_EQ(read_graphs_from_string(bytes({3, 2, 3, 0, 3, 1, 0, 1, 2, 0}), "tri.pc", GraphFormat::planar_code).size(), 1u);
 }
 
 TEST(GraphIO, AutomaticDetection) {

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
@@ -21,25 +22,22 @@ PlanarGraph from_edges(const std::string& text) {
 bool brute_force_three_connected(const PlanarGraph& g) {
   const std::size_t n = g.num_vertices();
   if (n < 4) return false;
+  // Union-find over the edges avoiding a and b: an oracle independent of the traversal under test.
   auto connected_without = [&](Vertex a, Vertex b) {
-    std::vector<std::uint8_t> seen(n, 0);
-    seen[a] = seen[b] = 1;
-    Vertex start = 0;
-    while (seen[start]) ++start;
-    std::vector<Vertex> stack{start};
-    seen[start] = 1;
-    std::size_t reached = 1 + (a == b ? 1 : 2);
-    while (!stack.empty()) {
-      const Vertex v = stack.back();
-      stack.pop_back();
-      for (Vertex w : g.neighbours(v))
-        if (!seen[w]) {
-          seen[w] = 1;
-          ++reached;
-          stack.push_back(w);
-        }
+    std::vector<Vertex> parent(n);
+    std::iota(parent.begin(), parent.end(), Vertex{0});
+    const auto root = [&](Vertex v) {
+      while (parent[v] != v) v = parent[v] = parent[parent[v]];
+      return v;
+    };
+    std::size_t components = n - (a == b ? 1 : 2);
+    for (Dart d = 0; d < g.num_darts(); ++d) {
+      const Vertex u = g.tail(d), w = g.head(d);
+      if (u == a || u == b || w == a || w == b) continue;
+      const Vertex ru = root(u), rw = root(w);
+      if (ru != rw) parent[ru] = rw, --components;
     }
-    return reached == n;
+    return components == 1;
   };
   for (Vertex a = 0; a < n; ++a)
     for (Vertex b = a; b < n; ++b)
@@ -52,6 +50,14 @@ std::vector<std::uint64_t> boundary_ids(const PlanarGraph& g) {
   for (Vertex v : g.boundary_cycle()) ids.push_back(g.id(v));
   std::sort(ids.begin(), ids.end());
   return ids;
+}
+
+/// The kind prepare_for_packing decides for a graph and the (sorted) ids of the outer face it chooses.
+using Packed = std::pair<GraphKind, std::vector<std::uint64_t>>;
+Packed packed(const std::string& edges_text) {
+  GraphKind kind{};
+  const PlanarGraph p = prepare_for_packing(read_graphs_from_string(edges_text, "<input>", GraphFormat::edges).at(0), &kind);
+  return {kind, boundary_ids(p)};
 }
 
 const std::string cube = "0 1\n1 2\n2 3\n3 0\n4 5\n5 6\n6 7\n7 4\n0 4\n1 5\n2 6\n3 7\n";
@@ -132,40 +138,25 @@ TEST(GraphKind, SphereTriangulationIsADiscWithATriangularBoundary) {
   EXPECT_EQ(p.outer_face(), p.face_of(p.default_outer_dart()));
   EXPECT_EQ(p.boundary_cycle().size(), 3u);
   // An explicit outer face is kept.
-  const GraphInput given = read_graphs_from_string("# outer: 5 2 3\n" + octahedron).at(0);
-  const PlanarGraph q = prepare_for_packing(given, &kind);
-  EXPECT_EQ(kind, GraphKind::triangulated_disc);
-  EXPECT_EQ(boundary_ids(q), (std::vector<std::uint64_t>{2, 3, 5}));
+  EXPECT_EQ(packed("# outer: 5 2 3\n" + octahedron), (Packed{GraphKind::triangulated_disc, {2, 3, 5}}));
 }
 
 TEST(GraphKind, TheOnlyNonTriangleBecomesTheOuterFace) {
-  GraphKind kind{};
-  const PlanarGraph p = prepare_for_packing(from_edges(wheel), false, &kind);
-  EXPECT_EQ(kind, GraphKind::triangulated_disc);
-  EXPECT_EQ(boundary_ids(p), (std::vector<std::uint64_t>{1, 2, 3, 4, 5}));
-  EXPECT_FALSE(p.is_boundary(0));
+  EXPECT_EQ(packed(wheel), (Packed{GraphKind::triangulated_disc, {1, 2, 3, 4, 5}}));
+  EXPECT_FALSE(prepare_for_packing(from_edges(wheel), false).is_boundary(0));
   // Octahedron minus the edge 1-2: the quadrilateral 0 1 5 2 is the disc's boundary.
   const std::string no12 = "0 1\n0 2\n0 3\n0 4\n2 3\n3 4\n4 1\n5 1\n5 2\n5 3\n5 4\n";
-  const PlanarGraph q = prepare_for_packing(from_edges(no12), false, &kind);
-  EXPECT_EQ(kind, GraphKind::triangulated_disc);
-  EXPECT_EQ(boundary_ids(q), (std::vector<std::uint64_t>{0, 1, 2, 5}));
+  EXPECT_EQ(packed(no12), (Packed{GraphKind::triangulated_disc, {0, 1, 2, 5}}));
   // With a triangle given as the outer face, the graph is packed as 3-connected instead.
-  const GraphInput given = read_graphs_from_string("# outer: 0 3 4\n" + no12).at(0);
-  const PlanarGraph r = prepare_for_packing(given, &kind);
-  EXPECT_EQ(kind, GraphKind::three_connected);
-  EXPECT_EQ(boundary_ids(r), (std::vector<std::uint64_t>{0, 3, 4}));
+  EXPECT_EQ(packed("# outer: 0 3 4\n" + no12), (Packed{GraphKind::three_connected, {0, 3, 4}}));
 }
 
 TEST(GraphKind, ThreeConnectedOuterFaceRule) {
   GraphKind kind{};
   // Cube: all faces are squares; the face with edge list {0-1, 0-3, 1-2, 2-3} beats {0-1, 0-4, …}.
-  const PlanarGraph p = prepare_for_packing(from_edges(cube), false, &kind);
-  EXPECT_EQ(kind, GraphKind::three_connected);
-  EXPECT_EQ(boundary_ids(p), (std::vector<std::uint64_t>{0, 1, 2, 3}));
+  EXPECT_EQ(packed(cube), (Packed{GraphKind::three_connected, {0, 1, 2, 3}}));
   // Prism: the largest faces are the squares; {0-1, 0-3, 1-4, 3-4} is the smallest.
-  const PlanarGraph q = prepare_for_packing(from_edges(prism), false, &kind);
-  EXPECT_EQ(kind, GraphKind::three_connected);
-  EXPECT_EQ(boundary_ids(q), (std::vector<std::uint64_t>{0, 1, 3, 4}));
+  EXPECT_EQ(packed(prism), (Packed{GraphKind::three_connected, {0, 1, 3, 4}}));
   // An explicit outer face is kept.
   const GraphInput top = read_graphs_from_string("# outer: 4 5 6 7\n" + cube).at(0);
   EXPECT_EQ(boundary_ids(prepare_for_packing(top, &kind)), (std::vector<std::uint64_t>{4, 5, 6, 7}));

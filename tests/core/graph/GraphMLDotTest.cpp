@@ -1,35 +1,20 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "laguerre/core/graph/GraphIO.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
+#include "GraphTestSupport.hpp"
 
 using namespace laguerre::core;
+using namespace laguerre::core::test;
 
 namespace {
-
-std::string data_path(const std::string& name) { return std::string(LAGUERRE_TEST_DATA) + "/graphs/" + name; }
-
-GraphInput read_one(std::string_view text, GraphFormat format = GraphFormat::automatic) {
-  auto graphs = read_graphs_from_string(text, "in", format);
-  EXPECT_EQ(graphs.size(), 1u);
-  return std::move(graphs.at(0));
-}
-
-/// The message of the GraphInputError that reading `text` throws ("" if none), and its line.
-std::string read_error(std::string_view text, std::size_t* line = nullptr, GraphFormat format = GraphFormat::automatic) {
-  try {
-    read_graphs_from_string(text, "in", format);
-  } catch (const GraphInputError& e) {
-    if (line) *line = e.line();
-    return e.what();
-  }
-  return "";
-}
 
 bool same_rotation(const PlanarGraph& a, const PlanarGraph& b) {
   if (a.num_vertices() != b.num_vertices() || a.ids() != b.ids()) return false;
@@ -182,6 +167,34 @@ TEST(GraphMLDot, MalformedInputGivesClearErrors) {
             std::string::npos);
 }
 
+TEST(GraphMLDot, DeepNestingIsAnErrorNotACrash) {
+  // 50,000 nested elements overflowed the stack of the recursive XML parser; the depth limit stops them
+  // first, naming the file and the line of the first element too deep.
+  std::string deep = "<?xml version=\"1.0\"?>\n<graphml>\n<graph>\n";
+  for (int i = 0; i < 50000; ++i) deep += "<a>\n";
+  for (int i = 0; i < 50000; ++i) deep += "</a>";
+  deep += "</graph></graphml>\n";
+  const std::string path = ::testing::TempDir() + "deep.graphml";
+  std::ofstream(path, std::ios::binary) << deep;
+  const auto e = expect_input_error([&] { read_graphs(path); });
+  // <graphml> is level 1, <graph> 2, the first <a> (line 4) 3: the first one too deep is on line 2 + limit.
+  EXPECT_EQ(e.source(), path);
+  EXPECT_EQ(e.line(), graphml_max_depth + 2);
+  EXPECT_EQ(e.message(), "the <a> element here is nested " + std::to_string(graphml_max_depth + 1) +
+                             " deep; laguerre reads GraphML nested at most " + std::to_string(graphml_max_depth) +
+                             " deep.");
+  std::remove(path.c_str());
+
+  // Nesting within the limit, with comments, CDATA and quoted '>' the scan must step over, still reads.
+  std::string extra = "<data key=\"note\"><!-- <a><a> --><![CDATA[<b><b>]]>";
+  for (int i = 0; i < 50; ++i) extra += "<y:n t=\"a>b\">";
+  for (int i = 0; i < 50; ++i) extra += "</y:n>";
+  extra += "</data>";
+  const std::string tri = "<node id=\"a\"/><node id=\"b\"/><node id=\"c\"/><edge source=\"a\" target=\"b\"/>"
+                          "<edge source=\"b\" target=\"c\"/><edge source=\"c\" target=\"a\"/>";
+  EXPECT_EQ(read_one(graphml(extra + tri)).graph.num_edges(), 3u);
+}
+
 TEST(GraphMLDot, AutomaticDetectionKeepsTheOtherFormats) {
   EXPECT_EQ(read_one("# a comment\n1 2\n2 3\n3 1\n").graph.num_edges(), 3u);                     // edges
   EXPECT_EQ(read_one("vertices\n1 0 0\n2 1 0\n3 0 1\nedges\n1 2\n2 3\n3 1\n").positions.size(), 3u);  // coords
@@ -193,5 +206,5 @@ TEST(GraphMLDot, AutomaticDetectionKeepsTheOtherFormats) {
   // A DOT text read as an edge list is an error of the edges format, as before.
   EXPECT_NE(read_error("graph { 1 -- 2 }", nullptr, GraphFormat::edges).find("expected two non-negative integer vertex ids"),
             std::string::npos);
-  EXPECT_THROW(write_graphml(random_delaunay_triangulation(5, 1).graph, {{0, 0}}), std::invalid_argument);
+  EXPECT_THROW(write_graphml(random_delaunay_triangulation(5, 1).graph, {{0, 0}}), InternalError);
 }

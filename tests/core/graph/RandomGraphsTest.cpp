@@ -135,10 +135,17 @@ TEST(RandomGraphs, ThreeConnectedParameters) {
       EXPECT_LE(many.graph.face_size(f), 4u);
     }
   EXPECT_TRUE(is_three_connected(many.graph));
-  EXPECT_THROW(random_delaunay_triangulation(2, 1), std::invalid_argument);
-  EXPECT_THROW(random_three_connected(3, 1), std::invalid_argument);
-  EXPECT_THROW(random_three_connected(10, 1, -1.0), std::invalid_argument);
-  EXPECT_THROW(random_three_connected(10, 1, 0.5, 3), std::invalid_argument);
+  EXPECT_THROW(random_delaunay_triangulation(2, 1), GraphInputError);
+  EXPECT_THROW(random_three_connected(3, 1), GraphInputError);
+  EXPECT_THROW(random_three_connected(10, 1, -1.0), GraphInputError);
+  EXPECT_THROW(random_three_connected(10, 1, 0.5, 3), GraphInputError);
+  try {
+    random_delaunay_triangulation(2, 7);
+    ADD_FAILURE() << "no GraphInputError";
+  } catch (const GraphInputError& e) {
+    EXPECT_STREQ(e.what(), "random_delaunay_triangulation(n=2, seed=7): a random Delaunay triangulation needs at least 3 "
+                           "vertices, not 2.");
+  }
 }
 
 TEST(RandomGraphs, LargeGraphsStayValid) {

@@ -1,7 +1,7 @@
 #pragma once
 // Test helpers for the uniform samplers: canonical codes of rooted maps, a census of samples by
-// isomorphism class of (map, outer face), and a chi-square test of the census against uniformity on
-// rooted maps.
+// isomorphism class of (map, outer face), a chi-square test of the census against uniformity on
+// rooted maps, and a triangle count.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -99,6 +99,21 @@ inline void expect_uniform(const Census& census, std::size_t rooted_total, const
         "critical %.2f at 1e-3)\n",
         what.c_str(), census.samples, census.classes.size(), rooted_total, chi2, dof, critical);
   }
+}
+
+/// Number of triangles (3-cycles) of g.
+inline std::size_t count_triangles(const core::PlanarGraph& g) {
+  std::vector<std::uint8_t> mark(g.num_vertices(), 0);
+  std::size_t count = 0;
+  for (core::Vertex u = 0; u < g.num_vertices(); ++u) {
+    for (core::Vertex w : g.neighbours(u)) mark[w] = 1;
+    for (core::Vertex v : g.neighbours(u))
+      if (v > u)
+        for (core::Vertex w : g.neighbours(v))
+          if (w > v && mark[w]) ++count;
+    for (core::Vertex w : g.neighbours(u)) mark[w] = 0;
+  }
+  return count;
 }
 
 }  // namespace laguerre::test

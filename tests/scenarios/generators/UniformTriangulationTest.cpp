@@ -27,21 +27,6 @@ double tutte_triangulations(std::size_t n) {
   return std::round(value);
 }
 
-/// Number of triangles (3-cycles) of g.
-std::size_t count_triangles(const PlanarGraph& g) {
-  std::vector<std::uint8_t> mark(g.num_vertices(), 0);
-  std::size_t count = 0;
-  for (Vertex u = 0; u < g.num_vertices(); ++u) {
-    for (Vertex w : g.neighbours(u)) mark[w] = 1;
-    for (Vertex v : g.neighbours(u))
-      if (v > u)
-        for (Vertex w : g.neighbours(v))
-          if (w > v && mark[w]) ++count;
-    for (Vertex w : g.neighbours(u)) mark[w] = 0;
-  }
-  return count;
-}
-
 void expect_triangulation(const PlanarGraph& g, std::size_t n) {
   ASSERT_TRUE(g.is_valid(true));
   EXPECT_EQ(g.num_vertices(), n);
@@ -125,7 +110,7 @@ TEST(UniformTriangulation, SeparatingTrianglesMatchGaoSchaeffer) {
   double total = 0;
   for (std::uint64_t seed = 0; seed < runs; ++seed) {
     const PlanarGraph g = scenarios::uniform_triangulation(N, seed);
-    total += static_cast<double>(count_triangles(g) - (2 * N - 4));
+    total += static_cast<double>(test::count_triangles(g) - (2 * N - 4));
   }
   const double n = static_cast<double>(N - 3);
   const double mean = total / runs, expected = 10.0 / 27.0 * n;

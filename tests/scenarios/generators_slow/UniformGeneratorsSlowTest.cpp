@@ -13,25 +13,6 @@
 
 using namespace laguerre;
 using core::PlanarGraph;
-using core::Vertex;
-
-namespace {
-
-std::size_t count_triangles(const PlanarGraph& g) {
-  std::vector<std::uint8_t> mark(g.num_vertices(), 0);
-  std::size_t count = 0;
-  for (Vertex u = 0; u < g.num_vertices(); ++u) {
-    for (Vertex w : g.neighbours(u)) mark[w] = 1;
-    for (Vertex v : g.neighbours(u))
-      if (v > u)
-        for (Vertex w : g.neighbours(v))
-          if (w > v && mark[w]) ++count;
-    for (Vertex w : g.neighbours(u)) mark[w] = 0;
-  }
-  return count;
-}
-
-}  // namespace
 
 // 2530 rooted simple triangulations with 9 vertices (Tutte 1962; OEIS A000260).
 TEST(UniformGeneratorsSlow, TriangulationsWithNineVerticesExactlyUniform) {
@@ -58,7 +39,7 @@ TEST(UniformGeneratorsSlow, SeparatingTrianglesAtAMillionVertices) {
     const PlanarGraph g = scenarios::uniform_triangulation(N, seed);
     ASSERT_TRUE(g.is_valid());
     const double n = static_cast<double>(N - 3);
-    const double separating = static_cast<double>(count_triangles(g) - (2 * N - 4));
+    const double separating = static_cast<double>(test::count_triangles(g) - (2 * N - 4));
     EXPECT_NEAR(separating, 10.0 / 27.0 * n, 5 * std::sqrt(320.0 / 729.0 * n));
   }
 }

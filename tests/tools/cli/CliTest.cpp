@@ -94,6 +94,21 @@ TEST_F(Cli, BadInputGetsAClearErrorAndExitCode2) {
   EXPECT_NE(r.status, 0);
 }
 
+TEST_F(Cli, PackNamesTheGraphFileProblemAndExits2) {
+  const std::string text = write("tri.txt", "1 2\n2 3\n3 1\n");
+  Outcome r = run("pack " + text + " --format planar_code");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("tri.txt: expected a planar_code file (header '>>planar_code<<'), found '1 2'"), std::string::npos)
+      << r.out;
+  // 50,000 nested elements: an error naming the file and line, not a stack overflow.
+  std::string deep = "<?xml version=\"1.0\"?>\n<graphml>\n<graph>\n";
+  for (int i = 0; i < 50000; ++i) deep += "<a>\n";
+  r = run("pack " + write("deep.graphml", deep));
+  EXPECT_EQ(r.status, 2) << r.out.substr(0, 300);
+  EXPECT_NE(r.out.find("deep.graphml:258: the <a> element here is nested 257 deep"), std::string::npos)
+      << r.out.substr(0, 300);
+}
+
 TEST_F(Cli, ThesisTableRunsOnASmallSample) {
   const Outcome r = run("thesis-table --count 2 --size 30 --json");
   ASSERT_EQ(r.status, 0) << r.out;

@@ -4,8 +4,10 @@
 /// for packing (kind decided, outer face chosen), with physical node positions when the generator has
 /// them.
 ///
-/// Every generator declares its parameters (name, type, range, default) so that the scenario loader
-/// can validate a file before anything runs; `build_topology` then trusts validated parameters. A
+/// Every generator is one entry of the registry: its parameters (name, type, range, default value),
+/// its cross-parameter check and its build function, so that the scenario loader can validate a file
+/// before anything runs, `build_topology` trusts validated parameters and fills in the declared
+/// defaults, and the documentation (`generators_help`) is generated from the same entries. A
 /// generator that is declared but not yet implemented (`GeneratorInfo::available` false) is rejected
 /// by the loader with its `unavailable_reason`.
 
@@ -13,6 +15,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -20,6 +23,7 @@
 #include <variant>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/PlanarGraph.hpp"
@@ -37,6 +41,12 @@ enum class ParamType {
   text,      ///< a string, checked by the generator's `check` (e.g. a metric-field specification)
 };
 
+/// A list of polygons (outer boundary first, then holes), each a list of points.
+using Polygons = std::vector<std::vector<core::Point2>>;
+
+/// A validated parameter value: integer, number, boolean, text (choice and file) or polygons.
+using ParamValue = std::variant<std::int64_t, double, bool, std::string, Polygons>;
+
 /// One parameter a generator accepts.
 struct ParamSpec {
   std::string name;                                          ///< key under `topology:`
@@ -46,14 +56,10 @@ struct ParamSpec {
   double max = std::numeric_limits<double>::infinity();      ///< largest accepted value (integer, number)
   std::vector<std::string> choices;                          ///< accepted values (choice)
   bool required = false;                                     ///< must be given
-  std::string default_text;                                  ///< the default, as documented
+  std::optional<ParamValue> default_value;                   ///< what builders use when it is not given
+  std::string default_text;  ///< the default, as documented: describe(*default_value), or a phrase for
+                             ///< a default that is no value ("the unit square"); empty if none
 };
-
-/// A list of polygons (outer boundary first, then holes), each a list of points.
-using Polygons = std::vector<std::vector<core::Point2>>;
-
-/// A validated parameter value: integer, number, boolean, text (choice and file) or polygons.
-using ParamValue = std::variant<std::int64_t, double, bool, std::string, Polygons>;
 
 /// The parameters of one topology, by name, in the order they were given.
 class TopologyParams {
@@ -92,6 +98,16 @@ struct ParamIssue {
   std::string expected;  ///< what was expected
 };
 
+/// A topology ready for the packing protocol.
+struct Topology {
+  core::PlanarGraph graph;              ///< prepared for packing (see core::prepare_for_packing)
+  core::GraphKind kind{};               ///< triangulated disc or 3-connected
+  std::vector<core::Point2> positions;  ///< physical positions by vertex, or empty
+  std::string name;                     ///< e.g. "delaunay(n=50)" or "graphs/x.txt#2"
+  std::string family;                   ///< the generator name
+  std::string note;                     ///< what the generator reports (e.g. a sensor field's repair), or ""
+};
+
 /// What the registry knows about a generator.
 struct GeneratorInfo {
   std::string name;                 ///< the name scenario files use (`topology.generator`)
@@ -103,22 +119,16 @@ struct GeneratorInfo {
   /// Checks beyond each parameter's type and range (e.g. a radius required by some graph types, a
   /// domain's polygons being simple); run by the loader on parameters that passed those. May be empty.
   std::function<std::vector<ParamIssue>(const TopologyParams&)> check;
+  /// Builds the topology from validated parameters (absent ones take their `default_value`), a seed and
+  /// a repetition number; empty when !available.
+  std::function<Topology(const TopologyParams&, std::uint64_t seed, std::size_t repetition)> build;
 };
 
-/// A topology ready for the packing protocol.
-struct Topology {
-  core::PlanarGraph graph;              ///< prepared for packing (see core::prepare_for_packing)
-  core::GraphKind kind{};               ///< triangulated disc or 3-connected
-  std::vector<core::Point2> positions;  ///< physical positions by vertex, or empty
-  std::string name;                     ///< e.g. "delaunay(n=50)" or "graphs/x.txt#2"
-  std::string family;                   ///< the generator name
-  std::string note;                     ///< what the generator reports (e.g. a sensor field's repair), or ""
-};
-
-/// A topology that could not be built or is not packable (not a triangulated disc, not 3-connected).
-class TopologyError : public std::runtime_error {
+/// A topology that could not be built or is not packable (not a triangulated disc, not 3-connected):
+/// bad input, with no location of its own (`what()` is the message).
+class TopologyError : public core::InputError {
 public:
-  using std::runtime_error::runtime_error;
+  explicit TopologyError(const std::string& message) : core::InputError(message, std::string(), 0, message) {}
 };
 
 /// Every registered generator, in documentation order.
@@ -129,6 +139,10 @@ const GeneratorInfo* find_generator(std::string_view name);
 
 /// The registered names, comma-separated (only the available ones if `available_only`).
 std::string generator_names(bool available_only);
+
+/// The documentation of every generator, from the registry: per generator a line `name: summary`, then
+/// one line per parameter `  name (type[, range or choices]; required | default D): help`.
+std::string generators_help();
 
 /// Builds the topology of generator `generator` with validated `params` from `seed`. `repetition`
 /// (from 0) selects the graph of a multi-graph file when `index` is 0. Throws TopologyError when the

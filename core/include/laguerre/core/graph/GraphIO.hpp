@@ -51,7 +51,8 @@
 /// in clockwise order and a terminating 0. Entries are single bytes, unless the graph starts with a 0
 /// byte: then n and every following entry of that graph are 2-byte integers, little-endian unless the
 /// header says `be`. Ids are 1..n as in plantri; the outer face is the default one. Graph i (from 1) of
-/// file F is named "F#i".
+/// file F is named "F#i". Input without a header and without any 0 byte (every graph has one) is
+/// rejected as not planar_code, quoting its start.
 ///
 /// **graphml** (XML, http://graphml.graphdrawing.org). Exactly one `<graph>`, undirected (an edge that
 /// is directed, by `edgedefault="directed"` or `directed="true"`, is an error); `<node id=…>` elements
@@ -62,6 +63,8 @@
 /// (a string of node ids separated by blanks) plays the part of `# outer:`. The XML is parsed by
 /// Boost.PropertyTree (the parser Boost.Graph's own read_graphml uses; that reader is not used because
 /// it drops node ids and silently creates undeclared nodes). Malformed XML is reported with its line.
+/// Elements nested more than `graphml_max_depth` deep are rejected, with the line of the first one too
+/// deep, before the (recursive) parser runs.
 ///
 /// **dot** (Graphviz), read by Boost.Graph's read_graphviz: an undirected `graph` (a `digraph` is an
 /// error); node names are the DOT node ids; positions from `pos="x,y"` (an optional trailing `!`
@@ -82,6 +85,7 @@
 /// Every problem is reported as a GraphInputError naming the source and, where it applies, the line or
 /// the graph index.
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -89,45 +93,33 @@
 #include <vector>
 
 #include "laguerre/core/geometry/Predicates.hpp"
+#include "laguerre/core/graph/Embedding.hpp"
 #include "laguerre/core/graph/GraphError.hpp"
 #include "laguerre/core/graph/PlanarGraph.hpp"
 
 namespace laguerre::core {
 
+/// The deepest element nesting the GraphML reader accepts (GraphML itself needs 4 levels; yEd's
+/// graphics add about 10).
+inline constexpr std::size_t graphml_max_depth = 256;
+
 /// A graph file format (see the file comment for each).
 enum class GraphFormat { automatic, edges, planar_code, coords, graphml, dot };
 
-/// Parses "automatic", "edges", "planar_code", "coords", "graphml" or "dot"; throws std::invalid_argument listing them.
+/// Parses "automatic", "edges", "planar_code", "coords", "graphml" or "dot"; throws GraphInputError (source
+/// "format") listing them.
 GraphFormat parse_graph_format(std::string_view name);
 
 /// Name of a format, as accepted by parse_graph_format.
 std::string_view to_string(GraphFormat format);
 
-/// One graph read from an input.
-struct GraphInput {
-  PlanarGraph graph;             ///< the embedded graph, with its outer face
-  std::vector<Point2> positions; ///< vertex positions indexed by Vertex; empty unless the input had them
-  std::string name;              ///< e.g. "file.txt" or "file.pc#3"
-  bool outer_given = false;      ///< whether the input chose the outer face (rather than the default rule)
-};
-
-/// Reads every graph of the file at `path`. Throws GraphInputError (also if the file cannot be read).
+/// Reads every graph of the file at `path`, opened by core::read_input_file. Throws GraphInputError (also
+/// with read_input_file's message if the file is missing, a directory or unreadable).
 std::vector<GraphInput> read_graphs(const std::string& path, GraphFormat format = GraphFormat::automatic);
 
 /// Reads every graph of `data` (text, or planar_code bytes); `source_name` is used in names and errors.
 std::vector<GraphInput> read_graphs_from_string(std::string_view data, const std::string& source_name = "<input>",
                                                 GraphFormat format = GraphFormat::automatic);
-
-/// Builds a graph from a straight-line drawing: vertex i has user id ids[i] and position positions[i];
-/// edges are pairs of vertex indices. The rotation is the exact counter-clockwise order around each
-/// position; the outer face is the unbounded one (`outer_given` is true). Throws GraphInputError (with
-/// `source` and no line) if the drawing is not a plane drawing of a simple connected graph. The crossing
-/// test sweeps the edges' bounding boxes in x order: O(m log m) plus one exact segment test per pair of
-/// edges whose boxes overlap (O(m²) in the worst case, about m√m for uniform random points); with
-/// `check_crossings` false it is skipped (for drawings known to be plane, e.g. Delaunay triangulations).
-GraphInput graph_from_drawing(std::vector<std::uint64_t> ids, std::vector<Point2> positions,
-                              const std::vector<std::pair<Vertex, Vertex>>& edges, const std::string& source,
-                              bool check_crossings = true);
 
 /// Writes `g` in the edges format: a comment, a `# outer:` line (boundary_cycle() order) and one
 /// `u v` line per edge (user ids, smaller first, sorted).
@@ -135,16 +127,17 @@ std::string write_edge_list(const PlanarGraph& g);
 
 /// Writes `g` as GraphML: nodes with the user ids as GraphML ids, undirected edges sorted as in
 /// write_edge_list, a graph key `outer` (boundary_cycle() order) and, when `positions` is not empty
-/// (one per vertex, else std::invalid_argument), node keys `x` and `y` with 17 significant digits.
+/// (one per vertex: a precondition), node keys `x` and `y` with 17 significant digits.
 std::string write_graphml(const PlanarGraph& g, const std::vector<Point2>& positions = {});
 
 /// Writes `g` as an undirected Graphviz graph: node names are user ids, `pos="x,y"` when `positions`
-/// is not empty (one per vertex, else std::invalid_argument), a graph attribute `outer`, edges sorted
+/// is not empty (one per vertex: a precondition), a graph attribute `outer`, edges sorted
 /// as in write_edge_list.
 std::string write_dot(const PlanarGraph& g, const std::vector<Point2>& positions = {});
 
 /// Writes graphs in planar_code with the header `>>planar_code le<<`; vertex i becomes i + 1 (user ids
-/// are not stored) and neighbours are listed clockwise. Throws std::invalid_argument beyond 65535 vertices.
+/// are not stored) and neighbours are listed clockwise. Throws GraphInputError (source "planar_code
+/// output") beyond 65535 vertices.
 std::string write_planar_code(const std::vector<PlanarGraph>& graphs);
 
 }  // namespace laguerre::core

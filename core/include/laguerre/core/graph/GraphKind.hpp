@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "laguerre/core/graph/GraphIO.hpp"
+#include "laguerre/core/graph/Embedding.hpp"
 #include "laguerre/core/graph/PlanarGraph.hpp"
 
 namespace laguerre::core {

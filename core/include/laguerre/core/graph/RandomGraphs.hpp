@@ -12,14 +12,14 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "laguerre/core/graph/GraphIO.hpp"
+#include "laguerre/core/graph/Embedding.hpp"
 
 namespace laguerre::core {
 
 /// Delaunay triangulation of n points drawn uniformly in the unit disc (rejection from the square
 /// [-1, 1]², a point redrawn if it repeats an earlier one). A triangulated disc whose outer face is the
 /// convex hull (`outer_given` is true), with positions; vertex ids 0..n-1 in drawing order.
-/// Requires n ≥ 3 (std::invalid_argument otherwise). Cost O(n log n) expected.
+/// Requires n ≥ 3 (GraphInputError otherwise). Cost O(n log n) expected.
 GraphInput random_delaunay_triangulation(std::size_t n, std::uint64_t seed);
 
 /// A random 3-connected plane graph with n vertices and a straight-line drawing.
@@ -33,7 +33,8 @@ GraphInput random_delaunay_triangulation(std::size_t n, std::uint64_t seed);
 /// stopping after round(deletions_per_vertex · n) deletions or when the edges run out. Hull edges are
 /// never deleted, so the outer face stays the convex hull (`outer_given` is true). The default 0.75
 /// deletes roughly a quarter of the edges, bringing the edge count near the ~2.2 n of uniform random
-/// planar graphs. Requires n ≥ 4 and max_face_size ≥ 4 (std::invalid_argument otherwise).
+/// planar graphs. Requires n ≥ 4, max_face_size ≥ 4 and a finite deletions_per_vertex ≥ 0 (GraphInputError
+/// otherwise, naming the generator).
 /// Cost O(n log n) expected.
 GraphInput random_three_connected(std::size_t n, std::uint64_t seed, double deletions_per_vertex = 0.75,
                                   std::size_t max_face_size = 8);
