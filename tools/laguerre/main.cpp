@@ -52,6 +52,9 @@ int main(int argc, char** argv) {
   } catch (const laguerre::core::MeshInputError& e) {
     std::cerr << "laguerre: " << e.what() << '\n';
     return 2;
+  } catch (const laguerre::core::InputError& e) {
+    std::cerr << "laguerre: " << e.what() << '\n';
+    return 2;
   } catch (const std::invalid_argument& e) {
     std::cerr << "laguerre: " << e.what() << '\n';
     return 2;

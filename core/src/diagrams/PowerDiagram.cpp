@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #include "detail/AffineCells.hpp"
+#include "detail/Validity.hpp"
+#include "laguerre/core/Error.hpp"
 
 namespace laguerre::core {
 
@@ -31,10 +33,10 @@ struct PowerDiagram::Impl {
 };
 
 PowerDiagram::PowerDiagram(std::vector<WeightedPoint> sites, const Box& box) : impl_(std::make_unique<Impl>()) {
-  if (!box.valid()) throw std::invalid_argument("power diagram: the box must satisfy xmin < xmax and ymin < ymax");
+  if (!box.valid()) throw InputError("power diagram: the box must satisfy xmin < xmax and ymin < ymax");
   for (std::size_t i = 0; i < sites.size(); ++i)
     if (!std::isfinite(sites[i].x) || !std::isfinite(sites[i].y) || !std::isfinite(sites[i].w))
-      throw std::invalid_argument("power diagram: site " + std::to_string(i) + " has a non-finite coordinate or weight");
+      throw InputError("power diagram: site " + std::to_string(i) + " has a non-finite coordinate or weight");
   Impl& m = *impl_;
   m.sites = std::move(sites);
   m.box = box;
@@ -85,14 +87,15 @@ SiteIndex PowerDiagram::locate(Point2 q) const {
   return impl_->rt.nearest_power_vertex(K::Point_2(q.x, q.y))->info();
 }
 
-ValidityReport PowerDiagram::is_valid() const {
+bool PowerDiagram::is_valid(bool verbose) const {
   const Impl& m = *impl_;
-  if (!m.rt.is_valid()) return {false, "CGAL's regular triangulation is not valid"};
+  const std::string violation = [&]() -> std::string {
+  if (!m.rt.is_valid()) return "CGAL's regular triangulation is not valid";
   std::size_t visible = 0;
   for (bool h : m.hidden) visible += h ? 0 : 1;
   if (visible != m.rt.number_of_vertices())
-    return {false, "the triangulation has " + std::to_string(m.rt.number_of_vertices()) + " vertices but " +
-                       std::to_string(visible) + " sites are reported visible"};
+    return "the triangulation has " + std::to_string(m.rt.number_of_vertices()) + " vertices but " +
+                       std::to_string(visible) + " sites are reported visible";
   // A hidden site is hidden for a reason: its power at its own point is not smaller than the located
   // site's (for an exact duplicate, equal).
   for (SiteIndex i = 0; i < m.sites.size(); ++i) {
@@ -100,9 +103,11 @@ ValidityReport PowerDiagram::is_valid() const {
     const Point2 p{m.sites[i].x, m.sites[i].y};
     const SiteIndex l = locate(p);
     if (l == no_site || power_distance(p, m.sites[l]) > power_distance(p, m.sites[i]) + 1e-9 * (1 + std::fabs(m.sites[i].w)))
-      return {false, "hidden site " + std::to_string(i) + " is closer to its own point than any visible site"};
+      return "hidden site " + std::to_string(i) + " is closer to its own point than any visible site";
   }
-  return detail::check_affine_cells(m.sites, m.hidden, m.cells, m.box, [this](Point2 q) { return locate(q); });
+  return detail::check_affine_cells(m.sites, m.hidden, m.cells, m.vertices, m.box, [this](Point2 q) { return locate(q); });
+  }();
+  return detail::report_validity(violation, verbose);
 }
 
 }  // namespace laguerre::core

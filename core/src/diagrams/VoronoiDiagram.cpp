@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #include "detail/AffineCells.hpp"
+#include "detail/Validity.hpp"
+#include "laguerre/core/Error.hpp"
 
 namespace laguerre::core {
 
@@ -29,10 +31,10 @@ struct VoronoiDiagram::Impl {
 };
 
 VoronoiDiagram::VoronoiDiagram(std::vector<Point2> sites, const Box& box) : impl_(std::make_unique<Impl>()) {
-  if (!box.valid()) throw std::invalid_argument("Voronoi diagram: the box must satisfy xmin < xmax and ymin < ymax");
+  if (!box.valid()) throw InputError("Voronoi diagram: the box must satisfy xmin < xmax and ymin < ymax");
   for (std::size_t i = 0; i < sites.size(); ++i)
     if (!std::isfinite(sites[i].x) || !std::isfinite(sites[i].y))
-      throw std::invalid_argument("Voronoi diagram: site " + std::to_string(i) + " has a non-finite coordinate");
+      throw InputError("Voronoi diagram: site " + std::to_string(i) + " has a non-finite coordinate");
   Impl& m = *impl_;
   m.sites = std::move(sites);
   m.box = box;
@@ -85,22 +87,25 @@ SiteIndex VoronoiDiagram::locate(Point2 q) const {
   return impl_->rt.nearest_vertex(K::Point_2(q.x, q.y))->info();
 }
 
-ValidityReport VoronoiDiagram::is_valid() const {
+bool VoronoiDiagram::is_valid(bool verbose) const {
   const Impl& m = *impl_;
-  if (!m.rt.is_valid()) return {false, "CGAL's Delaunay triangulation is not valid"};
+  const std::string violation = [&]() -> std::string {
+  if (!m.rt.is_valid()) return "CGAL's Delaunay triangulation is not valid";
   std::size_t visible = 0;
   for (bool h : m.hidden) visible += h ? 0 : 1;
   if (visible != m.rt.number_of_vertices())
-    return {false, "the triangulation has " + std::to_string(m.rt.number_of_vertices()) + " vertices but " +
-                       std::to_string(visible) + " sites are reported visible"};
+    return "the triangulation has " + std::to_string(m.rt.number_of_vertices()) + " vertices but " +
+                       std::to_string(visible) + " sites are reported visible";
   // A hidden site is an exact duplicate of the visible site located at its point.
   for (SiteIndex i = 0; i < m.sites.size(); ++i) {
     if (!m.hidden[i]) continue;
     const SiteIndex l = locate(m.sites[i]);
     if (l == no_site || m.sites[l].x != m.sites[i].x || m.sites[l].y != m.sites[i].y)
-      return {false, "hidden site " + std::to_string(i) + " is not a duplicate of a visible site"};
+      return "hidden site " + std::to_string(i) + " is not a duplicate of a visible site";
   }
-  return detail::check_affine_cells(m.weighted, m.hidden, m.cells, m.box, [this](Point2 q) { return locate(q); });
+  return detail::check_affine_cells(m.weighted, m.hidden, m.cells, m.vertices, m.box, [this](Point2 q) { return locate(q); });
+  }();
+  return detail::report_validity(violation, verbose);
 }
 
 }  // namespace laguerre::core

@@ -9,9 +9,6 @@
 
 namespace laguerre::core {
 
-MeshInputError::MeshInputError(const std::string& source, std::size_t line, const std::string& message)
-    : std::runtime_error(line > 0 ? source + ":" + std::to_string(line) + ": " + message : source + ": " + message) {}
-
 namespace {
 
 /// Whitespace-separated tokens with their line numbers; `#` comments run to the end of the line.

@@ -4,7 +4,6 @@
 /// the dual triangles, with the sites they separate.
 
 #include <array>
-#include <string>
 #include <vector>
 
 #include "laguerre/core/diagrams/Sites.hpp"
@@ -26,12 +25,6 @@ struct StraightEdge {
 struct DiagramVertex {
   Point2 point;                      ///< position (double evaluation of the construction)
   std::array<SiteIndex, 3> sites{};  ///< the dual triangle, counter-clockwise
-};
-
-/// Why a diagram's invariants fail (empty when they hold).
-struct ValidityReport {
-  bool ok = true;       ///< all invariants hold
-  std::string message;  ///< the first violated invariant, as a sentence
 };
 
 }  // namespace laguerre::core

@@ -26,7 +26,7 @@ namespace laguerre::core {
 /// Power diagram of weighted points, clipped to a box, with its dual regular triangulation.
 class PowerDiagram {
  public:
-  /// Builds the diagram of `sites` (finite coordinates and weights; throws std::invalid_argument
+  /// Builds the diagram of `sites` (finite coordinates and weights; throws InputError
   /// otherwise) and clips the cells to `box` (must be valid).
   PowerDiagram(std::vector<WeightedPoint> sites, const Box& box);
   /// Destructor.
@@ -62,7 +62,9 @@ class PowerDiagram {
   /// a vertex, dual edges are symmetric neighbourhoods, every cell is convex and counter-clockwise,
   /// every non-empty cell's centroid locates in its own site (or on a tie), the cell areas add up to
   /// the box area.
-  ValidityReport is_valid() const;
+  /// With `verbose`, writes the first violated invariant on std::cerr. False also when a vertex is not
+  /// finite (input beyond what doubles represent).
+  bool is_valid(bool verbose = false) const;
 
  private:
   struct Impl;

@@ -20,7 +20,7 @@ namespace laguerre::core {
 /// Voronoi diagram of points, clipped to a box, with its dual Delaunay triangulation.
 class VoronoiDiagram {
  public:
-  /// Builds the diagram of `sites` (finite coordinates; throws std::invalid_argument otherwise) and
+  /// Builds the diagram of `sites` (finite coordinates; throws InputError otherwise) and
   /// clips the cells to `box` (must be valid).
   VoronoiDiagram(std::vector<Point2> sites, const Box& box);
   /// Destructor.
@@ -52,7 +52,9 @@ class VoronoiDiagram {
   SiteIndex locate(Point2 q) const;
   /// Checks the invariants (as PowerDiagram::is_valid; CGAL's validity includes the local empty-circle
   /// property of every edge).
-  ValidityReport is_valid() const;
+  /// With `verbose`, writes the first violated invariant on std::cerr. False also when a vertex is not
+  /// finite (input beyond what doubles represent).
+  bool is_valid(bool verbose = false) const;
 
  private:
   struct Impl;
