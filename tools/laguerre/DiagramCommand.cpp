@@ -148,6 +148,9 @@ void draw(cairo_t* cr, const Scene& s, int w, int h) {
   cairo_set_source_rgba(cr, 0.2, 0.2, 0.6, 0.8);
   cairo_set_line_width(cr, 1.0);
   for (const auto& [c, radius] : s.circles) {
+    // Cairo flattens an arc into segments by its pixel size: a circle far larger than the picture would
+    // take forever, and its visible part is (under a pixel from) straight or outside anyway.
+    if (!(radius * sx <= 1e5)) continue;
     auto [x, y] = X(c);
     cairo_new_path(cr);
     cairo_arc(cr, x, y, radius * sx, 0, 2 * M_PI);

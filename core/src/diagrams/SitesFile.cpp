@@ -59,10 +59,10 @@ std::vector<SiteRow> read_site_rows(const std::string& path, std::string_view co
       if (ec == std::errc::result_out_of_range ||
           (ec == std::errc() && ptr == w.data() + w.size() && std::isfinite(v) && !admissible_magnitude(v)))
         throw InputError(path, line.number,
-                         found + "expected 0 or a magnitude between 1e-150 and 1e150 (squares and products of two "
-                                 "numbers must be finite, normal doubles).");
+                         found + "expected 0 or a magnitude between 1e-150 and 1e150, so that squares and products of "
+                                 "two numbers are finite, normal doubles (" + std::string(kind) + " sites).");
       if (ec != std::errc() || ptr != w.data() + w.size() || !std::isfinite(v))
-        throw InputError(path, line.number, found + "expected a finite number.");
+        throw InputError(path, line.number, found + "expected a finite number (" + std::string(kind) + " sites).");
       row.values.push_back(v);
     }
     rows.push_back(std::move(row));

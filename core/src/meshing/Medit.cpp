@@ -6,6 +6,9 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string_view>
+
+#include "laguerre/core/InputFile.hpp"
 
 namespace laguerre::core {
 
@@ -14,9 +17,7 @@ namespace {
 /// Whitespace-separated tokens with their line numbers; `#` comments run to the end of the line.
 class Tokens {
 public:
-  explicit Tokens(const std::string& path) : path_(path), in_(path) {
-    if (!in_) throw MeshInputError(path, 0, "cannot open the file for reading");
-  }
+  Tokens(const std::string& path, std::string_view what) : path_(path), in_(open_input_file(path, what)) {}
 
   /// The next token, or "" at the end of the file.
   std::string next() {
@@ -34,24 +35,10 @@ public:
   }
 
   /// The next token as a count (a non-negative integer).
-  std::size_t count(const char* what) {
-    const std::string t = next();
-    std::size_t v = 0;
-    const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (t.empty() || ec != std::errc() || p != t.data() + t.size())
-      fail("expected " + std::string(what) + " (a non-negative integer), found '" + t + "'");
-    return v;
-  }
+  std::size_t count(const char* what) { return whole<std::size_t>(what, "a non-negative integer"); }
 
   /// The next token as an integer.
-  long integer(const char* what) {
-    const std::string t = next();
-    long v = 0;
-    const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (t.empty() || ec != std::errc() || p != t.data() + t.size())
-      fail("expected " + std::string(what) + " (an integer), found '" + t + "'");
-    return v;
-  }
+  long integer(const char* what) { return whole<long>(what, "an integer"); }
 
   /// The next token as a finite real number.
   double real(const char* what) {
@@ -67,6 +54,17 @@ public:
   [[noreturn]] void fail(const std::string& message) const { throw MeshInputError(path_, line_, message); }
 
 private:
+  /// The next token as an integer of type T (`kind` names it in the message).
+  template <class T>
+  T whole(const char* what, const char* kind) {
+    const std::string t = next();
+    T v = 0;
+    const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (t.empty() || ec != std::errc() || p != t.data() + t.size())
+      fail("expected " + std::string(what) + " (" + kind + "), found '" + t + "'");
+    return v;
+  }
+
   std::string path_;
   std::ifstream in_;
   std::vector<std::string> words_;
@@ -96,7 +94,7 @@ void write_or_throw(std::ofstream& out, const std::string& path) {
 }  // namespace
 
 TriangleMesh read_medit_mesh(const std::string& path) {
-  Tokens t(path);
+  Tokens t(path, "Medit mesh file");
   TriangleMesh mesh;
   bool have_dimension = false;
   for (std::string key = t.next();; key = t.next()) {
@@ -154,7 +152,7 @@ TriangleMesh read_medit_mesh(const std::string& path) {
 }
 
 std::vector<Metric> read_medit_sol(const std::string& path, std::size_t vertex_count) {
-  Tokens t(path);
+  Tokens t(path, "Medit solution file");
   std::vector<Metric> metrics;
   for (std::string key = t.next();; key = t.next()) {
     if (key.empty()) t.fail("missing 'End' keyword");
