@@ -93,6 +93,14 @@ void draw(cairo_t* cr, const Scene& s, int w, int h) {
   cairo_paint(cr);
   const double sx = w / s.view.width(), sy = h / s.view.height();
   auto X = [&](Point2 p) { return std::pair{(p.x - s.view.xmin) * sx, (s.view.ymax - p.y) * sy}; };
+  auto trace = [&](const std::vector<Point2>& line) {  // the polyline as a new sub-path
+    auto [x0, y0] = X(line[0]);
+    cairo_move_to(cr, x0, y0);
+    for (const Point2& p : line) {
+      auto [x, y] = X(p);
+      cairo_line_to(cr, x, y);
+    }
+  };
   if (s.raster) {
     const auto& r = *s.raster;
     cairo_surface_t* img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, r.width(), r.height());
@@ -119,12 +127,7 @@ void draw(cairo_t* cr, const Scene& s, int w, int h) {
     cairo_new_path(cr);
     for (const auto& loop : f.loops) {
       if (loop.empty()) continue;
-      auto [x0, y0] = X(loop[0]);
-      cairo_move_to(cr, x0, y0);
-      for (const Point2& p : loop) {
-        auto [x, y] = X(p);
-        cairo_line_to(cr, x, y);
-      }
+      trace(loop);
       cairo_close_path(cr);
     }
     const core::Rgb c = core::site_colour(f.site);
@@ -137,12 +140,7 @@ void draw(cairo_t* cr, const Scene& s, int w, int h) {
   for (const auto& c : s.curves) {
     if (c.size() < 2) continue;
     cairo_new_path(cr);
-    auto [x0, y0] = X(c[0]);
-    cairo_move_to(cr, x0, y0);
-    for (const Point2& p : c) {
-      auto [x, y] = X(p);
-      cairo_line_to(cr, x, y);
-    }
+    trace(c);
     cairo_stroke(cr);
   }
   cairo_set_source_rgba(cr, 0.2, 0.2, 0.6, 0.8);

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "AnisotropicDetail.hpp"
+#include "ApolloniusDetail.hpp"
 #include "laguerre/core/diagrams/AnisotropicDiagram.hpp"
 #include "laguerre/core/diagrams/SitesFile.hpp"
 #include "detail/Validity.hpp"
@@ -26,13 +27,7 @@ double anisotropic_distance(Point2 q, const AnisotropicSite& s) {
 }
 
 SiteIndex anisotropic_nearest(const std::vector<AnisotropicSite>& sites, Point2 q) {
-  SiteIndex best = no_site;
-  double best_d = 0;
-  for (SiteIndex i = 0; i < sites.size(); ++i) {
-    const double d = anisotropic_distance(q, sites[i]);
-    if (best == no_site || d < best_d) best = i, best_d = d;
-  }
-  return best;
+  return detail::nearest_site(sites.size(), [&](SiteIndex i) { return anisotropic_distance(q, sites[i]); });
 }
 
 namespace {

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// Internal: helpers shared by the two Apollonius constructions (canonical ordering of the result).
+/// Internal: helpers shared by the two Apollonius constructions (start, canonical ordering of the
+/// result) and the brute-force nearest site of the curved diagrams.
 
 #include <algorithm>
 #include <cmath>
@@ -24,6 +25,18 @@ inline ApolloniusDiagram start_apollonius_diagram(const std::vector<ApolloniusSi
   d.sites = sites;
   d.method = method;
   return d;
+}
+
+/// The site of smallest `distance(i)` among `n` (smallest index among exact ties); no_site if n = 0.
+template <class Distance>
+SiteIndex nearest_site(std::size_t n, Distance distance) {
+  SiteIndex best = no_site;
+  double best_d = 0;
+  for (SiteIndex i = 0; i < n; ++i) {
+    const double d = distance(i);
+    if (best == no_site || d < best_d) best = i, best_d = d;
+  }
+  return best;
 }
 
 /// Sorts vertices (triple, then position) and the hidden list; derives the sorted unique dual edges

@@ -9,6 +9,7 @@
 
 #include "laguerre/core/diagrams/ApolloniusDiagram.hpp"
 #include "laguerre/core/diagrams/SitesFile.hpp"
+#include "ApolloniusDetail.hpp"
 #include "detail/Validity.hpp"
 
 namespace laguerre::core {
@@ -16,13 +17,7 @@ namespace laguerre::core {
 double apollonius_distance(Point2 q, const ApolloniusSite& s) { return std::hypot(q.x - s.x, q.y - s.y) - s.w; }
 
 SiteIndex apollonius_nearest(const std::vector<ApolloniusSite>& sites, Point2 q) {
-  SiteIndex best = no_site;
-  double best_d = 0;
-  for (SiteIndex i = 0; i < sites.size(); ++i) {
-    const double d = apollonius_distance(q, sites[i]);
-    if (best == no_site || d < best_d) best = i, best_d = d;
-  }
-  return best;
+  return detail::nearest_site(sites.size(), [&](SiteIndex i) { return apollonius_distance(q, sites[i]); });
 }
 
 std::vector<SampledEdge> apollonius_edges(const ApolloniusDiagram& diagram, const Box& box, int samples) {

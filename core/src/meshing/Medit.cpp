@@ -86,6 +86,19 @@ std::size_t vertex_index(Tokens& t, std::size_t vertex_count) {
   return static_cast<std::size_t>(v - 1);
 }
 
+/// Reads a section of elements (a count, then per element its vertex indices and a reference).
+template <std::size_t N>
+void read_elements(Tokens& t, std::size_t vertex_count, const char* count, const char* reference,
+                   std::vector<std::array<std::size_t, N>>& elements, std::vector<int>& refs) {
+  const std::size_t n = t.count(count);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::array<std::size_t, N> element{};
+    for (auto& v : element) v = vertex_index(t, vertex_count);
+    elements.push_back(element);
+    refs.push_back(static_cast<int>(t.integer(reference)));
+  }
+}
+
 void write_or_throw(std::ofstream& out, const std::string& path) {
   out.flush();
   if (!out) throw std::runtime_error(path + ": cannot write the file");
@@ -115,21 +128,9 @@ TriangleMesh read_medit_mesh(const std::string& path) {
         mesh.point_refs[i] = static_cast<int>(t.integer("a vertex reference"));
       }
     } else if (key == "Triangles") {
-      const std::size_t n = t.count("a triangle count");
-      for (std::size_t i = 0; i < n; ++i) {
-        std::array<std::size_t, 3> tri{};
-        for (auto& v : tri) v = vertex_index(t, mesh.points.size());
-        mesh.triangles.push_back(tri);
-        mesh.triangle_refs.push_back(static_cast<int>(t.integer("a triangle reference")));
-      }
+      read_elements(t, mesh.points.size(), "a triangle count", "a triangle reference", mesh.triangles, mesh.triangle_refs);
     } else if (key == "Edges") {
-      const std::size_t n = t.count("an edge count");
-      for (std::size_t i = 0; i < n; ++i) {
-        std::array<std::size_t, 2> e{};
-        for (auto& v : e) v = vertex_index(t, mesh.points.size());
-        mesh.edges.push_back(e);
-        mesh.edge_refs.push_back(static_cast<int>(t.integer("an edge reference")));
-      }
+      read_elements(t, mesh.points.size(), "an edge count", "an edge reference", mesh.edges, mesh.edge_refs);
     } else if (key == "Corners" || key == "RequiredVertices" || key == "RequiredEdges" || key == "Ridges") {
       skip_records(t, t.count("a count"), 1);  // one index per record
     } else if (key == "Quadrilaterals") {
