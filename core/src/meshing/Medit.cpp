@@ -51,6 +51,25 @@ public:
     return v;
   }
 
+  /// The next section keyword, or "" at `End`; fails at the end of the file.
+  std::string keyword() {
+    const std::string key = next();
+    if (key.empty()) fail("missing 'End' keyword");
+    return key == "End" ? "" : key;
+  }
+
+  /// Consumes the records every Medit file may start with (`MeshVersionFormatted V`, `Dimension 2`;
+  /// `note` ends the message for another dimension); false for any other keyword.
+  bool header(const std::string& key, const std::string& note) {
+    if (key == "MeshVersionFormatted") {
+      integer("a format version");
+      return true;
+    }
+    if (key != "Dimension") return false;
+    if (const long d = integer("a dimension"); d != 2) fail("expected 'Dimension 2', found " + std::to_string(d) + note);
+    return true;
+  }
+
   [[noreturn]] void fail(const std::string& message) const { throw MeshInputError(path_, line_, message); }
 
 private:
@@ -110,15 +129,9 @@ TriangleMesh read_medit_mesh(const std::string& path) {
   Tokens t(path, "Medit mesh file");
   TriangleMesh mesh;
   bool have_dimension = false;
-  for (std::string key = t.next();; key = t.next()) {
-    if (key.empty()) t.fail("missing 'End' keyword");
-    if (key == "End") break;
-    if (key == "MeshVersionFormatted") {
-      t.integer("a format version");
-    } else if (key == "Dimension") {
-      const long d = t.integer("a dimension");
-      if (d != 2) t.fail("expected 'Dimension 2', found " + std::to_string(d) + " (only planar meshes are read)");
-      have_dimension = true;
+  for (std::string key = t.keyword(); !key.empty(); key = t.keyword()) {
+    if (t.header(key, " (only planar meshes are read)")) {
+      have_dimension = have_dimension || key == "Dimension";
     } else if (key == "Vertices") {
       const std::size_t n = t.count("a vertex count");
       mesh.points.resize(n);
@@ -155,15 +168,9 @@ TriangleMesh read_medit_mesh(const std::string& path) {
 std::vector<Metric> read_medit_sol(const std::string& path, std::size_t vertex_count) {
   Tokens t(path, "Medit solution file");
   std::vector<Metric> metrics;
-  for (std::string key = t.next();; key = t.next()) {
-    if (key.empty()) t.fail("missing 'End' keyword");
-    if (key == "End") break;
-    if (key == "MeshVersionFormatted") {
-      t.integer("a format version");
-    } else if (key == "Dimension") {
-      if (const long d = t.integer("a dimension"); d != 2)
-        t.fail("expected 'Dimension 2', found " + std::to_string(d));
-    } else if (key == "SolAtVertices") {
+  for (std::string key = t.keyword(); !key.empty(); key = t.keyword()) {
+    if (t.header(key, "")) continue;
+    if (key == "SolAtVertices") {
       const std::size_t n = t.count("a vertex count");
       if (n != vertex_count)
         t.fail("the solution has " + std::to_string(n) + " values but the mesh has " + std::to_string(vertex_count) +
