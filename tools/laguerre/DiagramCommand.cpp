@@ -459,16 +459,16 @@ void build_anisotropic(const DiagramKind&, Build& b) {
   b.rasterize(an.size(), [&](SiteIndex i, Point2 x) { return core::anisotropic_distance(x, an[i]); });
 }
 
-/// The diagram kinds, in the order of the help text.
+/// The diagram kinds, in the order of the help text and the messages.
 constexpr std::array<DiagramKind, 6> kinds{{
     {"voronoi", "x y", "points", "Voronoi diagram", build_affine},
     {"power", "x y w", "weighted points, |x-p|^2 - w", "power diagram", build_affine},
     {"mobius", "x y lambda mu", "lambda|x-p|^2 - mu", "Möbius diagram", build_mobius},
     {"mw", "x y w", "multiplicatively weighted, |x-p|/w, w > 0", "multiplicatively weighted Voronoi diagram",
      build_mobius},
-    {"apollonius", core::apollonius_columns, "additively weighted, |x-p| - w", "Apollonius diagram", build_apollonius},
     {"anisotropic", core::anisotropic_columns, "(x-p)^T M (x-p), M = [[a, b], [b, c]] positive definite",
      "anisotropic diagram", build_anisotropic},
+    {"apollonius", core::apollonius_columns, "additively weighted, |x-p| - w", "Apollonius diagram", build_apollonius},
 }};
 
 /// "voronoi, power, …, anisotropic or apollonius" with `separator` between the names (", " or "|").
