@@ -1,16 +1,13 @@
 // `laguerre diagram`: the diagrams of thesis Part I from a sites file, as JSON (the combinatorial
 // structure) and as SVG/PNG pictures (cells filled, bisectors drawn, sites marked).
 //
-// Sites files are plain text, one site per line, blank lines and `#` comments ignored:
-//   voronoi      x y              (points)
-//   power        x y w            (weighted points: pow = |x − p|² − w, w = r²)
-//   mobius       x y lambda mu    (δ = λ|x − p|² − μ)
-//   mw           x y w            (multiplicatively weighted: |x − p| / w, w > 0)
-//   apollonius   x y w            (additively weighted: |x − p| − w; see ApolloniusDiagram.hpp)
-//   anisotropic  x y a b c        (M = [[a, b], [b, c]] positive definite; see AnisotropicDiagram.hpp)
+// Sites files are plain text, one site per line, blank lines and `#` comments ignored, numbers in the
+// admissible range of core/diagrams/SitesFile.hpp; the columns of every kind are in the table `kinds`
+// below, which also drives the dispatch, the help text and the error messages.
 // `--recognize CELLS-FILE` solves the inverse problem instead (cells format in Recognition.hpp).
 #include <cairo.h>
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -18,6 +15,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string_view>
+#include <tuple>
 
 #include "Commands.hpp"
 #include "Common.hpp"
@@ -28,6 +27,7 @@
 #include "laguerre/core/diagrams/MobiusDiagram.hpp"
 #include "laguerre/core/diagrams/PowerDiagram.hpp"
 #include "laguerre/core/diagrams/Recognition.hpp"
+#include "laguerre/core/diagrams/SitesFile.hpp"
 #include "laguerre/core/diagrams/VoronoiDiagram.hpp"
 
 namespace laguerre::tools {
@@ -52,37 +52,6 @@ struct DiagramArgs {
 // ---------------------------------------------------------------------------------------------------
 // Input
 
-/// Reads `count` numbers per line; errors name file:line, what was found and what was expected.
-std::vector<std::vector<double>> read_rows(const std::string& path, std::size_t count, const std::string& format,
-                                           const std::string& kind) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument("Cannot open sites file " + path + ".");
-  std::vector<std::vector<double>> rows;
-  std::string line;
-  for (std::size_t number = 1; std::getline(in, line); ++number) {
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-    std::istringstream fields(line);
-    std::vector<std::string> words;
-    for (std::string w; fields >> w;) words.push_back(w);
-    if (words.empty()) continue;
-    const std::string where = path + ":" + std::to_string(number) + ": ";
-    if (words.size() != count)
-      throw std::invalid_argument(where + "expected " + std::to_string(count) + " numbers `" + format + "` for --kind " +
-                                  kind + ", found " + std::to_string(words.size()) + " field(s): '" + line + "'.");
-    std::vector<double> row;
-    for (const std::string& w : words) {
-      double v = 0;
-      const auto [ptr, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
-      if (ec != std::errc() || ptr != w.data() + w.size() || !std::isfinite(v))
-        throw std::invalid_argument(where + "expected a finite number in `" + format + "`, found '" + w + "'.");
-      row.push_back(v);
-    }
-    rows.push_back(std::move(row));
-  }
-  if (rows.empty()) throw std::invalid_argument(path + ": no sites (expected lines `" + format + "`).");
-  return rows;
-}
-
 Box parse_box(const std::string& text) {
   std::vector<double> v;
   std::stringstream ss(text);
@@ -90,12 +59,12 @@ Box parse_box(const std::string& text) {
     double x = 0;
     const auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), x);
     if (ec != std::errc() || ptr != part.data() + part.size())
-      throw std::invalid_argument("--box: expected xmin,ymin,xmax,ymax, found '" + text + "'.");
+      throw core::InputError("--box", 0, "expected xmin,ymin,xmax,ymax, found '" + text + "'.");
     v.push_back(x);
   }
-  if (v.size() != 4) throw std::invalid_argument("--box: expected 4 numbers xmin,ymin,xmax,ymax, found '" + text + "'.");
+  if (v.size() != 4) throw core::InputError("--box", 0, "expected 4 numbers xmin,ymin,xmax,ymax, found '" + text + "'.");
   const Box b{v[0], v[1], v[2], v[3]};
-  if (!b.valid()) throw std::invalid_argument("--box: expected xmin < xmax and ymin < ymax, found '" + text + "'.");
+  if (!b.valid()) throw core::InputError("--box", 0, "expected xmin < xmax and ymin < ymax, found '" + text + "'.");
   return b;
 }
 
@@ -124,6 +93,14 @@ void draw(cairo_t* cr, const Scene& s, int w, int h) {
   cairo_paint(cr);
   const double sx = w / s.view.width(), sy = h / s.view.height();
   auto X = [&](Point2 p) { return std::pair{(p.x - s.view.xmin) * sx, (s.view.ymax - p.y) * sy}; };
+  auto trace = [&](const std::vector<Point2>& line) {  // the polyline as a new sub-path
+    auto [x0, y0] = X(line[0]);
+    cairo_move_to(cr, x0, y0);
+    for (const Point2& p : line) {
+      auto [x, y] = X(p);
+      cairo_line_to(cr, x, y);
+    }
+  };
   if (s.raster) {
     const auto& r = *s.raster;
     cairo_surface_t* img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, r.width(), r.height());
@@ -150,12 +127,7 @@ void draw(cairo_t* cr, const Scene& s, int w, int h) {
     cairo_new_path(cr);
     for (const auto& loop : f.loops) {
       if (loop.empty()) continue;
-      auto [x0, y0] = X(loop[0]);
-      cairo_move_to(cr, x0, y0);
-      for (const Point2& p : loop) {
-        auto [x, y] = X(p);
-        cairo_line_to(cr, x, y);
-      }
+      trace(loop);
       cairo_close_path(cr);
     }
     const core::Rgb c = core::site_colour(f.site);
@@ -168,17 +140,15 @@ void draw(cairo_t* cr, const Scene& s, int w, int h) {
   for (const auto& c : s.curves) {
     if (c.size() < 2) continue;
     cairo_new_path(cr);
-    auto [x0, y0] = X(c[0]);
-    cairo_move_to(cr, x0, y0);
-    for (const Point2& p : c) {
-      auto [x, y] = X(p);
-      cairo_line_to(cr, x, y);
-    }
+    trace(c);
     cairo_stroke(cr);
   }
   cairo_set_source_rgba(cr, 0.2, 0.2, 0.6, 0.8);
   cairo_set_line_width(cr, 1.0);
   for (const auto& [c, radius] : s.circles) {
+    // Cairo flattens an arc into segments by its pixel size: a circle far larger than the picture would
+    // take forever, and its visible part is (under a pixel from) straight or outside anyway.
+    if (!(radius * sx <= 1e5)) continue;
     auto [x, y] = X(c);
     cairo_new_path(cr);
     cairo_arc(cr, x, y, radius * sx, 0, 2 * M_PI);
@@ -271,9 +241,6 @@ json affine_json(const Diagram& d, json sites) {
     cells.push_back({{"site", i}, {"components", comps}});
   }
   out["cells"] = cells;
-  const auto report = d.is_valid();
-  out["valid"] = report.ok;
-  if (!report.ok) out["invalid_reason"] = report.message;
   return out;
 }
 
@@ -305,218 +272,291 @@ json sampled_edges_json(const std::vector<core::SampledEdge>& edges, Scene& scen
 
 // ---------------------------------------------------------------------------------------------------
 
+/// What a kind's build function reads and fills: the JSON, the picture, the sites' centres.
+struct Build {
+  const DiagramArgs& args;
+  Scene& scene;
+  json& out;
+  std::vector<Point2>& points;
+  std::unique_ptr<core::MinimizationDiagram>& raster;
+
+  /// The window: --box, or the bounding box of `points` grown by 15%.
+  void choose_box() {
+    scene.view = args.box.empty() ? core::bounding_box(points, 0.15) : parse_box(args.box);
+    out["box"] = {scene.view.xmin, scene.view.ymin, scene.view.xmax, scene.view.ymax};
+  }
+  /// The background raster of a diagram without cell polygons, half the picture's resolution.
+  template <class Distance>
+  void rasterize(std::size_t sites, Distance distance) {
+    raster = std::make_unique<core::MinimizationDiagram>(
+        scene.view, args.size / 2, std::max(1, static_cast<int>(args.size / 2 * scene.view.height() / scene.view.width())),
+        sites, distance);
+  }
+};
+
+/// A diagram kind: its --kind name, the columns of its sites file, what the columns mean (help text),
+/// its name in messages, and the function that reads the file and builds the diagram.
+struct DiagramKind {
+  std::string_view name;
+  std::string_view columns;
+  std::string_view meaning;
+  std::string_view title;
+  void (*build)(const DiagramKind& kind, Build& b);
+
+  std::vector<core::SiteRow> rows(const Build& b) const {
+    return core::read_site_rows(b.args.sites, columns, title);
+  }
+};
+
+/// `"valid"` (and `"invalid_reason"`: the first broken invariant, which is_valid(true) writes to
+/// std::cerr) of a diagram.
+template <class Diagram>
+void validity_json(const Diagram& d, json& out) {
+  std::ostringstream reason;
+  std::streambuf* const saved = std::cerr.rdbuf(reason.rdbuf());
+  bool ok = false;
+  try {
+    ok = d.is_valid(true);
+  } catch (...) {
+    std::cerr.rdbuf(saved);
+    throw;
+  }
+  std::cerr.rdbuf(saved);
+  out["valid"] = ok;
+  if (!ok) {
+    std::string text = reason.str();
+    while (!text.empty() && text.back() == '\n') text.pop_back();
+    out["invalid_reason"] = text;
+  }
+}
+
+void build_affine(const DiagramKind& kind, Build& b) {
+  const bool power = kind.name == "power";
+  json sites = json::array();
+  std::vector<core::WeightedPoint> wp;
+  for (const core::SiteRow& row : kind.rows(b)) {
+    const auto& r = row.values;
+    b.points.push_back({r[0], r[1]});
+    wp.push_back({r[0], r[1], power ? r[2] : 0.0});
+    sites.push_back(power ? json{{"x", r[0]}, {"y", r[1]}, {"w", r[2]}} : json{{"x", r[0]}, {"y", r[1]}});
+    if (power && r[2] > 0) b.scene.circles.push_back({{r[0], r[1]}, std::sqrt(r[2])});
+  }
+  b.choose_box();
+  auto finish = [&](const auto& d) {
+    b.out.update(affine_json(d, sites));
+    validity_json(d, b.out);
+    affine_scene(d, b.scene);
+  };
+  if (power)
+    finish(core::PowerDiagram(wp, b.scene.view));
+  else
+    finish(core::VoronoiDiagram(b.points, b.scene.view));
+}
+
+void build_mobius(const DiagramKind& kind, Build& b) {
+  const bool mw = kind.name == "mw";
+  std::vector<core::MobiusSite> ms;
+  json sites = json::array();
+  for (const core::SiteRow& row : kind.rows(b)) {
+    const auto& r = row.values;
+    if (mw && !(r[2] > 0))
+      throw core::InputError(b.args.sites, row.line,
+                             "found the weight w = " + json(r[2]).dump() + "; expected w > 0 (" + std::string(kind.title) + " sites).");
+    b.points.push_back({r[0], r[1]});
+    ms.push_back(mw ? core::multiplicative_site(r[0], r[1], r[2]) : core::MobiusSite{r[0], r[1], r[2], r[3]});
+    json site{{"x", r[0]}, {"y", r[1]}, {"lambda", ms.back().lambda}, {"mu", ms.back().mu}};
+    if (mw) site["w"] = r[2];
+    sites.push_back(site);
+  }
+  b.choose_box();
+  Scene& scene = b.scene;
+  json& out = b.out;
+  const core::MobiusDiagram d(ms, scene.view);
+  out["sites"] = sites;
+  out["frame"] = {d.frame().xmin, d.frame().ymin, d.frame().xmax, d.frame().ymax};
+  out["hidden"] = d.hidden_sites();
+  out["empty_cells"] = d.empty_sites();
+  json vs = json::array();
+  for (const auto& v : d.vertices()) vs.push_back({{"point", pt(v.point)}, {"sites", v.sites}});
+  out["vertices"] = vs;
+  json es = json::array();
+  const double err = 0.3 * scene.view.width() / b.args.size;  // under a pixel
+  for (const auto& e : d.edges()) {
+    json j = piece_json(e.curve);
+    j["sites"] = {e.a, e.b};
+    j["left"] = e.left;
+    j["from_vertex"] = index_or_null(e.from);
+    j["to_vertex"] = index_or_null(e.to);
+    es.push_back(j);
+    scene.curves.push_back(e.curve.sample(0.02, err));
+  }
+  out["edges"] = es;
+  json cells = json::array();
+  for (SiteIndex i = 0; i < ms.size(); ++i) {
+    json comps = json::array();
+    for (const auto& c : d.cell(i)) {
+      json holes = json::array();
+      Scene::Fill fill{i, {c.outer.polyline(0.02, err)}};
+      for (const auto& h : c.holes) holes.push_back(loop_json(h)), fill.loops.push_back(h.polyline(0.02, err));
+      comps.push_back({{"outer", loop_json(c.outer)}, {"holes", holes}, {"area", c.area()}});
+      scene.fills.push_back(std::move(fill));
+    }
+    cells.push_back({{"site", i}, {"components", comps}});
+  }
+  out["cells"] = cells;
+  validity_json(d, out);
+  for (const auto& v : d.vertices())
+    if (scene.view.contains(v.point)) scene.vertices.push_back(v.point);
+  scene.hidden.assign(ms.size(), false);
+  for (SiteIndex i : d.empty_sites()) scene.hidden[i] = true;
+}
+
+/// The JSON and picture parts the Apollonius and anisotropic diagrams share.
+template <class Diagram>
+void curved_json(const Diagram& d, Build& b) {
+  json dual = json::array();
+  for (const auto& [p, q] : d.dual_edges) dual.push_back({p, q});
+  b.out["hidden"] = d.hidden;
+  b.out["dual_edges"] = dual;
+  json vs = json::array();
+  for (const auto& v : d.vertices) vs.push_back({{"point", pt(v.position)}, {"sites", v.sites}});
+  b.out["vertices"] = vs;
+  b.scene.hidden.assign(d.sites.size(), false);
+  for (SiteIndex i : d.hidden) b.scene.hidden[i] = true;
+}
+
+void build_apollonius(const DiagramKind&, Build& b) {
+  const std::vector<core::ApolloniusSite> as = core::read_apollonius_sites(b.args.sites);
+  json sites = json::array();
+  for (const auto& s : as) {
+    b.points.push_back({s.x, s.y}), sites.push_back({{"x", s.x}, {"y", s.y}, {"w", s.w}});
+    if (s.w > 0) b.scene.circles.push_back({{s.x, s.y}, s.w});
+  }
+  b.choose_box();
+  const core::ApolloniusDiagram d = core::apollonius_diagram_cgal(as);
+  b.out["sites"] = sites;
+  b.out["method"] = d.method;
+  curved_json(d, b);
+  for (const auto& v : d.vertices)
+    if (b.scene.view.contains(v.position)) b.scene.vertices.push_back(v.position);
+  b.out["edges"] = sampled_edges_json(core::apollonius_edges(d, b.scene.view), b.scene);
+  b.rasterize(as.size(), [&](SiteIndex i, Point2 x) { return core::apollonius_distance(x, as[i]); });
+}
+
+void build_anisotropic(const DiagramKind&, Build& b) {
+  const std::vector<core::AnisotropicSite> an = core::read_anisotropic_sites(b.args.sites);
+  json sites = json::array();
+  for (const auto& s : an)
+    b.points.push_back({s.x, s.y}), sites.push_back({{"x", s.x}, {"y", s.y}, {"M", {s.a, s.b, s.c}}});
+  b.choose_box();
+  const core::AnisotropicDiagram d = core::anisotropic_diagram(an);
+  b.out["sites"] = sites;
+  b.out["dual_triangles"] = d.dual_triangles;
+  curved_json(d, b);
+  const auto restricted = core::restrict_anisotropic(d, b.scene.view.corners());
+  for (const auto& v : restricted.vertices) b.scene.vertices.push_back(v.position);
+  b.out["edges"] = sampled_edges_json(restricted.edges, b.scene);
+  b.rasterize(an.size(), [&](SiteIndex i, Point2 x) { return core::anisotropic_distance(x, an[i]); });
+}
+
+/// The diagram kinds, in the order of the help text and the messages.
+constexpr std::array<DiagramKind, 6> kinds{{
+    {"voronoi", "x y", "points", "Voronoi diagram", build_affine},
+    {"power", "x y w", "weighted points, |x-p|^2 - w", "power diagram", build_affine},
+    {"mobius", "x y lambda mu", "lambda|x-p|^2 - mu", "Möbius diagram", build_mobius},
+    {"mw", "x y w", "multiplicatively weighted, |x-p|/w, w > 0", "multiplicatively weighted Voronoi diagram",
+     build_mobius},
+    {"anisotropic", core::anisotropic_columns, "(x-p)^T M (x-p), M = [[a, b], [b, c]] positive definite",
+     "anisotropic diagram", build_anisotropic},
+    {"apollonius", core::apollonius_columns, "additively weighted, |x-p| - w", "Apollonius diagram", build_apollonius},
+}};
+
+/// "voronoi, power, …, anisotropic or apollonius" with `separator` between the names (", " or "|").
+std::string kind_names(std::string_view separator, std::string_view last) {
+  std::string text;
+  for (std::size_t i = 0; i < kinds.size(); ++i)
+    text += std::string(i == 0 ? "" : i + 1 == kinds.size() ? last : separator) + std::string(kinds[i].name);
+  return text;
+}
+
+const DiagramKind& find_kind(const std::string& name) {
+  for (const DiagramKind& k : kinds)
+    if (k.name == name) return k;
+  throw core::InputError("--kind", 0, "expected " + kind_names(", ", " or ") + ", found '" + name + "'.");
+}
+
+/// The inverse problem (thesis Thm 2.2.2): a cells file in, the decision and the recovered sites out.
+/// Returns the exit status (0: a power diagram, 3: not) and the summary line.
+std::pair<int, std::string> run_recognize(const DiagramArgs& a, Build& b) {
+  const core::CellComplex cx = core::read_cell_complex(a.sites);
+  core::RecognitionResult res;
+  try {
+    res = core::recognize_power_diagram(cx, core::RecognitionOptions{a.tolerance});
+  } catch (const core::CellComplexError& e) {
+    throw core::InputError(a.sites, 0, e.what());
+  }
+  Scene& scene = b.scene;
+  json& out = b.out;
+  out = json{{"kind", "recognize"}, {"cells_file", a.sites}, {"is_power_diagram", res.is_power_diagram},
+             {"message", res.message}, {"tolerance", a.tolerance}};
+  json sites = json::array();
+  for (const auto& w : res.sites) sites.push_back({{"x", w.x}, {"y", w.y}, {"w", w.w}});
+  out["sites"] = sites;
+  json broken = json::array();
+  for (const auto& br : res.broken)
+    broken.push_back({{"kind", br.kind}, {"cell", br.cell}, {"vertex", br.vertex}, {"cycle", br.cycle}, {"defect", br.defect}});
+  out["broken"] = broken;
+  b.points = cx.vertices;
+  b.choose_box();
+  const double far = 4 * (scene.view.width() + scene.view.height());
+  for (std::size_t c = 0; c < cx.cells.size(); ++c) {
+    const auto& cell = cx.cells[c];
+    std::vector<Point2> loop;
+    auto ray_end = [&](std::size_t ray) {
+      const auto& r = cx.rays[ray];
+      const Point2 v = cx.vertices[r.vertex];
+      const double n = std::hypot(r.direction.x, r.direction.y);
+      loop.push_back({v.x + far * r.direction.x / n, v.y + far * r.direction.y / n});
+    };
+    if (cell.ray_in) ray_end(*cell.ray_in);
+    for (std::size_t v : cell.vertices) loop.push_back(cx.vertices[v]);
+    if (cell.ray_out) ray_end(*cell.ray_out);
+    scene.fills.push_back({c, {loop}});
+    for (std::size_t i = 0; i + 1 < loop.size(); ++i) scene.curves.push_back({loop[i], loop[i + 1]});
+    if (!cell.ray_in && loop.size() > 1) scene.curves.push_back({loop.back(), loop.front()});
+  }
+  scene.vertices = cx.vertices;
+  for (const auto& w : res.sites) {
+    scene.sites.push_back({w.x, w.y});
+    if (w.w > 0) scene.circles.push_back({{w.x, w.y}, std::sqrt(w.w)});
+  }
+  scene.title = std::string(res.is_power_diagram ? "recognized as a power diagram: " : "not a power diagram: ") +
+                file_stem(a.sites);
+  return {res.is_power_diagram ? 0 : 3, res.message};
+}
+
 int run_diagram(const DiagramArgs& a) {
   const std::string& k = a.kind;
   Scene scene;
   json out{{"kind", k}, {"sites_file", a.sites}};
   std::vector<Point2> points;
   std::unique_ptr<core::MinimizationDiagram> raster;
-  auto choose_box = [&] {
-    scene.view = a.box.empty() ? core::bounding_box(points, 0.15) : parse_box(a.box);
-    out["box"] = {scene.view.xmin, scene.view.ymin, scene.view.xmax, scene.view.ymax};
-  };
+  Build b{a, scene, out, points, raster};
   std::string summary;
   int status = 0;
 
   if (a.recognize) {
-    // The inverse problem (thesis Thm 2.2.2): a cells file in, the decision and the recovered sites out.
-    core::CellComplex cx;
-    try {
-      cx = core::read_cell_complex(a.sites);
-    } catch (const std::runtime_error& e) {
-      throw std::invalid_argument(e.what());
-    }
-    core::RecognitionResult res;
-    try {
-      res = core::recognize_power_diagram(cx, core::RecognitionOptions{a.tolerance});
-    } catch (const core::CellComplexError& e) {
-      throw std::invalid_argument(a.sites + ": " + e.what());
-    }
-    out = json{{"kind", "recognize"}, {"cells_file", a.sites}, {"is_power_diagram", res.is_power_diagram},
-               {"message", res.message}, {"tolerance", a.tolerance}};
-    json sites = json::array();
-    for (const auto& w : res.sites) sites.push_back({{"x", w.x}, {"y", w.y}, {"w", w.w}});
-    out["sites"] = sites;
-    json broken = json::array();
-    for (const auto& b : res.broken)
-      broken.push_back({{"kind", b.kind}, {"cell", b.cell}, {"vertex", b.vertex}, {"cycle", b.cycle}, {"defect", b.defect}});
-    out["broken"] = broken;
-    points = cx.vertices;
-    choose_box();
-    const double far = 4 * (scene.view.width() + scene.view.height());
-    for (std::size_t c = 0; c < cx.cells.size(); ++c) {
-      const auto& cell = cx.cells[c];
-      std::vector<Point2> loop;
-      if (cell.ray_in) {
-        const auto& r = cx.rays[*cell.ray_in];
-        const Point2 v = cx.vertices[r.vertex];
-        const double n = std::hypot(r.direction.x, r.direction.y);
-        loop.push_back({v.x + far * r.direction.x / n, v.y + far * r.direction.y / n});
-      }
-      for (std::size_t v : cell.vertices) loop.push_back(cx.vertices[v]);
-      if (cell.ray_out) {
-        const auto& r = cx.rays[*cell.ray_out];
-        const Point2 v = cx.vertices[r.vertex];
-        const double n = std::hypot(r.direction.x, r.direction.y);
-        loop.push_back({v.x + far * r.direction.x / n, v.y + far * r.direction.y / n});
-      }
-      scene.fills.push_back({c, {loop}});
-      for (std::size_t i = 0; i + 1 < loop.size(); ++i) scene.curves.push_back({loop[i], loop[i + 1]});
-      if (!cell.ray_in && loop.size() > 1) scene.curves.push_back({loop.back(), loop.front()});
-    }
-    scene.vertices = cx.vertices;
-    for (const auto& w : res.sites) {
-      scene.sites.push_back({w.x, w.y});
-      if (w.w > 0) scene.circles.push_back({{w.x, w.y}, std::sqrt(w.w)});
-    }
-    scene.title = std::string(res.is_power_diagram ? "recognized as a power diagram: " : "not a power diagram: ") +
-                  file_stem(a.sites);
-    summary = res.message;
-    status = res.is_power_diagram ? 0 : 3;
-  } else if (k.empty()) {
-    throw std::invalid_argument("diagram: expected --kind voronoi|power|mobius|mw|anisotropic|apollonius, or --recognize.");
-  } else if (k == "voronoi" || k == "power") {
-    const bool power = k == "power";
-    const auto rows = read_rows(a.sites, power ? 3 : 2, power ? "x y w" : "x y", k);
-    json sites = json::array();
-    std::vector<core::WeightedPoint> wp;
-    for (const auto& r : rows) {
-      points.push_back({r[0], r[1]});
-      wp.push_back({r[0], r[1], power ? r[2] : 0.0});
-      sites.push_back(power ? json{{"x", r[0]}, {"y", r[1]}, {"w", r[2]}} : json{{"x", r[0]}, {"y", r[1]}});
-      if (power && r[2] > 0) scene.circles.push_back({{r[0], r[1]}, std::sqrt(r[2])});
-    }
-    choose_box();
-    if (power) {
-      const core::PowerDiagram d(wp, scene.view);
-      out.update(affine_json(d, sites));
-      affine_scene(d, scene);
-    } else {
-      const core::VoronoiDiagram d(points, scene.view);
-      out.update(affine_json(d, sites));
-      affine_scene(d, scene);
-    }
-  } else if (k == "mobius" || k == "mw") {
-    const bool mw = k == "mw";
-    const auto rows = read_rows(a.sites, mw ? 3 : 4, mw ? "x y w" : "x y lambda mu", k);
-    std::vector<core::MobiusSite> ms;
-    json sites = json::array();
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      const auto& r = rows[i];
-      if (mw && !(r[2] > 0))
-        throw std::invalid_argument(a.sites + ": site " + std::to_string(i + 1) + ": expected a weight w > 0 for --kind mw, found " +
-                                    std::to_string(r[2]) + ".");
-      points.push_back({r[0], r[1]});
-      ms.push_back(mw ? core::multiplicative_site(r[0], r[1], r[2]) : core::MobiusSite{r[0], r[1], r[2], r[3]});
-      json s{{"x", r[0]}, {"y", r[1]}, {"lambda", ms.back().lambda}, {"mu", ms.back().mu}};
-      if (mw) s["w"] = r[2];
-      sites.push_back(s);
-    }
-    choose_box();
-    const core::MobiusDiagram d(ms, scene.view);
-    out["sites"] = sites;
-    out["frame"] = {d.frame().xmin, d.frame().ymin, d.frame().xmax, d.frame().ymax};
-    out["hidden"] = d.hidden_sites();
-    out["empty_cells"] = d.empty_sites();
-    json vs = json::array();
-    for (const auto& v : d.vertices()) vs.push_back({{"point", pt(v.point)}, {"sites", v.sites}});
-    out["vertices"] = vs;
-    json es = json::array();
-    const double err = 0.3 * scene.view.width() / a.size;  // under a pixel
-    for (const auto& e : d.edges()) {
-      json j = piece_json(e.curve);
-      j["sites"] = {e.a, e.b};
-      j["left"] = e.left;
-      j["from_vertex"] = index_or_null(e.from);
-      j["to_vertex"] = index_or_null(e.to);
-      es.push_back(j);
-      scene.curves.push_back(e.curve.sample(0.02, err));
-    }
-    out["edges"] = es;
-    json cells = json::array();
-    for (SiteIndex i = 0; i < ms.size(); ++i) {
-      json comps = json::array();
-      for (const auto& c : d.cell(i)) {
-        json holes = json::array();
-        Scene::Fill fill{i, {c.outer.polyline(0.02, err)}};
-        for (const auto& h : c.holes) holes.push_back(loop_json(h)), fill.loops.push_back(h.polyline(0.02, err));
-        comps.push_back({{"outer", loop_json(c.outer)}, {"holes", holes}, {"area", c.area()}});
-        scene.fills.push_back(std::move(fill));
-      }
-      cells.push_back({{"site", i}, {"components", comps}});
-    }
-    out["cells"] = cells;
-    const auto report = d.is_valid();
-    out["valid"] = report.ok;
-    if (!report.ok) out["invalid_reason"] = report.message;
-    for (const auto& v : d.vertices())
-      if (scene.view.contains(v.point)) scene.vertices.push_back(v.point);
-    scene.hidden.assign(ms.size(), false);
-    for (SiteIndex i : d.empty_sites()) scene.hidden[i] = true;
-  } else if (k == "apollonius") {
-    std::vector<core::ApolloniusSite> as;
-    try {
-      as = core::read_apollonius_sites(a.sites);
-    } catch (const std::runtime_error& e) {
-      throw std::invalid_argument(e.what());
-    }
-    json sites = json::array();
-    for (const auto& s : as) {
-      points.push_back({s.x, s.y}), sites.push_back({{"x", s.x}, {"y", s.y}, {"w", s.w}});
-      if (s.w > 0) scene.circles.push_back({{s.x, s.y}, s.w});
-    }
-    choose_box();
-    const core::ApolloniusDiagram d = core::apollonius_diagram_cgal(as);
-    out["sites"] = sites;
-    out["method"] = d.method;
-    out["hidden"] = d.hidden;
-    json dual = json::array();
-    for (const auto& [p, q] : d.dual_edges) dual.push_back({p, q});
-    out["dual_edges"] = dual;
-    json vs = json::array();
-    for (const auto& v : d.vertices) {
-      vs.push_back({{"point", pt(v.position)}, {"sites", v.sites}});
-      if (scene.view.contains(v.position)) scene.vertices.push_back(v.position);
-    }
-    out["vertices"] = vs;
-    out["edges"] = sampled_edges_json(core::apollonius_edges(d, scene.view), scene);
-    raster = std::make_unique<core::MinimizationDiagram>(scene.view, a.size / 2, std::max(1, static_cast<int>(a.size / 2 * scene.view.height() / scene.view.width())),
-                                                         as.size(), [&](SiteIndex i, Point2 x) { return core::apollonius_distance(x, as[i]); });
-    scene.hidden.assign(as.size(), false);
-    for (SiteIndex i : d.hidden) scene.hidden[i] = true;
-  } else if (k == "anisotropic") {
-    std::vector<core::AnisotropicSite> an;
-    try {
-      an = core::read_anisotropic_sites(a.sites);
-    } catch (const std::runtime_error& e) {
-      throw std::invalid_argument(e.what());
-    }
-    json sites = json::array();
-    for (const auto& s : an)
-      points.push_back({s.x, s.y}), sites.push_back({{"x", s.x}, {"y", s.y}, {"M", {s.a, s.b, s.c}}});
-    choose_box();
-    const core::AnisotropicDiagram d = core::anisotropic_diagram(an);
-    out["sites"] = sites;
-    out["hidden"] = d.hidden;
-    json dual = json::array();
-    for (const auto& [p, q] : d.dual_edges) dual.push_back({p, q});
-    out["dual_edges"] = dual;
-    out["dual_triangles"] = d.dual_triangles;
-    json vs = json::array();
-    for (const auto& v : d.vertices) vs.push_back({{"point", pt(v.position)}, {"sites", v.sites}});
-    out["vertices"] = vs;
-    const auto restricted = core::restrict_anisotropic(d, scene.view.corners());
-    for (const auto& v : restricted.vertices) scene.vertices.push_back(v.position);
-    out["edges"] = sampled_edges_json(restricted.edges, scene);
-    raster = std::make_unique<core::MinimizationDiagram>(scene.view, a.size / 2, std::max(1, static_cast<int>(a.size / 2 * scene.view.height() / scene.view.width())),
-                                                         an.size(), [&](SiteIndex i, Point2 x) { return core::anisotropic_distance(x, an[i]); });
-    scene.hidden.assign(an.size(), false);
-    for (SiteIndex i : d.hidden) scene.hidden[i] = true;
+    std::tie(status, summary) = run_recognize(a, b);
   } else {
-    throw std::invalid_argument("--kind: expected voronoi, power, mobius, mw, anisotropic or apollonius, found '" + k + "'.");
-  }
-  scene.raster = raster.get();
-  if (!a.recognize) {
+    if (k.empty()) throw core::InputError("diagram: expected --kind " + kind_names("|", "|") + ", or --recognize.");
+    const DiagramKind& kind = find_kind(k);
+    try {
+      kind.build(kind, b);
+    } catch (const core::InputError& e) {
+      if (!e.source().empty()) throw;
+      throw core::InputError(a.sites, 0, std::string(kind.title) + ": " + e.message());
+    }
+    scene.raster = raster.get();
     scene.sites = points;
     scene.title = k + " diagram of " + std::to_string(points.size()) + " sites (" + file_stem(a.sites) + ")";
     summary = std::to_string(points.size()) + " sites, " + std::to_string(out["vertices"].size()) + " vertices, " +
@@ -546,13 +586,17 @@ int run_diagram(const DiagramArgs& a) {
 
 Action add_diagram_command(CLI::App& app) {
   auto args = std::make_shared<DiagramArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "diagram",
+  std::string help =
       "Compute a diagram of thesis Part I from a sites file: JSON of the combinatorial structure and SVG/PNG pictures.\n"
-      "Sites files, one site per line (# comments): voronoi `x y`; power `x y w` (|x-p|^2 - w); mobius `x y lambda mu`\n"
-      "(lambda|x-p|^2 - mu); mw `x y w` (|x-p|/w, w > 0); apollonius `x y w` (|x-p| - w); anisotropic `x y a b c`.");
-  auto* kind = cmd->add_option("--kind", args->kind, "voronoi, power, mobius, mw, anisotropic or apollonius")
-                   ->check(CLI::IsMember({"voronoi", "power", "mobius", "mw", "anisotropic", "apollonius"}));
+      "Sites files, one site per line (# comments):";
+  std::vector<std::string> names;
+  for (const DiagramKind& k : kinds) {
+    help += std::string(&k == &kinds.front() ? " " : "; ") + std::string(k.name) + " `" + std::string(k.columns) + "` (" +
+            std::string(k.meaning) + ")";
+    names.emplace_back(k.name);
+  }
+  CLI::App* cmd = app.add_subcommand("diagram", help + ".");
+  auto* kind = cmd->add_option("--kind", args->kind, kind_names(", ", " or "))->check(CLI::IsMember(names));
   auto* recognize = cmd->add_flag("--recognize", args->recognize,
                                   "Inverse problem: FILE is a cells file (see Recognition.hpp); decide whether it is a power\n"
                                   "diagram and recover the sites (exit status 0: it is, 3: it is not)");

@@ -123,7 +123,7 @@ MeshOutcome run_stars(const core::Domain& domain, const core::MetricField& field
 
 MeshOutcome run_voronoi(const core::Domain& domain, const core::MetricField& field, const MeshArgs& a, bool tty) {
   if (!(a.shape_bound >= 0.58 && a.shape_bound <= 100))
-    throw std::invalid_argument("--shape-bound must be between 0.58 and 100 (an equilateral triangle has a radius-edge "
+    throw core::InputError("--shape-bound must be between 0.58 and 100 (an equilateral triangle has a radius-edge "
                                 "ratio of 1/sqrt(3) = 0.577, so a smaller bound cannot be met); got " +
                                 std::to_string(a.shape_bound) + ".");
   core::VoronoiMeshOptions v;

@@ -23,18 +23,8 @@ void draw(cairo_t* cr, const PackingPicture& p, int size) {
 
   const auto& c = *p.circles;
   // Circles, filled by status.
-  for (std::size_t v = 0; v < c.size(); ++v) {
-    cairo_new_path(cr);
-    cairo_arc(cr, c[v].x, c[v].y, c[v].r, 0, 2 * std::numbers::pi);
-    if (v < p.ok.size() && p.ok[v])
-      cairo_set_source_rgba(cr, 0.55, 0.85, 0.55, 0.55);
-    else
-      cairo_set_source_rgba(cr, 0.95, 0.45, 0.4, 0.6);
-    cairo_fill_preserve(cr);
-    cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
-    cairo_set_line_width(cr, 0.8 * px);
-    cairo_stroke(cr);
-  }
+  for (std::size_t v = 0; v < c.size(); ++v)
+    draw_status_circle(cr, c[v].x, c[v].y, c[v].r, v < p.ok.size() && p.ok[v], 0.55, 0.6, 0.8 * px);
   if (p.face_circles) {
     const double dash[] = {4 * px, 3 * px};
     cairo_set_dash(cr, dash, 2, 0);
@@ -102,6 +92,20 @@ void check(cairo_status_t status, const std::string& path) {
     throw std::runtime_error("Cannot write picture " + path + ": " + cairo_status_to_string(status) + ".");
 }
 }  // namespace
+
+void draw_status_circle(cairo_t* cr, double x, double y, double r, bool ok, double alpha_ok, double alpha_bad,
+                        double line_width) {
+  cairo_new_path(cr);
+  cairo_arc(cr, x, y, r, 0, 2 * std::numbers::pi);
+  if (ok)
+    cairo_set_source_rgba(cr, 0.55, 0.85, 0.55, alpha_ok);
+  else
+    cairo_set_source_rgba(cr, 0.95, 0.45, 0.4, alpha_bad);
+  cairo_fill_preserve(cr);
+  cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+  cairo_set_line_width(cr, line_width);
+  cairo_stroke(cr);
+}
 
 std::vector<std::string> render_svg_png(const std::string& stem, int width, int height,
                                         const std::function<void(cairo_t*)>& draw_on) {

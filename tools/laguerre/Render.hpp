@@ -20,6 +20,11 @@ namespace laguerre::tools {
 std::vector<std::string> render_svg_png(const std::string& stem, int width, int height,
                                         const std::function<void(_cairo*)>& draw);
 
+/// A circle filled green (`ok`, opacity `alpha_ok`) or red (opacity `alpha_bad`) and outlined in dark
+/// grey with `line_width` (user units): a vertex's LPD/GLPD status in the packing pictures.
+void draw_status_circle(_cairo* cr, double x, double y, double r, bool ok, double alpha_ok, double alpha_bad,
+                        double line_width);
+
 /// What a packing picture shows.
 struct PackingPicture {
   const core::PlanarGraph* graph = nullptr;              ///< the network

@@ -125,18 +125,9 @@ std::vector<std::string> render_run_picture(const scenarios::RunArtifacts& run, 
     cairo_restore(cr);
     // 2. The packing, coloured by LPD/GLPD status.
     px = enter_panel(cr, 1, 0, panel, top, disc);
-    for (core::Vertex v = 0; v < n; ++v) {
-      cairo_new_path(cr);
-      cairo_arc(cr, phi[v].x, phi[v].y, std::max(phi[v].r, 0.0), 0, 2 * std::numbers::pi);
-      if (v < run.local.size() && run.local[v] == core::LocalCondition::holds)
-        cairo_set_source_rgba(cr, 0.55, 0.85, 0.55, 0.6);
-      else
-        cairo_set_source_rgba(cr, 0.95, 0.45, 0.4, 0.7);
-      cairo_fill_preserve(cr);
-      cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
-      cairo_set_line_width(cr, 0.5 * px);
-      cairo_stroke(cr);
-    }
+    for (core::Vertex v = 0; v < n; ++v)
+      draw_status_circle(cr, phi[v].x, phi[v].y, std::max(phi[v].r, 0.0),
+                         v < run.local.size() && run.local[v] == core::LocalCondition::holds, 0.6, 0.7, 0.5 * px);
     unit_circle(cr, px);
     cairo_restore(cr);
     // 3. The power diagram: local power cells, clipped to the unit disc.

@@ -6,10 +6,6 @@
 
 #include "Commands.hpp"
 #include "laguerre/core/Error.hpp"
-#include "laguerre/core/graph/GraphError.hpp"
-#include "laguerre/core/meshing/Domain.hpp"
-#include "laguerre/core/meshing/Medit.hpp"
-#include "laguerre/core/meshing/MetricField.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"laguerre — greedy power routing over circle packings (Wormser 2008, Part IV).\n"
@@ -43,24 +39,12 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("compare")) return compare();
     if (app.got_subcommand("diagram")) return diagram();
     if (app.got_subcommand("mesh")) return mesh();
-  } catch (const laguerre::core::InputError& e) {
+  } catch (const laguerre::core::InputError& e) {  // every bad-input error (core/Error.hpp, tier 1)
     std::cerr << "laguerre: " << e.what() << '\n';
     return 2;
-  } catch (const laguerre::core::GraphInputError& e) {  // until merged (derives from InputError on graphio)
-    std::cerr << "laguerre: " << e.what() << '\n';
-    return 2;
-  } catch (const laguerre::core::DomainError& e) {  // until merged
-    std::cerr << "laguerre: " << e.what() << '\n';
-    return 2;
-  } catch (const laguerre::core::FieldError& e) {  // until merged
-    std::cerr << "laguerre: " << e.what() << '\n';
-    return 2;
-  } catch (const laguerre::core::MeshInputError& e) {  // until merged
-    std::cerr << "laguerre: " << e.what() << '\n';
-    return 2;
-  } catch (const std::invalid_argument& e) {  // until merged (readers of other helpers still throw it)
-    std::cerr << "laguerre: " << e.what() << '\n';
-    return 2;
+  } catch (const laguerre::core::InternalError& e) {  // a broken precondition or invariant: a bug (tier 2)
+    std::cerr << "laguerre: internal error (please report): " << e.what() << '\n';
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "laguerre: error: " << e.what() << '\n';
     return 1;

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <complex>
 #include <map>
 #include <optional>
@@ -15,7 +14,10 @@
 #include <stdexcept>
 
 #include "AnisotropicDetail.hpp"
+#include "ApolloniusDetail.hpp"
 #include "laguerre/core/diagrams/AnisotropicDiagram.hpp"
+#include "laguerre/core/diagrams/SitesFile.hpp"
+#include "detail/Validity.hpp"
 
 namespace laguerre::core {
 
@@ -25,16 +27,18 @@ double anisotropic_distance(Point2 q, const AnisotropicSite& s) {
 }
 
 SiteIndex anisotropic_nearest(const std::vector<AnisotropicSite>& sites, Point2 q) {
-  SiteIndex best = no_site;
-  double best_d = 0;
-  for (SiteIndex i = 0; i < sites.size(); ++i) {
-    const double d = anisotropic_distance(q, sites[i]);
-    if (best == no_site || d < best_d) best = i, best_d = d;
-  }
-  return best;
+  return detail::nearest_site(sites.size(), [&](SiteIndex i) { return anisotropic_distance(q, sites[i]); });
 }
 
 namespace {
+
+bool is_positive_definite(const AnisotropicSite& s) { return s.a > 0 && s.a * s.c - s.b * s.b > 0; }
+
+std::string number_text(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
 
 /// Coefficients {A, B, C, D, E, F} of d(x) = (x − p)ᵀ M (x − p).
 Conic distance_quadric(const AnisotropicSite& s) {
@@ -270,9 +274,9 @@ AnisotropicDiagram anisotropic_diagram(const std::vector<AnisotropicSite>& sites
   for (SiteIndex i = 0; i < n; ++i) {
     const AnisotropicSite& s = sites[i];
     for (double v : {s.x, s.y, s.a, s.b, s.c})
-      if (!std::isfinite(v)) throw std::invalid_argument("anisotropic site " + std::to_string(i) + " is not finite.");
-    if (!(s.a > 0 && s.a * s.c - s.b * s.b > 0))
-      throw std::invalid_argument("anisotropic site " + std::to_string(i) +
+      if (!std::isfinite(v)) throw InputError("anisotropic site " + std::to_string(i) + " is not finite.");
+    if (!is_positive_definite(s))
+      throw InputError("anisotropic site " + std::to_string(i) +
                                   ": the matrix [[a, b], [b, c]] is not positive definite (expected a > 0 and ac − b² > 0).");
     if (!seen.emplace(std::array<double, 5>{s.x, s.y, s.a, s.b, s.c}, i).second) keep[i] = 0, d.hidden.push_back(i);
   }
@@ -452,36 +456,69 @@ RestrictedAnisotropicDiagram restrict_anisotropic(const AnisotropicDiagram& diag
   return out;
 }
 
-std::vector<AnisotropicSite> read_anisotropic_sites(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open the anisotropic sites file.");
-  std::vector<AnisotropicSite> sites;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-    std::istringstream tokens(line);
-    std::vector<std::string> words;
-    for (std::string w; tokens >> w;) words.push_back(w);
-    if (words.empty()) continue;
-    const std::string where = path + ":" + std::to_string(number) + ": ";
-    if (words.size() != 5)
-      throw std::runtime_error(where + "found " + std::to_string(words.size()) +
-                               " fields; expected 5 numbers `x y a b c` (site and metric [[a, b], [b, c]]).");
-    double value[5];
-    for (std::size_t k = 0; k < 5; ++k) {
-      std::size_t used = 0;
-      try {
-        value[k] = std::stod(words[k], &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != words[k].size() || !std::isfinite(value[k]))
-        throw std::runtime_error(where + "found `" + words[k] + "` in field " + std::to_string(k + 1) + "; expected a finite number.");
+bool AnisotropicDiagram::is_valid(bool verbose) const {
+  const std::string violation = [&]() -> std::string {
+    const std::size_t n = sites.size();
+    std::vector<char> is_hidden(n, 0);
+    auto same = [&](SiteIndex i, SiteIndex j) {
+      const AnisotropicSite &a = sites[i], &b = sites[j];
+      return a.x == b.x && a.y == b.y && a.a == b.a && a.b == b.b && a.c == b.c;
+    };
+    for (std::size_t k = 0; k < hidden.size(); ++k) {
+      if (hidden[k] >= n || (k > 0 && hidden[k] <= hidden[k - 1]))
+        return "the hidden sites are not increasing indices below " + std::to_string(n);
+      is_hidden[hidden[k]] = 1;
     }
-    if (!(value[2] > 0 && value[2] * value[4] - value[3] * value[3] > 0))
-      throw std::runtime_error(where + "the metric [[" + words[2] + ", " + words[3] + "], [" + words[3] + ", " + words[4] +
-                               "]] is not positive definite; expected a > 0 and ac − b² > 0.");
-    sites.push_back({value[0], value[1], value[2], value[3], value[4]});
+    for (SiteIndex i = 0; i < n; ++i) {
+      bool duplicate = false;
+      for (SiteIndex j = 0; j < i && !duplicate; ++j) duplicate = !is_hidden[j] && same(i, j);
+      if (duplicate != static_cast<bool>(is_hidden[i]))
+        return "site " + std::to_string(i) + (duplicate ? " repeats an earlier site but is not hidden" : " is hidden but repeats no earlier site");
+    }
+    if (!std::is_sorted(dual_triangles.begin(), dual_triangles.end()) ||
+        std::adjacent_find(dual_triangles.begin(), dual_triangles.end()) != dual_triangles.end())
+      return "the dual triangles are not sorted and unique";
+    std::vector<char> carried(dual_triangles.size(), 0);
+    for (std::size_t k = 0; k < vertices.size(); ++k) {
+      const AnisotropicVertex& v = vertices[k];
+      const std::string name = "vertex " + std::to_string(k);
+      if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y)) return name + " is not finite";
+      if (!(v.sites[0] < v.sites[1] && v.sites[1] < v.sites[2] && v.sites[2] < n))
+        return name + " is not labelled by three increasing site indices";
+      const double tol = 1e-8 * (1 + std::abs(v.distance));
+      for (SiteIndex s : v.sites) {
+        if (is_hidden[s]) return name + " is labelled by hidden site " + std::to_string(s);
+        if (std::abs(anisotropic_distance(v.position, sites[s]) - v.distance) > tol)
+          return name + " is not at distance " + std::to_string(v.distance) + " from its site " + std::to_string(s);
+      }
+      for (SiteIndex j = 0; j < n; ++j)
+        if (anisotropic_distance(v.position, sites[j]) < v.distance - tol)
+          return name + " is strictly closer to site " + std::to_string(j) + " than to its three sites";
+      const auto t = std::lower_bound(dual_triangles.begin(), dual_triangles.end(), v.sites);
+      if (t == dual_triangles.end() || *t != v.sites) return name + ": its three sites are not a dual triangle";
+      carried[static_cast<std::size_t>(t - dual_triangles.begin())] = 1;
+    }
+    for (std::size_t t = 0; t < dual_triangles.size(); ++t)
+      if (!carried[t]) return "dual triangle " + std::to_string(t) + " carries no vertex";
+    std::vector<std::pair<SiteIndex, SiteIndex>> sides;
+    for (const auto& t : dual_triangles) sides.insert(sides.end(), {{t[0], t[1]}, {t[1], t[2]}, {t[0], t[2]}});
+    std::sort(sides.begin(), sides.end());
+    sides.erase(std::unique(sides.begin(), sides.end()), sides.end());
+    if (sides != dual_edges) return "the dual edges are not the sides of the dual triangles";
+    return "";
+  }();
+  return detail::report_validity(violation, verbose);
+}
+
+std::vector<AnisotropicSite> read_anisotropic_sites(const std::string& path) {
+  std::vector<AnisotropicSite> sites;
+  for (const SiteRow& r : read_site_rows(path, anisotropic_columns, "anisotropic diagram")) {
+    const AnisotropicSite s{r.values[0], r.values[1], r.values[2], r.values[3], r.values[4]};
+    if (!is_positive_definite(s))
+      throw InputError(path, r.line,
+                       "found the metric [[" + number_text(s.a) + ", " + number_text(s.b) + "], [" + number_text(s.b) + ", " +
+                           number_text(s.c) + "]]; expected a positive definite matrix (a > 0 and ac − b² > 0).");
+    sites.push_back(s);
   }
   return sites;
 }

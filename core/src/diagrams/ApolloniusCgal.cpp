@@ -23,10 +23,7 @@ using Key = std::tuple<double, double, double>;
 }  // namespace
 
 ApolloniusDiagram apollonius_diagram_cgal(const std::vector<ApolloniusSite>& sites) {
-  detail::check_apollonius_sites(sites);
-  ApolloniusDiagram d;
-  d.sites = sites;
-  d.method = "cgal";
+  ApolloniusDiagram d = detail::start_apollonius_diagram(sites, "cgal");
   Ag ag;
   // CGAL's circles have non-negative radii: shift all weights (the diagram does not change).
   double shift = 0;

@@ -1,24 +1,42 @@
 #pragma once
 /// @file
-/// Internal: helpers shared by the two Apollonius constructions (canonical ordering of the result).
+/// Internal: helpers shared by the two Apollonius constructions (start, canonical ordering of the
+/// result) and the brute-force nearest site of the curved diagrams.
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 #include <string>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/diagrams/ApolloniusDiagram.hpp"
 
 namespace laguerre::core::detail {
 
-/// Throws std::invalid_argument when a site has a non-finite coordinate or weight.
-inline void check_apollonius_sites(const std::vector<ApolloniusSite>& sites) {
+/// The empty diagram of `sites` built by `method`; throws InputError when a site has a non-finite
+/// coordinate or weight.
+inline ApolloniusDiagram start_apollonius_diagram(const std::vector<ApolloniusSite>& sites, const char* method) {
   for (std::size_t i = 0; i < sites.size(); ++i) {
     const ApolloniusSite& s = sites[i];
     if (!std::isfinite(s.x) || !std::isfinite(s.y) || !std::isfinite(s.w))
-      throw std::invalid_argument("Apollonius site " + std::to_string(i) +
-                                  " has a non-finite coordinate or weight; expected finite x, y, w.");
+      throw InputError("Apollonius site " + std::to_string(i) +
+                       " has a non-finite coordinate or weight; expected finite x, y, w.");
   }
+  ApolloniusDiagram d;
+  d.sites = sites;
+  d.method = method;
+  return d;
+}
+
+/// The site of smallest `distance(i)` among `n` (smallest index among exact ties); no_site if n = 0.
+template <class Distance>
+SiteIndex nearest_site(std::size_t n, Distance distance) {
+  SiteIndex best = no_site;
+  double best_d = 0;
+  for (SiteIndex i = 0; i < n; ++i) {
+    const double d = distance(i);
+    if (best == no_site || d < best_d) best = i, best_d = d;
+  }
+  return best;
 }
 
 /// Sorts vertices (triple, then position) and the hidden list; derives the sorted unique dual edges

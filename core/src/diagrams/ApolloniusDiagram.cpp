@@ -1,27 +1,23 @@
 /// @file
 /// Apollonius diagrams: distances, brute-force nearest site, sampled hyperbola arcs, the sites reader.
 
+#include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "laguerre/core/diagrams/ApolloniusDiagram.hpp"
+#include "laguerre/core/diagrams/SitesFile.hpp"
+#include "ApolloniusDetail.hpp"
+#include "detail/Validity.hpp"
 
 namespace laguerre::core {
 
 double apollonius_distance(Point2 q, const ApolloniusSite& s) { return std::hypot(q.x - s.x, q.y - s.y) - s.w; }
 
 SiteIndex apollonius_nearest(const std::vector<ApolloniusSite>& sites, Point2 q) {
-  SiteIndex best = no_site;
-  double best_d = 0;
-  for (SiteIndex i = 0; i < sites.size(); ++i) {
-    const double d = apollonius_distance(q, sites[i]);
-    if (best == no_site || d < best_d) best = i, best_d = d;
-  }
-  return best;
+  return detail::nearest_site(sites.size(), [&](SiteIndex i) { return apollonius_distance(q, sites[i]); });
 }
 
 std::vector<SampledEdge> apollonius_edges(const ApolloniusDiagram& diagram, const Box& box, int samples) {
@@ -73,35 +69,62 @@ std::vector<SampledEdge> apollonius_edges(const ApolloniusDiagram& diagram, cons
   return out;
 }
 
-std::vector<ApolloniusSite> read_apollonius_sites(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open the Apollonius sites file.");
-  std::vector<ApolloniusSite> sites;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-    std::istringstream tokens(line);
-    std::vector<std::string> words;
-    for (std::string w; tokens >> w;) words.push_back(w);
-    if (words.empty()) continue;
-    const std::string where = path + ":" + std::to_string(number) + ": ";
-    if (words.size() != 3)
-      throw std::runtime_error(where + "found " + std::to_string(words.size()) +
-                               " fields; expected 3 numbers `x y w` (centre and additive weight).");
-    double value[3];
-    for (int k = 0; k < 3; ++k) {
-      std::size_t used = 0;
-      try {
-        value[k] = std::stod(words[static_cast<std::size_t>(k)], &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != words[static_cast<std::size_t>(k)].size() || !std::isfinite(value[k]))
-        throw std::runtime_error(where + "found `" + words[static_cast<std::size_t>(k)] + "` in field " +
-                                 std::to_string(k + 1) + "; expected a finite number.");
+bool ApolloniusDiagram::is_valid(bool verbose) const {
+  const std::string violation = [&]() -> std::string {
+    const std::size_t n = sites.size();
+    std::vector<char> is_hidden(n, 0);
+    for (std::size_t k = 0; k < hidden.size(); ++k) {
+      if (hidden[k] >= n || (k > 0 && hidden[k] <= hidden[k - 1]))
+        return "the hidden sites are not increasing indices below " + std::to_string(n);
+      is_hidden[hidden[k]] = 1;
     }
-    sites.push_back({value[0], value[1], value[2]});
-  }
+    for (SiteIndex i = 0; i < n; ++i) {
+      const Point2 p{sites[i].x, sites[i].y};
+      const double own = apollonius_distance(p, sites[i]), tol = 1e-8 * (1 + std::abs(own));
+      bool beaten = false;  // some other site at most as far from p as site i
+      for (SiteIndex j = 0; j < n; ++j)
+        if (j != i && apollonius_distance(p, sites[j]) <= own + tol) {
+          if (!is_hidden[i] && apollonius_distance(p, sites[j]) < own - tol)
+            return "the centre of visible site " + std::to_string(i) + " is strictly closer to site " + std::to_string(j);
+          beaten = true;
+        }
+      if (is_hidden[i] && !beaten) return "hidden site " + std::to_string(i) + " lies in no other site's disc";
+    }
+    for (std::size_t k = 0; k < dual_edges.size(); ++k) {
+      const auto [a, b] = dual_edges[k];
+      if (!(a < b && b < n) || is_hidden[a] || is_hidden[b] || (k > 0 && !(dual_edges[k - 1] < dual_edges[k])))
+        return "dual edge (" + std::to_string(a) + ", " + std::to_string(b) + ") is malformed, unsorted or touches a hidden site";
+    }
+    for (std::size_t k = 0; k < vertices.size(); ++k) {
+      const ApolloniusVertex& v = vertices[k];
+      const std::string name = "vertex " + std::to_string(k);
+      if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y)) return name + " is not finite";
+      if (!(v.sites[0] < v.sites[1] && v.sites[1] < v.sites[2] && v.sites[2] < n))
+        return name + " is not labelled by three increasing site indices";
+      double scale = 1 + std::abs(v.distance);
+      for (SiteIndex s : v.sites) {
+        if (is_hidden[s]) return name + " is labelled by hidden site " + std::to_string(s);
+        scale += std::abs(sites[s].w) + std::hypot(v.position.x - sites[s].x, v.position.y - sites[s].y);
+      }
+      const double tol = 1e-8 * scale;
+      for (SiteIndex s : v.sites)
+        if (std::abs(apollonius_distance(v.position, sites[s]) - v.distance) > tol)
+          return name + " is not at distance " + std::to_string(v.distance) + " from its site " + std::to_string(s);
+      for (SiteIndex j = 0; j < n; ++j)
+        if (apollonius_distance(v.position, sites[j]) < v.distance - tol)
+          return name + " is strictly closer to site " + std::to_string(j) + " than to its three sites";
+      for (const auto& pair : {std::pair{v.sites[0], v.sites[1]}, std::pair{v.sites[1], v.sites[2]}, std::pair{v.sites[0], v.sites[2]}})
+        if (!std::binary_search(dual_edges.begin(), dual_edges.end(), pair))
+          return name + ": its sites " + std::to_string(pair.first) + " and " + std::to_string(pair.second) + " are not a dual edge";
+    }
+    return "";
+  }();
+  return detail::report_validity(violation, verbose);
+}
+
+std::vector<ApolloniusSite> read_apollonius_sites(const std::string& path) {
+  std::vector<ApolloniusSite> sites;
+  for (const SiteRow& r : read_site_rows(path, apollonius_columns, "Apollonius diagram")) sites.push_back({r.values[0], r.values[1], r.values[2]});
   return sites;
 }
 

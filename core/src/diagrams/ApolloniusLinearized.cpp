@@ -116,10 +116,7 @@ std::vector<LinePoint> tangent_points(const ApolloniusSite& si, const Apollonius
 }  // namespace
 
 ApolloniusDiagram apollonius_diagram_linearized(const std::vector<ApolloniusSite>& sites) {
-  detail::check_apollonius_sites(sites);
-  ApolloniusDiagram d;
-  d.sites = sites;
-  d.method = "linearized";
+  ApolloniusDiagram d = detail::start_apollonius_diagram(sites, "linearized");
   // Drop the sites whose disc lies strictly inside another disc (hidden in the Apollonius diagram,
   // and the only obstruction to "cell = cone ∩ power cell"). A containment k ⊂ u puts the apex of
   // cone k outside L(Σ_k), hence strictly closer to some regular-triangulation neighbour of k; the

@@ -1,4 +1,5 @@
 #include "laguerre/core/diagrams/MinimizationDiagram.hpp"
+#include "laguerre/core/Error.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -29,8 +30,8 @@ Rgb site_colour(SiteIndex i) {
 MinimizationDiagram::MinimizationDiagram(const Box& box, int width, int height, std::size_t site_count,
                                          const DistanceFunction& f, double tie_tolerance)
     : box_(box), width_(width), height_(height), site_count_(site_count) {
-  if (width <= 0 || height <= 0) throw std::invalid_argument("minimization diagram: raster size must be positive");
-  if (!box.valid()) throw std::invalid_argument("minimization diagram: the box must satisfy xmin < xmax, ymin < ymax");
+  if (width <= 0 || height <= 0) throw InputError("minimization diagram: raster size must be positive");
+  if (!box.valid()) throw InputError("minimization diagram: the box must satisfy xmin < xmax, ymin < ymax");
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   labels_.assign(n, no_site);
   tied_.assign(n, 0);

@@ -1,5 +1,8 @@
 #include "laguerre/core/diagrams/MobiusDiagram.hpp"
 
+#include "detail/Validity.hpp"
+#include "laguerre/core/Error.hpp"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Regular_triangulation_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
@@ -523,11 +526,11 @@ void MobiusDiagram::Impl::build_cells(const std::vector<std::pair<std::size_t, s
 }
 
 MobiusDiagram::MobiusDiagram(std::vector<MobiusSite> sites, const Box& box) : impl_(std::make_unique<Impl>()) {
-  if (!box.valid()) throw std::invalid_argument("Möbius diagram: the box must satisfy xmin < xmax and ymin < ymax");
+  if (!box.valid()) throw InputError("Möbius diagram: the box must satisfy xmin < xmax and ymin < ymax");
   for (std::size_t i = 0; i < sites.size(); ++i)
     if (!std::isfinite(sites[i].x) || !std::isfinite(sites[i].y) || !std::isfinite(sites[i].lambda) ||
         !std::isfinite(sites[i].mu))
-      throw std::invalid_argument("Möbius diagram: site " + std::to_string(i) + " has a non-finite value");
+      throw InputError("Möbius diagram: site " + std::to_string(i) + " has a non-finite value");
   impl_->sites = std::move(sites);
   impl_->box = box;
   impl_->build();
@@ -585,42 +588,47 @@ std::pair<SiteIndex, std::size_t> MobiusDiagram::locate_in_cells(Point2 q) const
   return {no_site, 0};
 }
 
-ValidityReport MobiusDiagram::is_valid() const {
+bool MobiusDiagram::is_valid(bool verbose) const {
   const Impl& m = *impl_;
-  auto fail = [](std::string s) { return ValidityReport{false, std::move(s)}; };
-  if (!m.rt.is_valid()) return fail("CGAL's 3D regular triangulation is not valid");
-  std::vector<int> uses(m.edges.size(), 0);
-  double total = 0;
-  for (SiteIndex s = 0; s < m.cells.size(); ++s) {
-    if (m.hidden[s] && !m.cells[s].empty()) return fail("hidden site " + std::to_string(s) + " has a non-empty cell");
-    for (const CellComponent& c : m.cells[s]) {
-      if (!c.outer.closed) return fail("an outer boundary of cell " + std::to_string(s) + " is not closed");
-      for (const BoundaryLoop& h : c.holes)
-        if (!h.closed) return fail("a hole of cell " + std::to_string(s) + " is not closed");
-      total += c.area();
-      auto count = [&](const BoundaryLoop& l) {
-        for (const BoundaryPiece& p : l.pieces)
-          if (p.edge != MobiusEdge::npos) ++uses[p.edge];
-      };
-      count(c.outer);
-      for (const BoundaryLoop& h : c.holes) count(h);
+  auto fail = [](std::string s) { return s; };
+  const std::string violation = [&]() -> std::string {
+    if (!m.rt.is_valid()) return fail("CGAL's 3D regular triangulation is not valid");
+    std::vector<int> uses(m.edges.size(), 0);
+    double total = 0;
+    for (SiteIndex s = 0; s < m.cells.size(); ++s) {
+      if (m.hidden[s] && !m.cells[s].empty()) return fail("hidden site " + std::to_string(s) + " has a non-empty cell");
+      for (const CellComponent& c : m.cells[s]) {
+        if (!c.outer.closed) return fail("an outer boundary of cell " + std::to_string(s) + " is not closed");
+        for (const BoundaryLoop& h : c.holes)
+          if (!h.closed) return fail("a hole of cell " + std::to_string(s) + " is not closed");
+        total += c.area();
+        auto count = [&](const BoundaryLoop& l) {
+          for (const BoundaryPiece& p : l.pieces)
+            if (p.edge != MobiusEdge::npos) ++uses[p.edge];
+        };
+        count(c.outer);
+        for (const BoundaryLoop& h : c.holes) count(h);
+      }
     }
-  }
-  for (std::size_t e = 0; e < m.edges.size(); ++e)
-    if (uses[e] != 2) return fail("edge " + std::to_string(e) + " bounds " + std::to_string(uses[e]) + " cells, not 2");
-  for (const MobiusVertex& v : m.vertices) {
-    const double d0 = mobius_distance(v.point, m.sites[v.sites[0]]);
-    for (int k = 1; k < 3; ++k) {
-      const double dk = mobius_distance(v.point, m.sites[v.sites[static_cast<std::size_t>(k)]]);
-      const MobiusSite& a = m.sites[v.sites[0]];
-      const double scale = std::fabs(a.lambda) * squared_distance(v.point, {a.x, a.y}) + std::fabs(a.mu) + std::fabs(dk) + 1e-300;
-      if (std::fabs(d0 - dk) > 1e-6 * scale) return fail("a vertex is not equidistant from its three sites");
+    for (std::size_t e = 0; e < m.edges.size(); ++e)
+      if (uses[e] != 2) return fail("edge " + std::to_string(e) + " bounds " + std::to_string(uses[e]) + " cells, not 2");
+    for (const MobiusVertex& v : m.vertices) {
+      if (!std::isfinite(v.point.x) || !std::isfinite(v.point.y))
+        return fail("a vertex is not finite: the sites are beyond what doubles represent");
+      const double d0 = mobius_distance(v.point, m.sites[v.sites[0]]);
+      for (int k = 1; k < 3; ++k) {
+        const double dk = mobius_distance(v.point, m.sites[v.sites[static_cast<std::size_t>(k)]]);
+        const MobiusSite& a = m.sites[v.sites[0]];
+        const double scale = std::fabs(a.lambda) * squared_distance(v.point, {a.x, a.y}) + std::fabs(a.mu) + std::fabs(dk) + 1e-300;
+        if (std::fabs(d0 - dk) > 1e-6 * scale) return fail("a vertex is not equidistant from its three sites");
+      }
     }
-  }
-  const double area = m.frame.width() * m.frame.height();
-  if (!m.sites.empty() && std::fabs(total - area) > 1e-6 * area)
-    return fail("cell areas add up to " + std::to_string(total) + ", the frame has area " + std::to_string(area));
-  return {};
+    const double area = m.frame.width() * m.frame.height();
+    if (!m.sites.empty() && std::fabs(total - area) > 1e-6 * area)
+      return fail("cell areas add up to " + std::to_string(total) + ", the frame has area " + std::to_string(area));
+    return "";
+  }();
+  return detail::report_validity(violation, verbose);
 }
 
 }  // namespace laguerre::core

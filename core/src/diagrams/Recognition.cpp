@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <functional>
 #include <tuple>
 #include <type_traits>
@@ -15,6 +14,7 @@
 #include <sstream>
 
 #include "laguerre/core/diagrams/Recognition.hpp"
+#include "laguerre/core/diagrams/SitesFile.hpp"
 
 namespace laguerre::core {
 
@@ -474,17 +474,11 @@ RecognitionResult recognize_power_diagram(const CellComplex& cx, const Recogniti
 }
 
 CellComplex read_cell_complex(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw CellComplexError(path + ": cannot open the cells file.");
   CellComplex cx;
-  std::vector<int> cell_line;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-    std::istringstream tokens(line);
-    std::vector<std::string> w;
-    for (std::string s; tokens >> s;) w.push_back(s);
-    if (w.empty()) continue;
+  std::vector<std::size_t> cell_line;
+  for (const InputLine& record : read_input_lines(path, "cells file")) {
+    const std::vector<std::string>& w = record.words;
+    const std::size_t number = record.number;
     const std::string where = path + ":" + std::to_string(number) + ": ";
     auto number_at = [&](std::size_t i) {
       Q exact;

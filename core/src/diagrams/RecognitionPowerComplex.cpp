@@ -28,12 +28,12 @@ CellComplex power_diagram_complex(const std::vector<WeightedPoint>& sites, std::
   for (SiteIndex i = 0; i < sites.size(); ++i) {
     const WeightedPoint& s = sites[i];
     if (!std::isfinite(s.x) || !std::isfinite(s.y) || !std::isfinite(s.w))
-      throw std::invalid_argument("power_diagram_complex: site " + std::to_string(i) + " is not finite.");
+      throw InputError("power_diagram_complex: site " + std::to_string(i) + " is not finite.");
     points.emplace_back(K::Weighted_point_2(K::Point_2(s.x, s.y), s.w), i);
   }
   Rt rt(points.begin(), points.end());
   if (rt.dimension() != 2)
-    throw std::invalid_argument("power_diagram_complex: the regular triangulation has dimension " +
+    throw InputError("power_diagram_complex: the regular triangulation has dimension " +
                                 std::to_string(rt.dimension()) + "; expected 2 (three visible, non-collinear sites).");
   CellComplex cx;
   std::map<Rt::Face_handle, std::size_t> vertex_of;

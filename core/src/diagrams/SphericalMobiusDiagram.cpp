@@ -1,4 +1,5 @@
 #include "laguerre/core/diagrams/SphericalMobiusDiagram.hpp"
+#include "laguerre/core/Error.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -32,7 +33,7 @@ MobiusSite stereographic_site(const SphereMobiusSite& s) {
   const double pp = s.p[0] * s.p[0] + s.p[1] * s.p[1] + (s.p[2] + 1) * (s.p[2] + 1);
   const double a = l * pn - s.mu, c = l * pp - s.mu;
   if (a == 0 || !std::isfinite(a) || !std::isfinite(c))
-    throw std::invalid_argument("spherical Möbius diagram: a site's projected λ' = λ|P − N|² − μ is zero or not finite");
+    throw InputError("spherical Möbius diagram: a site's projected λ' = λ|P − N|² − μ is zero or not finite");
   const double bx = 2 * l * s.p[0], by = 2 * l * s.p[1];
   return {bx / a, by / a, a, (bx * bx + by * by) / a - c};
 }

@@ -1,5 +1,8 @@
 #include "laguerre/core/meshing/Domain.hpp"
 
+#include "laguerre/core/InputFile.hpp"
+#include "laguerre/core/diagrams/SitesFile.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -242,8 +245,7 @@ std::array<double, 4> Domain::bounding_box() const {
 }
 
 bool Domain::triangle_inside(Point2 a, Point2 b, Point2 c) const {
-  if (orientation(a, b, c) != Sign::positive)
-    throw std::invalid_argument("Domain::triangle_inside needs a counter-clockwise triangle.");
+  LAGUERRE_PRECONDITION(orientation(a, b, c) == Sign::positive, "Domain::triangle_inside needs a counter-clockwise triangle.");
   const double x0 = std::min({a.x, b.x, c.x}), y0 = std::min({a.y, b.y, c.y});
   const double x1 = std::max({a.x, b.x, c.x}), y1 = std::max({a.y, b.y, c.y});
   const auto meets = [&](Point2 p, Point2 q) {
@@ -260,13 +262,12 @@ bool Domain::triangle_inside(Point2 a, Point2 b, Point2 c) const {
     if (side == DomainSide::inside) return true;
     if (side == DomainSide::outside) return false;  // a vertex strictly outside: the open triangle is too
   }
-  throw std::invalid_argument(
-      "Domain::triangle_inside needs a vertex strictly inside the domain; all three are on its boundary.");
+  LAGUERRE_PRECONDITION(false, "Domain::triangle_inside needs a vertex strictly inside the domain; all three are on its boundary.");
+  return false;
 }
 
 Domain read_domain(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw DomainError(path + ": cannot open the file for reading");
+  std::ifstream in = open_input_file(path, "domain file");
   std::vector<Point2> outer;
   std::vector<std::vector<Point2>> holes;
   std::vector<std::array<Point2, 2>> segments;
@@ -284,6 +285,9 @@ Domain read_domain(const std::string& path) {
       char* end = nullptr;
       const double x = std::strtod(w.c_str(), &end);
       if (*end != '\0' || !std::isfinite(x)) throw fail("expected a finite number in " + what + ", found '" + w + "'");
+      if (!admissible_magnitude(x))
+        throw fail("found '" + w + "' in " + what + "; expected 0 or a magnitude between 1e-150 and 1e150 (squares and "
+                   "products of two coordinates must be finite, normal doubles)");
       v.push_back(x);
     }
     if (v.size() != count)

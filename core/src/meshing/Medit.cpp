@@ -6,20 +6,18 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string_view>
+
+#include "laguerre/core/InputFile.hpp"
 
 namespace laguerre::core {
-
-MeshInputError::MeshInputError(const std::string& source, std::size_t line, const std::string& message)
-    : std::runtime_error(line > 0 ? source + ":" + std::to_string(line) + ": " + message : source + ": " + message) {}
 
 namespace {
 
 /// Whitespace-separated tokens with their line numbers; `#` comments run to the end of the line.
 class Tokens {
 public:
-  explicit Tokens(const std::string& path) : path_(path), in_(path) {
-    if (!in_) throw MeshInputError(path, 0, "cannot open the file for reading");
-  }
+  Tokens(const std::string& path, std::string_view what) : path_(path), in_(open_input_file(path, what)) {}
 
   /// The next token, or "" at the end of the file.
   std::string next() {
@@ -37,24 +35,10 @@ public:
   }
 
   /// The next token as a count (a non-negative integer).
-  std::size_t count(const char* what) {
-    const std::string t = next();
-    std::size_t v = 0;
-    const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (t.empty() || ec != std::errc() || p != t.data() + t.size())
-      fail("expected " + std::string(what) + " (a non-negative integer), found '" + t + "'");
-    return v;
-  }
+  std::size_t count(const char* what) { return whole<std::size_t>(what, "a non-negative integer"); }
 
   /// The next token as an integer.
-  long integer(const char* what) {
-    const std::string t = next();
-    long v = 0;
-    const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (t.empty() || ec != std::errc() || p != t.data() + t.size())
-      fail("expected " + std::string(what) + " (an integer), found '" + t + "'");
-    return v;
-  }
+  long integer(const char* what) { return whole<long>(what, "an integer"); }
 
   /// The next token as a finite real number.
   double real(const char* what) {
@@ -67,9 +51,39 @@ public:
     return v;
   }
 
+  /// The next section keyword, or "" at `End`; fails at the end of the file.
+  std::string keyword() {
+    const std::string key = next();
+    if (key.empty()) fail("missing 'End' keyword");
+    return key == "End" ? "" : key;
+  }
+
+  /// Consumes the records every Medit file may start with (`MeshVersionFormatted V`, `Dimension 2`;
+  /// `note` ends the message for another dimension); false for any other keyword.
+  bool header(const std::string& key, const std::string& note) {
+    if (key == "MeshVersionFormatted") {
+      integer("a format version");
+      return true;
+    }
+    if (key != "Dimension") return false;
+    if (const long d = integer("a dimension"); d != 2) fail("expected 'Dimension 2', found " + std::to_string(d) + note);
+    return true;
+  }
+
   [[noreturn]] void fail(const std::string& message) const { throw MeshInputError(path_, line_, message); }
 
 private:
+  /// The next token as an integer of type T (`kind` names it in the message).
+  template <class T>
+  T whole(const char* what, const char* kind) {
+    const std::string t = next();
+    T v = 0;
+    const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (t.empty() || ec != std::errc() || p != t.data() + t.size())
+      fail("expected " + std::string(what) + " (" + kind + "), found '" + t + "'");
+    return v;
+  }
+
   std::string path_;
   std::ifstream in_;
   std::vector<std::string> words_;
@@ -91,6 +105,19 @@ std::size_t vertex_index(Tokens& t, std::size_t vertex_count) {
   return static_cast<std::size_t>(v - 1);
 }
 
+/// Reads a section of elements (a count, then per element its vertex indices and a reference).
+template <std::size_t N>
+void read_elements(Tokens& t, std::size_t vertex_count, const char* count, const char* reference,
+                   std::vector<std::array<std::size_t, N>>& elements, std::vector<int>& refs) {
+  const std::size_t n = t.count(count);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::array<std::size_t, N> element{};
+    for (auto& v : element) v = vertex_index(t, vertex_count);
+    elements.push_back(element);
+    refs.push_back(static_cast<int>(t.integer(reference)));
+  }
+}
+
 void write_or_throw(std::ofstream& out, const std::string& path) {
   out.flush();
   if (!out) throw std::runtime_error(path + ": cannot write the file");
@@ -99,18 +126,12 @@ void write_or_throw(std::ofstream& out, const std::string& path) {
 }  // namespace
 
 TriangleMesh read_medit_mesh(const std::string& path) {
-  Tokens t(path);
+  Tokens t(path, "Medit mesh file");
   TriangleMesh mesh;
   bool have_dimension = false;
-  for (std::string key = t.next();; key = t.next()) {
-    if (key.empty()) t.fail("missing 'End' keyword");
-    if (key == "End") break;
-    if (key == "MeshVersionFormatted") {
-      t.integer("a format version");
-    } else if (key == "Dimension") {
-      const long d = t.integer("a dimension");
-      if (d != 2) t.fail("expected 'Dimension 2', found " + std::to_string(d) + " (only planar meshes are read)");
-      have_dimension = true;
+  for (std::string key = t.keyword(); !key.empty(); key = t.keyword()) {
+    if (t.header(key, " (only planar meshes are read)")) {
+      have_dimension = have_dimension || key == "Dimension";
     } else if (key == "Vertices") {
       const std::size_t n = t.count("a vertex count");
       mesh.points.resize(n);
@@ -120,21 +141,9 @@ TriangleMesh read_medit_mesh(const std::string& path) {
         mesh.point_refs[i] = static_cast<int>(t.integer("a vertex reference"));
       }
     } else if (key == "Triangles") {
-      const std::size_t n = t.count("a triangle count");
-      for (std::size_t i = 0; i < n; ++i) {
-        std::array<std::size_t, 3> tri{};
-        for (auto& v : tri) v = vertex_index(t, mesh.points.size());
-        mesh.triangles.push_back(tri);
-        mesh.triangle_refs.push_back(static_cast<int>(t.integer("a triangle reference")));
-      }
+      read_elements(t, mesh.points.size(), "a triangle count", "a triangle reference", mesh.triangles, mesh.triangle_refs);
     } else if (key == "Edges") {
-      const std::size_t n = t.count("an edge count");
-      for (std::size_t i = 0; i < n; ++i) {
-        std::array<std::size_t, 2> e{};
-        for (auto& v : e) v = vertex_index(t, mesh.points.size());
-        mesh.edges.push_back(e);
-        mesh.edge_refs.push_back(static_cast<int>(t.integer("an edge reference")));
-      }
+      read_elements(t, mesh.points.size(), "an edge count", "an edge reference", mesh.edges, mesh.edge_refs);
     } else if (key == "Corners" || key == "RequiredVertices" || key == "RequiredEdges" || key == "Ridges") {
       skip_records(t, t.count("a count"), 1);  // one index per record
     } else if (key == "Quadrilaterals") {
@@ -157,17 +166,11 @@ TriangleMesh read_medit_mesh(const std::string& path) {
 }
 
 std::vector<Metric> read_medit_sol(const std::string& path, std::size_t vertex_count) {
-  Tokens t(path);
+  Tokens t(path, "Medit solution file");
   std::vector<Metric> metrics;
-  for (std::string key = t.next();; key = t.next()) {
-    if (key.empty()) t.fail("missing 'End' keyword");
-    if (key == "End") break;
-    if (key == "MeshVersionFormatted") {
-      t.integer("a format version");
-    } else if (key == "Dimension") {
-      if (const long d = t.integer("a dimension"); d != 2)
-        t.fail("expected 'Dimension 2', found " + std::to_string(d));
-    } else if (key == "SolAtVertices") {
+  for (std::string key = t.keyword(); !key.empty(); key = t.keyword()) {
+    if (t.header(key, "")) continue;
+    if (key == "SolAtVertices") {
       const std::size_t n = t.count("a vertex count");
       if (n != vertex_count)
         t.fail("the solution has " + std::to_string(n) + " values but the mesh has " + std::to_string(vertex_count) +

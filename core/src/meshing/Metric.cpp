@@ -1,4 +1,5 @@
 #include "laguerre/core/meshing/Metric.hpp"
+#include "laguerre/core/Error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -34,7 +35,7 @@ bool is_metric(const Metric& m) {
 
 Metric metric_from_sizes(double h1, double h2, double theta) {
   if (!(h1 > 0) || !(h2 > 0) || !std::isfinite(h1) || !std::isfinite(h2) || !std::isfinite(theta))
-    throw std::invalid_argument("metric sizes must be positive and finite");
+    throw InputError("metric sizes must be positive and finite");
   const double l1 = 1 / (h1 * h1), l2 = 1 / (h2 * h2);
   const double co = std::cos(theta), si = std::sin(theta);
   return {l1 * co * co + l2 * si * si, (l1 - l2) * co * si, l1 * si * si + l2 * co * co};

@@ -740,6 +740,10 @@ std::string check_triangulation(const TriangleMesh& mesh, const Domain& domain) 
              " bounds a single triangle but is not a boundary subsegment (a hole in the mesh)";
   }
   const double expected = domain.area();
+  // A domain (or mesh) beyond what doubles represent has a non-finite area: never call it valid.
+  if (!std::isfinite(expected) || !std::isfinite(area))
+    return "the area of the domain (" + std::to_string(expected) + ") or of the triangles (" + std::to_string(area) +
+           ") is not finite";
   if (std::abs(area - expected) > 1e-9 * std::abs(expected))
     return "the triangles cover an area of " + std::to_string(area) + " instead of " + std::to_string(expected);
   return {};

@@ -237,7 +237,7 @@ private:
     if (options_.corner_shells) mark_acute_corners();
     for (const Point2& p : options_.extra_sites) {
       if (domain_.locate(p) != DomainSide::inside)
-        throw std::invalid_argument("extra site (" + std::to_string(p.x) + ", " + std::to_string(p.y) +
+        throw InputError("extra site (" + std::to_string(p.x) + ", " + std::to_string(p.y) +
                                     ") is not strictly inside the domain.");
       site_of(p);
     }
@@ -787,7 +787,7 @@ std::string to_string(VoronoiMeshStatus status) {
 }
 
 VoronoiMeshResult mesh_with_voronoi(const Domain& domain, const MetricField& field, const VoronoiMeshOptions& options) {
-  if (!(options.shape_bound > 0)) throw std::invalid_argument("the shape bound B must be positive.");
+  if (!(options.shape_bound > 0)) throw InputError("the shape bound B must be positive.");
   return VoronoiMesher(domain, field, options).run();
 }
 

@@ -65,6 +65,6 @@ TEST(MinimizationDiagram, RenderUsesSiteColours) {
 
 TEST(MinimizationDiagram, RejectsBadRasters) {
   auto f = [](SiteIndex, Point2) { return 0.0; };
-  EXPECT_THROW(MinimizationDiagram({0, 0, 1, 1}, 0, 4, 1, f), std::invalid_argument);
-  EXPECT_THROW(MinimizationDiagram({0, 0, 0, 1}, 4, 4, 1, f), std::invalid_argument);
+  EXPECT_THROW(MinimizationDiagram({0, 0, 1, 1}, 0, 4, 1, f), InputError);
+  EXPECT_THROW(MinimizationDiagram({0, 0, 0, 1}, 4, 4, 1, f), InputError);
 }

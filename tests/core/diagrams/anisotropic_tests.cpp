@@ -203,7 +203,7 @@ TEST(Anisotropic, DegenerateInputs) {
   // Duplicates are hidden; non-positive-definite metrics are rejected.
   const AnisotropicDiagram dup = anisotropic_diagram({{0, 0, 1, 0, 2}, {0, 0, 1, 0, 2}, {1, 0, 1, 0, 1}, {0, 1, 3, 1, 1}});
   EXPECT_EQ(dup.hidden, (std::vector<SiteIndex>{1}));
-  EXPECT_THROW(anisotropic_diagram({{0, 0, 1, 2, 1}}), std::invalid_argument);
+  EXPECT_THROW(anisotropic_diagram({{0, 0, 1, 2, 1}}), InputError);
 }
 
 TEST(Anisotropic, ReaderReportsFileAndLine) {
@@ -212,10 +212,39 @@ TEST(Anisotropic, ReaderReportsFileAndLine) {
   try {
     read_anisotropic_sites(path);
     FAIL() << "no error";
-  } catch (const std::runtime_error& e) {
+  } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(":4:"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("positive definite"), std::string::npos) << e.what();
+    EXPECT_EQ(e.line(), 4u);
   }
+}
+
+TEST(Anisotropic, IsValidDetectsBrokenInvariants) {
+  const auto sites = read_anisotropic_sites(std::string(LAGUERRE_TEST_DATA) + "/../../tools/examples/diagrams/anisotropic-flowers.txt");
+  const AnisotropicDiagram good = anisotropic_diagram(sites);
+  ASSERT_TRUE(good.is_valid(true));
+  ASSERT_FALSE(good.vertices.empty());
+  AnisotropicDiagram moved = good;  // a vertex off its bisectors
+  moved.vertices[0].position.x += 0.01;
+  EXPECT_FALSE(moved.is_valid());
+  AnisotropicDiagram closer = good;  // a vertex claiming a distance smaller than its sites'
+  closer.vertices[0].distance *= 0.5;
+  EXPECT_FALSE(closer.is_valid());
+  AnisotropicDiagram extra = good;  // a dual triangle that carries no vertex
+  extra.dual_triangles.push_back({sites.size() + 0, sites.size() + 1, sites.size() + 2});
+  EXPECT_FALSE(extra.is_valid());
+  AnisotropicDiagram edges = good;  // dual edges that are not the triangles' sides
+  edges.dual_edges.pop_back();
+  EXPECT_FALSE(edges.is_valid());
+  AnisotropicDiagram hidden = good;  // a site hidden without being a duplicate
+  hidden.hidden = {0};
+  EXPECT_FALSE(hidden.is_valid());
+  // A duplicate is hidden, and the diagram is still valid.
+  std::vector<AnisotropicSite> twice = sites;
+  twice.push_back(sites[3]);
+  const AnisotropicDiagram dup = anisotropic_diagram(twice);
+  EXPECT_EQ(dup.hidden, (std::vector<SiteIndex>{sites.size()}));
+  EXPECT_TRUE(dup.is_valid(true));
 }
 
 TEST(Anisotropic, BundledExamples) {

@@ -8,6 +8,7 @@
 #include <map>
 #include <random>
 #include <fstream>
+#include <limits>
 #include <set>
 
 #include "laguerre/core/diagrams/ApolloniusDiagram.hpp"
@@ -70,7 +71,7 @@ TEST(Apollonius, DegenerateInputs) {
     EXPECT_TRUE(d.vertices.empty());
   }
   EXPECT_TRUE(apollonius_diagram_linearized({{1, 1, 1}}).dual_edges.empty());
-  EXPECT_THROW(apollonius_diagram_cgal({{0, NAN, 1}}), std::invalid_argument);
+  EXPECT_THROW(apollonius_diagram_cgal({{0, NAN, 1}}), InputError);
 }
 
 TEST(Apollonius, CgalEqualsLinearization) {
@@ -161,10 +162,38 @@ TEST(Apollonius, ReaderReportsFileAndLine) {
   try {
     read_apollonius_sites(path);
     FAIL() << "no error";
-  } catch (const std::runtime_error& e) {
+  } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(":3:"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("`x`"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'x' in column 3 `w`"), std::string::npos) << e.what();
+    EXPECT_EQ(e.line(), 3u);
   }
+}
+
+TEST(Apollonius, IsValidDetectsBrokenInvariants) {
+  const auto sites = read_apollonius_sites(std::string(LAGUERRE_TEST_DATA) + "/../../tools/examples/diagrams/apollonius-circles.txt");
+  const ApolloniusDiagram good = apollonius_diagram_cgal(sites);
+  ASSERT_TRUE(good.is_valid(true));
+  ASSERT_TRUE(apollonius_diagram_linearized(sites).is_valid(true));
+  ASSERT_FALSE(good.vertices.empty());
+  ApolloniusDiagram moved = good;  // a vertex off its three bisectors
+  moved.vertices[0].position.x += 0.01;
+  EXPECT_FALSE(moved.is_valid());
+  ApolloniusDiagram far = good;  // a vertex whose distance is not that of its sites
+  far.vertices[0].distance += 0.01;
+  EXPECT_FALSE(far.is_valid());
+  ApolloniusDiagram unhidden = good;  // site 8 lies inside site 0's disc: it must be hidden
+  unhidden.hidden.clear();
+  EXPECT_FALSE(unhidden.is_valid());
+  ApolloniusDiagram hidden = good;  // a visible site declared hidden
+  hidden.hidden = {0, 8};
+  EXPECT_FALSE(hidden.is_valid());
+  ApolloniusDiagram missing = good;  // a vertex's pair of sites not a dual edge
+  const auto& t = good.vertices[0].sites;
+  missing.dual_edges.erase(std::find(missing.dual_edges.begin(), missing.dual_edges.end(), std::pair{t[0], t[1]}));
+  EXPECT_FALSE(missing.is_valid());
+  ApolloniusDiagram nan = good;
+  nan.vertices[0].position.y = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(nan.is_valid());
 }
 
 TEST(Apollonius, BundledExamples) {

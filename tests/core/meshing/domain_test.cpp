@@ -208,9 +208,9 @@ TEST(Domain, TriangleInside) {
   EXPECT_FALSE(d.triangle_inside({0.5, 0.5}, {3.5, 0.5}, {1.5, 1.5}));  // a vertex in the hole
   EXPECT_FALSE(d.triangle_inside({0.5, 1.5}, {1.5, 0.5}, {2.5, 1.5}));  // pokes into the hole
   EXPECT_TRUE(d.triangle_inside({0.5, 0.5}, {1, 0.5}, {1, 1}));         // touches the hole's corner only
-  EXPECT_THROW((void)d.triangle_inside({0.5, 0.5}, {1, 1}, {1, 0.5}), std::invalid_argument);  // clockwise
+  EXPECT_THROW((void)d.triangle_inside({0.5, 0.5}, {1, 1}, {1, 0.5}), InternalError);  // clockwise
   const Domain l({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}});  // an L: a reflex corner at (1, 1)
-  EXPECT_THROW((void)l.triangle_inside({0, 0}, {2, 0}, {2, 1}), std::invalid_argument);  // all on the boundary
+  EXPECT_THROW((void)l.triangle_inside({0, 0}, {2, 0}, {2, 1}), InternalError);  // all on the boundary
   EXPECT_FALSE(l.triangle_inside({1.6, 0.6}, {0.6, 1.6}, {0.5, 0.5}));  // the reflex corner is inside it
   EXPECT_FALSE(l.triangle_inside({1.5, 0.5}, {1.5, 1.5}, {0.5, 1.5}));  // a vertex outside
   EXPECT_FALSE(l.triangle_inside({1.5, 0.5}, {1.9, 0.9}, {1.2, 1.3}));  // a vertex outside

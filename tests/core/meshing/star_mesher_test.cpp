@@ -55,22 +55,24 @@ TEST(StarMesher, SmallInputAnglesInTheMetricStopAtTheCap) {
   EXPECT_NE(r.status.find("max_vertices"), std::string::npos);
 }
 
-TEST(StarMesher, ThesisFieldTerminatesConsistent) {
+/// The unit square meshed for the field `spec` with the default options, checked by expect_good_mesh.
+StarMeshResult square_mesh_checked(const std::string& spec) {
   const Domain d = Domain::unit_square();
-  const auto field = parse_metric_field("thesis:0.1:4:0.2:0.5");
+  const auto field = parse_metric_field(spec);
   StarMeshOptions o;
-  const StarMeshResult r = mesh_with_stars(d, *field, o);
+  StarMeshResult r = mesh_with_stars(d, *field, o);
   expect_good_mesh(r, d, o, o.distortion_bound);
+  return r;
+}
+
+TEST(StarMesher, ThesisFieldTerminatesConsistent) {
+  const StarMeshResult r = square_mesh_checked("thesis:0.1:4:0.2:0.5");
   EXPECT_GT(r.stats.shape, 0u);
   EXPECT_GT(r.stats.inconsistency + r.stats.distortion, 0u);  // the exchange of axes needs work
 }
 
 TEST(StarMesher, ShockLayer) {
-  const Domain d = Domain::unit_square();
-  const auto field = parse_metric_field("shock:0.01:0.1:0.05:0.5");
-  StarMeshOptions o;
-  const StarMeshResult r = mesh_with_stars(d, *field, o);
-  expect_good_mesh(r, d, o, o.distortion_bound);
+  const StarMeshResult r = square_mesh_checked("shock:0.01:0.1:0.05:0.5");
   // Denser in the layer: more vertices within 0.05 of x = 0.5 than in the outer strip of equal width.
   std::size_t in_layer = 0, outside = 0;
   for (const auto& p : r.mesh.points) {
@@ -124,17 +126,25 @@ PlanarGraph prepared_graph(const TriangleMesh& mesh, GraphKind& kind) {
   return prepare_for_packing(graph_from_drawing(std::move(ids), std::move(positions), mesh_edges(mesh), "mesh"), &kind);
 }
 
+/// The meshes of `d` for the field `spec` with the default options, without and with the lonely-corner
+/// rule.
+std::pair<StarMeshResult, StarMeshResult> with_and_without_corner_rule(const Domain& d, const std::string& spec) {
+  const auto field = parse_metric_field(spec);
+  StarMeshOptions o;
+  StarMeshResult plain = mesh_with_stars(d, *field, o);
+  o.no_lonely_corners = true;
+  return {std::move(plain), mesh_with_stars(d, *field, o)};
+}
+
 TEST(StarMesher, LonelyCornersOfADomainWithHolesAreRefined) {
   const Domain d = read_domain(std::string(LAGUERRE_TEST_DATA) + "/../../scenarios/domains/square-with-holes.txt");
   // (shock:0.02:0.15:0.05:0.5 used to leave lonely corners too; since stars are constrained Delaunay
   // (no refinement is spent on sites hidden behind a hole) its plain mesh no longer has one.)
   for (const char* spec : {"uniform:0.25:0.25", "uniform:0.1:0.05:0", "shock:0.03:0.15:0.05:0.5"}) {
     SCOPED_TRACE(spec);
-    const auto field = parse_metric_field(spec);
     StarMeshOptions o;
-    const StarMeshResult plain = mesh_with_stars(d, *field, o);
     o.no_lonely_corners = true;
-    const StarMeshResult r = mesh_with_stars(d, *field, o);
+    const auto [plain, r] = with_and_without_corner_rule(d, spec);
     // Without the rule the square's corners keep a single triangle (degree 2): the graph is neither a
     // triangulated disc (the holes are faces) nor 3-connected.
     ASSERT_TRUE(plain.converged) << plain.status;
@@ -170,11 +180,7 @@ TEST(StarMesher, CornerRuleChangesNothingWithoutLonelyCorners) {
   // none (the holes domain at 0.1, whose corners get two triangles from the size rule), the mesh is
   // the same, point for point.
   const Domain d = read_domain(std::string(LAGUERRE_TEST_DATA) + "/../../scenarios/domains/square-with-holes.txt");
-  const auto field = parse_metric_field("uniform:0.1:0.1");
-  StarMeshOptions o;
-  const StarMeshResult plain = mesh_with_stars(d, *field, o);
-  o.no_lonely_corners = true;
-  const StarMeshResult r = mesh_with_stars(d, *field, o);
+  const auto [plain, r] = with_and_without_corner_rule(d, "uniform:0.1:0.1");
   ASSERT_TRUE(r.converged) << r.status;
   ASSERT_GE(smallest_boundary_degree(plain.mesh), 3u);
   EXPECT_EQ(r.stats.corners, 0u);

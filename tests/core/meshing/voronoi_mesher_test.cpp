@@ -65,6 +65,17 @@ void expect_guarantees(const VoronoiMeshResult& r, const Domain& d, double shape
   }
 }
 
+/// Meshes `d` for the field `spec` with the default options but `size_bound` (0: rule 6 off) and checks
+/// the guarantees.
+VoronoiMeshResult mesh_checked(const Domain& d, const std::string& spec, double size_bound) {
+  const auto field = parse_metric_field(spec);
+  VoronoiMeshOptions o;
+  o.size_bound = size_bound;
+  VoronoiMeshResult r = mesh_with_voronoi(d, *field, o);
+  expect_guarantees(r, d, o.shape_bound);
+  return r;
+}
+
 // --- primitives ------------------------------------------------------------------------------------
 
 TEST(VoronoiPrimitives, EncroachmentAgreesWithSampling) {
@@ -211,12 +222,7 @@ TEST(VoronoiMesher, WallWithAFreeEndpoint) {
 // --- meshes ----------------------------------------------------------------------------------------
 
 TEST(VoronoiMesher, IsotropicSquare) {
-  const Domain d = Domain::unit_square();
-  const auto field = parse_metric_field("uniform:0.1:0.1");
-  VoronoiMeshOptions o;
-  o.size_bound = 1;
-  const VoronoiMeshResult r = mesh_with_voronoi(d, *field, o);
-  expect_guarantees(r, d, o.shape_bound);
+  const VoronoiMeshResult r = mesh_checked(Domain::unit_square(), "uniform:0.1:0.1", 1);
   EXPECT_GT(r.mesh.points.size(), 40u);
   // β ≤ 1 in an isotropic metric is a smallest angle of at least 30°.
   const MeshQuality q = measure_quality(r.mesh, r.metrics);
@@ -224,34 +230,20 @@ TEST(VoronoiMesher, IsotropicSquare) {
 }
 
 TEST(VoronoiMesher, AnisotropicSquare) {
-  const Domain d = Domain::unit_square();
-  const auto field = parse_metric_field("uniform:0.2:0.04:0");
-  VoronoiMeshOptions o;
-  o.size_bound = 1;
-  const VoronoiMeshResult r = mesh_with_voronoi(d, *field, o);
-  expect_guarantees(r, d, o.shape_bound);
+  const VoronoiMeshResult r = mesh_checked(Domain::unit_square(), "uniform:0.2:0.04:0", 1);
   const MeshQuality q = measure_quality(r.mesh, r.metrics);
   EXPECT_GE(q.smallest_angle.min, 30 - 1e-6);  // one metric: the isotropic case after a linear map
 }
 
 TEST(VoronoiMesher, SquareWithHole) {
   const Domain d({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{{0.4, 0.4}, {0.6, 0.4}, {0.6, 0.6}, {0.4, 0.6}}});
-  const auto field = parse_metric_field("uniform:0.15:0.05:0");
-  VoronoiMeshOptions o;
-  o.size_bound = 1;
-  const VoronoiMeshResult r = mesh_with_voronoi(d, *field, o);
-  expect_guarantees(r, d, o.shape_bound);
+  mesh_checked(d, "uniform:0.15:0.05:0", 1);
 }
 
 TEST(VoronoiMesher, ThesisField) {
   const Domain d = Domain::unit_square();
-  const auto field = parse_metric_field("thesis:0.15:4:0.2:0.5");
-  VoronoiMeshOptions o;
-  const VoronoiMeshResult pure = mesh_with_voronoi(d, *field, o);  // rules 1–5 only
-  expect_guarantees(pure, d, o.shape_bound);
-  o.size_bound = 1;
-  const VoronoiMeshResult sized = mesh_with_voronoi(d, *field, o);
-  expect_guarantees(sized, d, o.shape_bound);
+  const VoronoiMeshResult pure = mesh_checked(d, "thesis:0.15:4:0.2:0.5", 0);  // rules 1–5 only
+  const VoronoiMeshResult sized = mesh_checked(d, "thesis:0.15:4:0.2:0.5", 1);
   EXPECT_GT(sized.stats.size, 0u);
   EXPECT_GT(sized.mesh.points.size(), 2 * pure.mesh.points.size());
 }

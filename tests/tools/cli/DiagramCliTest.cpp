@@ -28,6 +28,20 @@ std::string example(const std::string& name) {
 }
 
 json load(const std::string& p) { return json::parse(std::ifstream(p)); }
+
+/// The JSON a successful `laguerre ARGS` writes on standard output.
+json run_json(const std::string& args) {
+  const Outcome r = run(args, false);
+  EXPECT_EQ(r.status, 0) << args << ": " << r.out;
+  return r.status == 0 ? json::parse(r.out) : json();
+}
+
+/// `laguerre ARGS` must fail with exit status 2 and a message containing every one of `parts`.
+void expect_input_error(const std::string& args, std::initializer_list<std::string> parts) {
+  const Outcome r = run(args);
+  EXPECT_EQ(r.status, 2) << args << ": " << r.out;
+  for (const std::string& part : parts) EXPECT_NE(r.out.find(part), std::string::npos) << args << ": " << r.out;
+}
 }  // namespace
 
 TEST_F(DiagramCli, EveryKindOnTheBundledExamples) {
@@ -59,9 +73,7 @@ TEST_F(DiagramCli, EveryKindOnTheBundledExamples) {
 TEST_F(DiagramCli, VoronoiJsonOnStandardOutput) {
   // Three points of a right triangle: one Voronoi vertex at the hypotenuse midpoint, three edges.
   const std::string f = write("tri.txt", "# a right triangle\n0 0\n2 0\n\n0 2  # legs of length 2\n");
-  const Outcome r = run("diagram --kind voronoi " + f + " --box -3,-3,5,5", false);
-  ASSERT_EQ(r.status, 0) << r.out;
-  const json j = json::parse(r.out);
+  const json j = run_json("diagram --kind voronoi " + f + " --box -3,-3,5,5");
   ASSERT_EQ(j["vertices"].size(), 1u);
   EXPECT_NEAR(j["vertices"][0]["point"][0].get<double>(), 1.0, 1e-12);
   EXPECT_NEAR(j["vertices"][0]["point"][1].get<double>(), 1.0, 1e-12);
@@ -82,17 +94,13 @@ TEST_F(DiagramCli, VoronoiJsonOnStandardOutput) {
 }
 
 TEST_F(DiagramCli, PowerReportsTheHiddenSite) {
-  const Outcome r = run("diagram --kind power " + example("power-circles-10.txt"), false);
-  ASSERT_EQ(r.status, 0);
-  const json j = json::parse(r.out);
+  const json j = run_json("diagram --kind power " + example("power-circles-10.txt"));
   EXPECT_EQ(j["hidden"], json::array({9}));
   EXPECT_TRUE(j["cells"][9]["components"].empty());
 }
 
 TEST_F(DiagramCli, MobiusRingHasADisconnectedCellWithAHole) {
-  const Outcome r = run("diagram --kind mobius " + example("mobius-ring-9.txt") + " --box -0.4,-0.4,1.4,1.4", false);
-  ASSERT_EQ(r.status, 0);
-  const json j = json::parse(r.out);
+  const json j = run_json("diagram --kind mobius " + example("mobius-ring-9.txt") + " --box -0.4,-0.4,1.4,1.4");
   const auto& comps = j["cells"][0]["components"];
   ASSERT_EQ(comps.size(), 2u);
   EXPECT_EQ(comps[0]["holes"].size() + comps[1]["holes"].size(), 1u);
@@ -108,9 +116,7 @@ TEST_F(DiagramCli, MobiusRingHasADisconnectedCellWithAHole) {
 TEST_F(DiagramCli, MultiplicativelyWeightedTwoSites) {
   // |x| / 2 = |x − (3, 0)| / 1: the Apollonius circle of centre (4, 0), radius 2.
   const std::string f = write("mw.txt", "0 0 2\n3 0 1\n");
-  const Outcome r = run("diagram --kind mw " + f + " --box -5,-5,8,5", false);
-  ASSERT_EQ(r.status, 0) << r.out;
-  const json j = json::parse(r.out);
+  const json j = run_json("diagram --kind mw " + f + " --box -5,-5,8,5");
   ASSERT_EQ(j["edges"].size(), 1u);
   EXPECT_EQ(j["edges"][0]["type"], "arc");
   EXPECT_NEAR(j["edges"][0]["centre"][0].get<double>(), 4.0, 1e-12);
@@ -140,6 +146,55 @@ TEST_F(DiagramCli, BadInputNamesFileAndLine) {
   EXPECT_EQ(r.status, 2);
   r = run("diagram --kind hexagonal " + example("voronoi-points-9.txt"));
   EXPECT_NE(r.status, 0);
+}
+
+TEST_F(DiagramCli, NumbersBeyondTheAdmissibleRangeNameTheLine) {
+  // Formerly: 1e160 crashed with SIGFPE, 1e-300 gave "valid": true with a vertex [null, null], weights
+  // of 1e300 ran for minutes. Now each is refused at its line (exit status 2).
+  const std::string range = "expected 0 or a magnitude between 1e-150 and 1e150";
+  const std::string big = write("big.txt", "0 0\n1e160 0\n0 1e160\n");
+  expect_input_error("diagram --kind voronoi " + big, {big + ":2: found '1e160' in column 1 `x`", range});
+  const std::string tiny = write("tiny.txt", "0 0\n1e-300 0\n0 1e-300\n");
+  expect_input_error("diagram --kind voronoi " + tiny, {tiny + ":2: found '1e-300' in column 1 `x`", range});
+  const std::string heavy = write("heavy.txt", "0 0 1\n1 0 1\n0 1 1e300\n");
+  expect_input_error("diagram --kind power " + heavy, {heavy + ":3: found '1e300' in column 3 `w`", range, "power diagram"});
+  expect_input_error("diagram --kind apollonius " + heavy, {heavy + ":3:", range, "Apollonius diagram"});
+  expect_input_error("diagram --kind anisotropic " + write("m.txt", "0 0 1 0 1\n1 1 1e200 0 1\n"), {":2:", range});
+  // At the edge of the range the diagram is computed; a picture with a circle of radius 1e75 in a
+  // window of size 3 does not stall (Cairo used to flatten it into countless segments).
+  const json scaled = run_json("diagram --kind power " + write("edge.txt", "0 0 2.5e149\n1e75 0 0\n0 1e75 0\n-1e75 -1e75 1\n"));
+  EXPECT_TRUE(scaled["valid"].get<bool>()) << scaled.value("invalid_reason", "");
+  EXPECT_TRUE(scaled["hidden"].empty());
+  EXPECT_EQ(scaled["vertices"].size(), 3u);  // the origin inside the triangle of the other three
+  const Outcome r = run("diagram --kind power " + write("huge.txt", "0 0 1e150\n1 0 0\n0 1 0\n-1 -1 1\n") + " -o " + path("huge"));
+  ASSERT_EQ(r.status, 0) << r.out;
+  const json huge = load(path("huge.json"));
+  EXPECT_TRUE(huge["valid"].get<bool>()) << huge.value("invalid_reason", "");
+  // The three light sites' cells are non-empty but lie beyond x or y = 5e149: one cell fills the box.
+  EXPECT_TRUE(huge["hidden"].empty());
+  EXPECT_TRUE(huge["edges"].empty());
+  EXPECT_EQ(huge["cells"][0]["components"].size(), 1u);
+  for (int k = 1; k <= 3; ++k) EXPECT_TRUE(huge["cells"][k]["components"].empty());
+}
+
+TEST_F(DiagramCli, EveryKindNamesItselfInItsErrors) {
+  expect_input_error("diagram --kind mw " + write("mw0.txt", "0 0 1\n1 1 0\n"),
+                     {"mw0.txt:2: found the weight w = 0", "w > 0", "multiplicatively weighted Voronoi diagram"});
+  expect_input_error("diagram --kind mw " + write("mw2.txt", "0 0 1\n1 1\n"),
+                     {"mw2.txt:2:", "`x y w` (multiplicatively weighted Voronoi diagram sites)"});
+  const Outcome r = run("diagram --kind mw " + write("mw3.txt", "0 0 1\n1 1 1e-200\n"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.out.find("Möbius"), std::string::npos) << r.out;
+  expect_input_error("diagram --kind mobius " + write("mo.txt", "0 0 1\n"), {"`x y lambda mu` (Möbius diagram sites)"});
+  expect_input_error("diagram --kind anisotropic " + write("an.txt", "0 0 1 0\n"), {"`x y a b c` (anisotropic diagram sites)"});
+  expect_input_error("diagram --kind voronoi " + write("empty.txt", "# nothing\n"), {"no sites", "Voronoi diagram"});
+}
+
+TEST_F(DiagramCli, DirectoriesAndMissingFilesAreReportedAsEverywhere) {
+  for (const char* kind : {"voronoi", "power", "mobius", "mw", "apollonius", "anisotropic"})
+    expect_input_error(std::string("diagram --kind ") + kind + " " + path(""), {"is a directory; expected a sites file."});
+  expect_input_error("diagram --recognize " + path(""), {"is a directory; expected a cells file."});
+  expect_input_error("diagram --kind power " + path("missing.txt"), {"missing.txt: no such sites file"});
 }
 
 TEST_F(DiagramCli, RefusesToOverwriteWithoutForce) {

@@ -90,11 +90,16 @@ AffineCells build_affine_cells(const std::vector<WeightedPoint>& sites, const st
   return out;
 }
 
-ValidityReport check_affine_cells(const std::vector<WeightedPoint>& sites, const std::vector<bool>& hidden,
-                                  const AffineCells& cells, const Box& box,
-                                  const std::function<SiteIndex(Point2)>& locate) {
-  auto fail = [](std::string m) { return ValidityReport{false, std::move(m)}; };
+std::string check_affine_cells(const std::vector<WeightedPoint>& sites, const std::vector<bool>& hidden,
+                               const AffineCells& cells, const std::vector<DiagramVertex>& vertices, const Box& box,
+                               const std::function<SiteIndex(Point2)>& locate) {
+  auto fail = [](std::string m) { return m; };
   const std::size_t n = sites.size();
+  // A vertex the doubles cannot represent (a circumcentre whose construction overflowed or underflowed
+  // to 0/0) makes every other check meaningless.
+  for (std::size_t k = 0; k < vertices.size(); ++k)
+    if (!std::isfinite(vertices[k].point.x) || !std::isfinite(vertices[k].point.y))
+      return fail("vertex " + std::to_string(k) + " is not finite: the sites' coordinates are beyond what doubles represent");
   double total = 0;
   for (SiteIndex i = 0; i < n; ++i) {
     const Polygon& c = cells.cells[i];
@@ -127,7 +132,7 @@ ValidityReport check_affine_cells(const std::vector<WeightedPoint>& sites, const
   const double area = box.width() * box.height();
   if (n > 0 && std::fabs(total - area) > 1e-7 * area)
     return fail("cell areas add up to " + std::to_string(total) + ", the box has area " + std::to_string(area));
-  return {};
+  return "";
 }
 
 }  // namespace laguerre::core::detail

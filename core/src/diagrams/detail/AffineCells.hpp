@@ -5,6 +5,7 @@
 /// remembering which neighbour made each side), extracts the edges and checks the invariants.
 
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -26,9 +27,9 @@ AffineCells build_affine_cells(const std::vector<WeightedPoint>& sites, const st
 
 /// Invariants shared by the affine diagrams: cells convex and counter-clockwise, hidden cells empty,
 /// symmetric dual, centroids located in their own cell (or on a tie, judged by `power`), areas adding
-/// up to the box area.
-ValidityReport check_affine_cells(const std::vector<WeightedPoint>& sites, const std::vector<bool>& hidden,
-                                  const AffineCells& cells, const Box& box,
-                                  const std::function<SiteIndex(Point2)>& locate);
+/// up to the box area, vertices finite. Returns the first violation, or empty.
+std::string check_affine_cells(const std::vector<WeightedPoint>& sites, const std::vector<bool>& hidden,
+                               const AffineCells& cells, const std::vector<DiagramVertex>& vertices, const Box& box,
+                               const std::function<SiteIndex(Point2)>& locate);
 
 }  // namespace laguerre::core::detail

@@ -79,9 +79,16 @@ struct AnisotropicDiagram {
   std::vector<std::pair<SiteIndex, SiteIndex>> dual_edges;  ///< pairs of those triangles, sorted, unique
   std::size_t candidate_triangles = 0;                      ///< triangles of the regular complex examined
   int lifted_dimension = -1;                                ///< dimension of the regular triangulation in R⁵
+
+  /// Checks the invariants: hidden sites sorted, unique, each equal to an earlier visible site; every
+  /// vertex finite, labelled by three distinct visible sites, equidistant from them and with no site
+  /// strictly closer (relative 1e-8), its triple a dual triangle; dual triangles sorted, unique, each
+  /// carrying a vertex; dual edges sorted, unique, each a side of a dual triangle. With `verbose`,
+  /// writes the first violated invariant on std::cerr.
+  bool is_valid(bool verbose = false) const;
 };
 
-/// Builds the diagram (see the file comment). Throws std::invalid_argument for a non-finite site or a
+/// Builds the diagram (see the file comment). Throws InputError for a non-finite site or a
 /// matrix that is not positive definite.
 AnisotropicDiagram anisotropic_diagram(const std::vector<AnisotropicSite>& sites, const AnisotropicOptions& options = {});
 
@@ -105,9 +112,12 @@ struct RestrictedAnisotropicDiagram {
 RestrictedAnisotropicDiagram restrict_anisotropic(const AnisotropicDiagram& diagram, const Polygon& domain,
                                                   int resolution = 256);
 
+/// The columns of an anisotropic sites file.
+inline constexpr const char* anisotropic_columns = "x y a b c";
+
 /// Reads an anisotropic sites file: one site `x y a b c` per line (M = [[a, b], [b, c]]), blank lines
-/// and `#` comments ignored. Throws std::runtime_error naming file:line, what was found and what was
-/// expected (also for a matrix that is not positive definite).
+/// and `#` comments ignored. Throws InputError naming file:line, what was found and what was
+/// expected (SitesFile.hpp; also for a matrix that is not positive definite).
 std::vector<AnisotropicSite> read_anisotropic_sites(const std::string& path);
 
 }  // namespace laguerre::core

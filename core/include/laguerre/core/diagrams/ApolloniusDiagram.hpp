@@ -66,14 +66,22 @@ struct ApolloniusDiagram {
   std::vector<std::pair<SiteIndex, SiteIndex>> dual_edges;  ///< pairs (a < b) of adjacent cells, sorted, unique
   std::vector<ApolloniusVertex> vertices;                   ///< sorted by (sites, position)
   std::string method;                                       ///< "cgal" or "linearized"
+
+  /// Checks the invariants: hidden sites sorted, unique, in range, and each strictly inside (or equal
+  /// to) another site's disc in the shifted sense, i.e. some site is at most as far from its centre,
+  /// while every visible site's centre lies in its own cell; dual edges sorted, unique, between visible
+  /// sites; every vertex finite, labelled by three distinct visible sites whose pairs are dual edges,
+  /// equidistant from them (relative 1e-8) with no site strictly closer. With `verbose`, writes the
+  /// first violated invariant on std::cerr.
+  bool is_valid(bool verbose = false) const;
 };
 
-/// The diagram through CGAL's Apollonius_graph_hierarchy_2. Throws std::invalid_argument on
+/// The diagram through CGAL's Apollonius_graph_hierarchy_2. Throws InputError on
 /// non-finite input.
 ApolloniusDiagram apollonius_diagram_cgal(const std::vector<ApolloniusSite>& sites);
 
 /// The diagram through the linearization (thesis Algorithm 1, see the file comment). Throws
-/// std::invalid_argument on non-finite input.
+/// InputError on non-finite input.
 ApolloniusDiagram apollonius_diagram_linearized(const std::vector<ApolloniusSite>& sites);
 
 /// Nearest site of q by brute force (smallest index among exact double ties); no_site if empty.
@@ -84,8 +92,11 @@ SiteIndex apollonius_nearest(const std::vector<ApolloniusSite>& sites, Point2 q)
 /// about `samples` points per branch.
 std::vector<SampledEdge> apollonius_edges(const ApolloniusDiagram& diagram, const Box& box, int samples = 400);
 
+/// The columns of an Apollonius sites file.
+inline constexpr const char* apollonius_columns = "x y w";
+
 /// Reads an Apollonius sites file: one site `x y w` per line; blank lines and `#` comments ignored.
-/// Throws std::runtime_error naming file:line, what was found and what was expected.
+/// Throws InputError naming file:line, what was found and what was expected (SitesFile.hpp).
 std::vector<ApolloniusSite> read_apollonius_sites(const std::string& path);
 
 }  // namespace laguerre::core

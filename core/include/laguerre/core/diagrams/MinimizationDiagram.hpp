@@ -33,7 +33,7 @@ class MinimizationDiagram {
   using DistanceFunction = std::function<double(SiteIndex i, Point2 x)>;
 
   /// Samples `f` for sites 0..site_count−1 at the centres of a width × height grid over `box`.
-  /// Throws std::invalid_argument for a non-positive size or an invalid box.
+  /// Throws InputError for a non-positive size or an invalid box.
   MinimizationDiagram(const Box& box, int width, int height, std::size_t site_count, const DistanceFunction& f,
                       double tie_tolerance = 0.0);
 

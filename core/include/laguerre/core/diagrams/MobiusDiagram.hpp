@@ -106,7 +106,7 @@ struct CellComponent {
 /// Möbius diagram of Möbius sites by linearization; see the file comment.
 class MobiusDiagram {
  public:
-  /// Builds the diagram of `sites` (finite values; throws std::invalid_argument otherwise); `box` is the
+  /// Builds the diagram of `sites` (finite values; throws InputError otherwise); `box` is the
   /// requested window (the frame contains it).
   MobiusDiagram(std::vector<MobiusSite> sites, const Box& box);
   /// Destructor.
@@ -146,7 +146,9 @@ class MobiusDiagram {
   std::pair<SiteIndex, std::size_t> locate_in_cells(Point2 q) const;
   /// Checks the invariants: loops closed, every edge used once by each of its two sites' cells,
   /// vertex sites equidistant (relative 1e-6), component areas adding up to the frame's area.
-  ValidityReport is_valid() const;
+  /// With `verbose`, writes the first violated invariant on std::cerr. False also when a vertex is not
+  /// finite (input beyond what doubles represent).
+  bool is_valid(bool verbose = false) const;
 
  private:
   struct Impl;

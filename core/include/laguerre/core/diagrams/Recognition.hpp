@@ -53,6 +53,7 @@
 #include <string>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/diagrams/Sites.hpp"
 
 namespace laguerre::core {
@@ -78,8 +79,8 @@ struct CellComplex {
 };
 
 /// Thrown for a malformed complex: the message names the file and line when read from a file.
-struct CellComplexError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct CellComplexError : InputError {
+  using InputError::InputError;
 };
 
 /// Reads a cells file (format in the file comment); throws CellComplexError naming file:line, what
@@ -120,7 +121,7 @@ RecognitionResult recognize_power_diagram(const CellComplex& complex, const Reco
 
 /// The power diagram of `sites` as a cell complex (CGAL regular triangulation; vertices are double
 /// constructions): one cell per visible site, `cell_sites[c]` = its site. Needs a 2-dimensional regular
-/// triangulation (at least three visible sites, not collinear); throws std::invalid_argument otherwise.
+/// triangulation (at least three visible sites, not collinear); throws InputError otherwise.
 CellComplex power_diagram_complex(const std::vector<WeightedPoint>& sites, std::vector<SiteIndex>* cell_sites = nullptr);
 
 }  // namespace laguerre::core

@@ -8,7 +8,7 @@
 /// - power (Laguerre): pow(x, s) = |x − p|² − w, w = r² for a circle of radius r (w may be negative);
 /// - Möbius (thesis §2.1.1): δ(x, s) = λ|x − p|² − μ; multiplicatively weighted Voronoi
 ///   is the case μ = 0, λ = 1/w² (distance |x − p| / w).
-/// Nothing here decides geometry: exact decisions are made in the .cpp files of core/src/diagrams.
+/// Bad input to the diagrams throws InputError (Error.hpp). Nothing here decides geometry: exact decisions are made in the .cpp files of core/src/diagrams.
 
 #include <algorithm>
 #include <cstddef>
@@ -16,6 +16,7 @@
 #include <span>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
 
 namespace laguerre::core {

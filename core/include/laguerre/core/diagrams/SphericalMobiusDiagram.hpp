@@ -42,7 +42,7 @@ Point2 stereographic(const Point3& x);
 Point3 inverse_stereographic(Point2 x);
 
 /// The planar Möbius site of the projected distance (see the file comment); throws
-/// std::invalid_argument when A = 0.
+/// InputError when A = 0.
 MobiusSite stereographic_site(const SphereMobiusSite& s);
 
 /// Möbius diagram on S², computed in the plane through the stereographic projection.

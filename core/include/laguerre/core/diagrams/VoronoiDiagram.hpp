@@ -9,54 +9,12 @@
 /// length zero, which `edges()` omits. Collinear points give a 1-dimensional triangulation (no
 /// vertices; cells are parallel strips).
 
-#include <memory>
-#include <utility>
-#include <vector>
-
 #include "laguerre/core/diagrams/AffineDiagram.hpp"
 
 namespace laguerre::core {
 
-/// Voronoi diagram of points, clipped to a box, with its dual Delaunay triangulation.
-class VoronoiDiagram {
- public:
-  /// Builds the diagram of `sites` (finite coordinates; throws std::invalid_argument otherwise) and
-  /// clips the cells to `box` (must be valid).
-  VoronoiDiagram(std::vector<Point2> sites, const Box& box);
-  /// Destructor.
-  ~VoronoiDiagram();
-  /// Move constructor.
-  VoronoiDiagram(VoronoiDiagram&&) noexcept;
-  /// Move assignment.
-  VoronoiDiagram& operator=(VoronoiDiagram&&) noexcept;
-
-  /// The input sites, in input order.
-  const std::vector<Point2>& sites() const;
-  /// The clipping box.
-  const Box& box() const;
-  /// Dimension of the Delaunay triangulation (−1 no site, 0 one vertex, 1 collinear, 2 general).
-  int dimension() const;
-  /// Whether site i is a duplicate of an earlier-kept equal point.
-  bool is_hidden(SiteIndex i) const;
-  /// The duplicate sites, increasing.
-  std::vector<SiteIndex> hidden_sites() const;
-  /// Edges of the Delaunay triangulation (the dual graph), as pairs (a < b), sorted.
-  const std::vector<std::pair<SiteIndex, SiteIndex>>& dual_edges() const;
-  /// Finite Delaunay triangles (counter-clockwise) with their circumcentres (the Voronoi vertices).
-  const std::vector<DiagramVertex>& vertices() const;
-  /// Voronoi cell of site i clipped to the box (convex, counter-clockwise; empty for a duplicate).
-  const Polygon& cell(SiteIndex i) const;
-  /// Edges of the diagram clipped to the box, sorted by (a, b).
-  const std::vector<StraightEdge>& edges() const;
-  /// A site nearest to q (exact; among ties, the one CGAL reaches first); no_site without sites.
-  SiteIndex locate(Point2 q) const;
-  /// Checks the invariants (as PowerDiagram::is_valid; CGAL's validity includes the local empty-circle
-  /// property of every edge).
-  ValidityReport is_valid() const;
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-};
+/// Voronoi diagram of points, clipped to a box, with its dual Delaunay triangulation (the API is
+/// AffineDiagram's).
+using VoronoiDiagram = AffineDiagram<Point2>;
 
 }  // namespace laguerre::core

@@ -22,6 +22,7 @@
 /// boundary and pairwise disjoint, and constraint segments inside the domain, not crossing boundaries or
 /// each other except at shared endpoints. All these tests use exact predicates.
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
 
 #include <array>
@@ -32,9 +33,9 @@
 namespace laguerre::core {
 
 /// A domain that violates the rules of the file comment; `what()` names the file, line and rule.
-class DomainError : public std::runtime_error {
+class DomainError : public InputError {
 public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// Where a point lies with respect to a domain.
@@ -87,7 +88,7 @@ public:
   /// Whether the open triangle abc lies inside the domain and meets no constraint: no point of the
   /// boundary (outer or holes) and no point of a constraint segment is in its interior (a segment is a
   /// wall for this test, e.g. no sensor link across it). Precondition: a, b, c counter-clockwise and at
-  /// least one of them strictly inside (std::invalid_argument otherwise). Exact: a boundary edge or
+  /// least one of them strictly inside (precondition: InternalError otherwise). Exact: a boundary edge or
   /// segment meets the open triangle unless a triangle edge line or the segment's own line weakly
   /// separates them (separating axes). Cost O(edges + segments).
   bool triangle_inside(Point2 a, Point2 b, Point2 c) const;

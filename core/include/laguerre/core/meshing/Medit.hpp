@@ -10,6 +10,7 @@
 /// `SolAtVertices`, n, then `1 t` with t = 1 (a scalar size h, read as the metric I/h²) or t = 3 (a
 /// symmetric tensor m11 m12 m22), then n lines of values.
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/meshing/Metric.hpp"
 
 #include <array>
@@ -21,10 +22,9 @@
 namespace laguerre::core {
 
 /// Bad mesh or solution input; `what()` reads "<file>:<line>: <message>".
-class MeshInputError : public std::runtime_error {
+class MeshInputError : public InputError {
 public:
-  /// Builds the error (line 0 when no line applies).
-  MeshInputError(const std::string& source, std::size_t line, const std::string& message);
+  using InputError::InputError;
 };
 
 /// A planar triangle mesh with Medit references (labels) on vertices, triangles and edges.

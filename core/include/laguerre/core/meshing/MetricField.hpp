@@ -20,6 +20,7 @@
 ///                                     mesh path with .sol), interpolated linearly inside each triangle
 /// A field that yields a matrix that is not SPD at some point throws FieldError at that point.
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/meshing/Metric.hpp"
 
 #include <memory>
@@ -29,9 +30,9 @@
 namespace laguerre::core {
 
 /// A field specification that cannot be parsed, or a field that is not a metric where evaluated.
-class FieldError : public std::runtime_error {
+class FieldError : public InputError {
 public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// A metric field of the plane (or of a domain, for background-mesh fields).
