@@ -15,10 +15,13 @@
 
 namespace {
 
-// A scratch file of this process, removed at exit.
+// A scratch file of this process (in memory where /dev/shm exists), removed at exit.
 struct ScratchFile {
-  std::filesystem::path path = std::filesystem::temp_directory_path() /
-                               ("laguerre-domain-fuzz-" + std::to_string(::getpid()) + ".txt");
+  std::filesystem::path path = folder() / ("laguerre-domain-fuzz-" + std::to_string(::getpid()) + ".txt");
+  static std::filesystem::path folder() {
+    std::error_code ec;
+    return std::filesystem::is_directory("/dev/shm", ec) ? "/dev/shm" : std::filesystem::temp_directory_path();
+  }
   ~ScratchFile() {
     std::error_code ec;
     std::filesystem::remove(path, ec);
