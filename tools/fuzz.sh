@@ -36,7 +36,7 @@ done
 
 bin="$root/build/fuzz/tests/fuzz"
 if [ $build -eq 1 ]; then
-  cmake --preset fuzz -S "$root" >/dev/null
+  (cd "$root" && cmake --preset fuzz >/dev/null)
   targets=()
   for h in "${harnesses[@]}"; do targets+=("${h}_fuzz"); done
   nice cmake --build "$root/build/fuzz" --target "${targets[@]}" -j"$jobs"

@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <utility>
 #include <stdexcept>
 #include <string>
 
 #include "FuzzTarget.hpp"
 #include "laguerre/core/Error.hpp"
+#include "laguerre/core/geometry/Predicates.hpp"
 #include "laguerre/core/meshing/MetricField.hpp"
 
 namespace {
@@ -38,9 +38,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (spec.rfind("mesh", 0) == 0) return 0;
   const std::unique_ptr<core::MetricField> field = parse(spec);
   if (!field) return 0;
-  for (const auto& [x, y] : {std::pair{0.0, 0.0}, {0.5, 0.5}, {1.0, 0.25}, {-3.0, 7.0}}) {
+  for (const core::Point2 p : {core::Point2{0.0, 0.0}, {0.5, 0.5}, {1.0, 0.25}, {-3.0, 7.0}}) {
     core::Metric m;
-    if (laguerre::fuzz::parses<core::FieldError>([&] { m = field->at(x, y); }))
+    if (laguerre::fuzz::parses<core::FieldError>([&] { m = field->at(p.x, p.y); }))
       LAGUERRE_FUZZ_CHECK(core::is_metric(m) || unchecked_at(spec));
   }
   const std::string description = field->describe();
