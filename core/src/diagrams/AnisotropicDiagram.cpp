@@ -426,7 +426,7 @@ RestrictedAnisotropicDiagram restrict_anisotropic(const AnisotropicDiagram& diag
     for (std::size_t s = 0; s < segs.size(); ++s) at[segs[s][0]].push_back(s), at[segs[s][1]].push_back(s);
     std::vector<char> done(segs.size(), 0);
     SampledEdge edge{pair.first, pair.second, {}};
-    auto walk = [&, &segs = segs](long start) {  // clang < 16 cannot capture a structured binding
+    auto walk = [&](long start) {
       std::vector<Point2> line{where[start]};
       long cur = start;
       for (;;) {
