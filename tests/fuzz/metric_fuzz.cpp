@@ -1,7 +1,7 @@
 // Fuzz harness: metric field specifications (core/meshing/MetricField.hpp, parse_metric_field).
 // `mesh:FILE` specifications are skipped (they name files; the Medit reader is not this harness's
 // subject). On success the field's value at a few points is a metric or a FieldError, and its
-// description parses back to a field with the same description.
+// description parses back to a field of the same value (to 1e-9, the description has 12 digits).
 #include <algorithm>
 #include <cmath>
 #include <memory>
