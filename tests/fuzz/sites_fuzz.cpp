@@ -69,7 +69,7 @@ void check(std::vector<Site> sites, const std::vector<core::Point2>& points, boo
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto rows = numbers(laguerre::fuzz::as_text(data, size));
-  if (rows.empty() || rows.size() > max_sites) return 0;
+  if (rows.empty() || rows.size() > max_sites || rows[0].size() < 2 || rows[0].size() > 4) return 0;
   std::vector<core::Point2> points;
   for (const auto& r : rows) points.push_back({r[0], r[1]});
   switch (rows[0].size()) {
