@@ -7,9 +7,9 @@
 #   tools/fuzz.sh [--executions N] [--seconds S] [--jobs J] [--max-len L] [--no-build] [HARNESS...]
 #
 # HARNESS is a name of tests/fuzz/corpus (edges, coords, planar_code, graphml, dot, scenario, sites,
-# domain, metric, codec); all but scenario by default. --executions is libFuzzer's -runs per harness (default
-# 1000000), --seconds a time cap per harness (-max_total_time, default none), --jobs how many harnesses
-# run at once (default 1). Work files and reproducers go to build/fuzz/campaign/<harness>/.
+# domain, metric, codec); all but scenario by default. --executions is libFuzzer's -runs per harness
+# (default 1000000), --seconds a time cap per harness (-max_total_time, default none), --jobs how many
+# harnesses run at once (default 1). Work files and reproducers go to build/fuzz/campaign/<harness>/.
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -22,7 +22,7 @@ while [ $# -gt 0 ]; do
     --jobs) jobs=$2; shift 2 ;;
     --max-len) max_len=$2; shift 2 ;;
     --no-build) build=0; shift ;;
-    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
     -*) echo "fuzz.sh: unknown option $1" >&2; exit 2 ;;
     *) harnesses+=("$1"); shift ;;
   esac
