@@ -30,6 +30,7 @@
 #include "laguerre/core/packing/Thurston.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 #include "laguerre/protocols/Codec.hpp"
+#include "laguerre/protocols/Reliable.hpp"
 #include "laguerre/protocols/Runtime.hpp"
 
 namespace laguerre::protocols {
@@ -147,7 +148,8 @@ class AgentHost;
 }  // namespace detail
 
 /// One node of the packing protocol: its own protocol vertex plus the face vertices it hosts, and (on
-/// lossy links) the reliability layer under them.
+/// lossy links, `PackingParams::retransmit_after` > 0) the reliability layer under them: a
+/// ReliableNode (Reliable.hpp) that the node owns and through which its protocol talks to the host.
 class PackingNode final : public Node {
 public:
   /// A node with its static knowledge; `runtime` must outlive it. Throws std::invalid_argument if the
@@ -174,6 +176,8 @@ public:
   /// Back from an outage: re-arms the reliability layer's timers (retransmissions, owed acks, probes
   /// while running); the node's state survived, lost messages are recovered like any loss.
   void on_recover() override;
+  /// Whether the node is done: stopped by the decision, or ended by a failure.
+  bool is_final() const override;
 
   /// The current phase.
   PackingPhase phase() const;
@@ -181,8 +185,6 @@ public:
   PackingOutcome outcome() const;
   /// The node suspected of having failed (meaningful when outcome() is neighbour_failed).
   NodeId suspect() const { return suspect_; }
-  /// Whether the node is done: stopped by the decision, or ended by a failure.
-  bool is_final() const;
   /// When the node became final (the runtime's clock at the end of that callback); -1 while running.
   Time finished_at() const { return finished_at_; }
   /// The current retransmission timeout towards neighbour i (lossy mode; 0 without it).
@@ -211,8 +213,8 @@ public:
   core::LocalCondition local_condition() const;
   /// Whether the run packs G′ (some inner face is not a triangle; known after the set-up).
   bool polygon_faces() const;
-  /// Message statistics.
-  const PackingCounters& counters() const { return counters_; }
+  /// Message statistics (the protocol's and, on lossy links, the reliability layer's).
+  PackingCounters counters() const;
   /// Number of face vertices this node hosts.
   std::size_t hosted_faces() const { return agents_.size() - 1; }
   /// The walk (ids, from this node) of hosted face k < hosted_faces().
@@ -227,9 +229,9 @@ public:
 
 private:
   friend class detail::AgentHost;
-  struct Wedge;  // a non-triangle inner face at this node
-  struct Link;   // the reliability layer's state for one G-neighbour
-  struct Local;  // a message between two agents of this node, delivered after the callback
+  struct Wedge;     // a non-triangle inner face at this node
+  struct Local;     // a message between two agents of this node, delivered after the callback
+  class Protocol;   // the protocol as the reliability layer's inner node
 
   std::size_t index_of(NodeId id) const;
   const Wedge* wedge_of_face(NodeId face_id) const;
@@ -239,23 +241,12 @@ private:
   void handle_relay(std::size_t from, RelayMsg& m);
   void deliver_payload(std::size_t agent, std::size_t from_index, std::span<const std::byte> bytes);
   void drain();
-  bool lossy() const { return params_.retransmit_after > 0; }
+  void start();
+  void receive(NodeId from, std::span<const std::byte> bytes);
+  void abandon(NodeId suspect);
   void transmit(std::size_t i, std::span<const std::byte> bytes);
-  void send_frame(std::size_t i, std::span<const std::byte> payload);
-  void put_frame(std::size_t i, std::uint32_t seq, std::span<const std::byte> payload);
-  void handle_frame(std::size_t i, FrameMsg& f);
-  void handle_ack(std::size_t i, const AckInfo& a);
-  void sample_rtt(Link& l, Duration r);
-  void deliver_frame_payload(std::size_t i, std::span<const std::byte> payload);
-  void flush_acks();
-  void arm_retransmit(std::size_t i);
-  void on_retransmit(std::size_t i);
-  void on_probe();
-  void give_up(std::size_t i);
-  void declare_failure(NodeId suspect, std::size_t except);
-  void raw_send(NodeId to, std::span<const std::byte> bytes);
 
-  Runtime& rt_;
+  Runtime* rt_;  // the host's runtime, or the reliability layer's
   PackingParams params_;
   LocalKnowledge know_;
   std::size_t deg_ = 0;
@@ -265,14 +256,11 @@ private:
   std::unique_ptr<detail::AgentHost> host_;
   std::vector<Local> local_;                                  // FIFO, emptied by drain()
   std::vector<std::byte> relay_buffer_;
-  std::vector<std::byte> frame_buffer_;
-  std::vector<Link> links_;                                   // per G-neighbour (lossy mode)
-  std::vector<std::size_t> ack_owed_;                         // links with ack_pending, to flush
-  TimerHandle probe_timer_ = 0;
+  std::unique_ptr<ReliableNode> link_;                        // lossy mode: the layer under the protocol
   bool failed_ = false;
   NodeId suspect_ = 0;
   Time finished_at_ = -1;
-  PackingCounters counters_;
+  PackingCounters counters_;  // the protocol's (on lossy links, received/decode count frame payloads)
 };
 
 }  // namespace laguerre::protocols
