@@ -127,11 +127,13 @@ struct ForwardingResult {
   double stretch_p95 = std::numeric_limits<double>::quiet_NaN();   ///< its nearest-rank 95th percentile (NaN if none)
   double stretch_max = std::numeric_limits<double>::quiet_NaN();   ///< its maximum (NaN if none)
   double simulated_seconds = 0;   ///< simulated time of the forwarding run
+  std::uint64_t retransmissions = 0;  ///< frames the reliability layer sent again (lossy links; else 0)
 };
 
 /// Forwards one packet per pair in `pairs` hop by hop, one simulation per scheme, over the links of
-/// `link` without loss or duplication (forwarding has no retransmission) and the simulator seeded with
-/// `seed`. Greedy power routes on `circles`; the other schemes on `positions` if not empty (they also
+/// `link` and the simulator seeded with `seed`; on lossy or duplicating links every forwarding node
+/// runs over the reliability layer (protocols::ReliableNode), so each hop arrives exactly once and
+/// the outcomes and hop counts are those of loss-free links (only the timing differs). Greedy power routes on `circles`; the other schemes on `positions` if not empty (they also
 /// place the network's nodes for distance latencies), else on the circles' centres. Each packet's
 /// hop limit is core::default_ttl, so the outcomes are core::route's.
 std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
