@@ -46,21 +46,6 @@ void enable_lossy_links(PackingParams& params, Duration max_latency) {
   params.retransmit_after = r.retransmit_after;
 }
 
-namespace {
-ReliableParams reliable_params(const PackingParams& p) {
-  ReliableParams r;
-  r.retransmit_after = p.retransmit_after;
-  r.backoff_cap = p.backoff_cap;
-  r.max_retransmissions = p.max_retransmissions;
-  r.ack_delay = p.ack_delay;
-  r.probe_after = p.probe_after;
-  r.adaptive_rto = p.adaptive_rto;
-  r.rto_min = p.rto_min;
-  r.initial_seq = p.initial_seq;
-  return r;
-}
-}  // namespace
-
 // ---- Private state ----------------------------------------------------------------------------------
 
 struct PackingNode::Wedge {
@@ -100,7 +85,7 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
     throw std::invalid_argument(who + " is interior but has an outer-face wedge.");
   if (params.steps_per_check < 1) throw std::invalid_argument("steps_per_check must be at least 1.");
   if (params.max_iterations < 0) throw std::invalid_argument("max_iterations must not be negative.");
-  validate(reliable_params(params));
+  validate(params);
   if (!know_.faces.empty() && know_.faces.size() != deg_)
     throw std::invalid_argument(who + " lists faces for some but not all of its wedges.");
 
@@ -155,7 +140,7 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
     agents_.push_back(std::make_unique<detail::PackingAgent>(*host_, w.agent, std::move(fs), params));
   }
   if (params.retransmit_after > 0)
-    link_ = std::make_unique<ReliableNode>(runtime, know_.neighbours, reliable_params(params), [this](Runtime& rt) {
+    link_ = std::make_unique<ReliableNode>(runtime, know_.neighbours, params, [this](Runtime& rt) {
       rt_ = &rt;
       return std::make_unique<Protocol>(*this);
     });
@@ -316,25 +301,13 @@ bool PackingNode::is_final() const { return failed_ || agents_[0]->phase() == Pa
 
 PackingCounters PackingNode::counters() const {
   if (!link_) return counters_;
-  // On lossy links the wire traffic is the layer's; the protocol's received/decode count payloads.
-  const ReliableCounters& l = link_->counters();
+  // On lossy links the wire traffic is the layer's; the protocol's received/decode count payloads,
+  // and a payload it could not decode is a bad payload.
   PackingCounters c;
-  c.sent = l.sent;
-  c.bytes_sent = l.bytes_sent;
-  c.received = l.received;
-  c.decode = l.decode;
-  c.not_a_neighbour = l.not_a_neighbour;
-  c.unexpected = counters_.unexpected + l.unexpected;
+  static_cast<ReliableCounters&>(c) = link_->counters();
+  c.unexpected += counters_.unexpected;
   c.relayed = counters_.relayed;
-  c.bad_payload = counters_.bad_payload + l.bad_payload + counters_.received -
-                  counters_.decode[static_cast<std::size_t>(DecodeStatus::ok)];
-  c.frames = l.frames;
-  c.retransmissions = l.retransmissions;
-  c.acks = l.acks;
-  c.duplicates = l.duplicates;
-  c.out_of_window = l.out_of_window;
-  c.probes = l.probes;
-  c.links_failed = l.links_failed;
+  c.bad_payload += counters_.bad_payload + counters_.received - counters_.decode[static_cast<std::size_t>(DecodeStatus::ok)];
   return c;
 }
 

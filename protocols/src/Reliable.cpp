@@ -51,6 +51,24 @@ void validate(const ReliableParams& params) {
   if (params.rto_min < 0) throw std::invalid_argument("rto_min must not be negative.");
 }
 
+ReliableCounters& ReliableCounters::operator+=(const ReliableCounters& o) {
+  sent += o.sent;
+  bytes_sent += o.bytes_sent;
+  received += o.received;
+  for (std::size_t i = 0; i < decode.size(); ++i) decode[i] += o.decode[i];
+  not_a_neighbour += o.not_a_neighbour;
+  unexpected += o.unexpected;
+  bad_payload += o.bad_payload;
+  frames += o.frames;
+  retransmissions += o.retransmissions;
+  acks += o.acks;
+  duplicates += o.duplicates;
+  out_of_window += o.out_of_window;
+  probes += o.probes;
+  links_failed += o.links_failed;
+  return *this;
+}
+
 ReliableParams lossy_link_params(Duration max_latency) {
   const Duration l = std::max<Duration>(max_latency, 1);
   ReliableParams p;

@@ -194,7 +194,15 @@ std::string verify_against_core(const core::PlanarGraph& g, core::GraphKind kind
 std::unique_ptr<protocols::Node> make_forwarding_node(protocols::Runtime& rt, protocols::PacketSink& sink,
                                                       const core::PlanarGraph& g, core::Vertex v,
                                                       const core::CircleEmbedding& circles,
-                                                      const std::vector<core::Point2>& positions) {
+                                                      const std::vector<core::Point2>& positions,
+                                                      const std::optional<protocols::ReliableParams>& reliable) {
+  if (reliable) {
+    std::vector<protocols::NodeId> ids;
+    for (const core::Vertex w : g.neighbours(v)) ids.push_back(g.id(w));
+    return std::make_unique<protocols::ReliableNode>(rt, std::move(ids), *reliable, [&](protocols::Runtime& inner) {
+      return make_forwarding_node(inner, sink, g, v, circles, positions);
+    });
+  }
   std::vector<protocols::NodeId> nb;
   std::vector<core::Circle> nb_circles;
   std::vector<core::Point2> nb_points;
@@ -205,6 +213,11 @@ std::unique_ptr<protocols::Node> make_forwarding_node(protocols::Runtime& rt, pr
   }
   return std::make_unique<protocols::ForwardingNode>(rt, sink, g.id(v), nb, circles[v], nb_circles, positions[v],
                                                      nb_points);
+}
+
+protocols::ForwardingNode& forwarding_node(protocols::Node& node) {
+  auto* layer = dynamic_cast<protocols::ReliableNode*>(&node);
+  return static_cast<protocols::ForwardingNode&>(layer ? layer->inner() : node);
 }
 
 std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
@@ -219,10 +232,10 @@ std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const c
   // delivered exactly once, so the packets take core::route's paths. No probes: an idle forwarder has
   // nothing to watch, and the queue drains once every packet has arrived and been acknowledged.
   const bool lossy = link.loss > 0 || link.duplication > 0;
-  protocols::ReliableParams reliable;
+  std::optional<protocols::ReliableParams> reliable;
   if (lossy) {
     reliable = protocols::lossy_link_params(max_latency(make_network(g, positions, link), link));
-    reliable.probes = false;
+    reliable->probes = false;
   }
   sim::SimConfig config;
   config.seed = seed;
@@ -234,22 +247,15 @@ std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const c
     Collector sink;
     sim::SimHost fwd(
         make_network(g, positions, link), config,
-        [&](protocols::Runtime& rt, sim::NodeIndex v) -> std::unique_ptr<protocols::Node> {
-          if (!lossy) return make_forwarding_node(rt, sink, g, v, circles, pos);
-          std::vector<protocols::NodeId> nb;
-          for (const core::Vertex w : g.neighbours(v)) nb.push_back(g.id(w));
-          return std::make_unique<protocols::ReliableNode>(rt, std::move(nb), reliable, [&](protocols::Runtime& inner) {
-            return make_forwarding_node(inner, sink, g, v, circles, pos);
-          });
+        [&](protocols::Runtime& rt, sim::NodeIndex v) {
+          return make_forwarding_node(rt, sink, g, v, circles, pos, reliable);
         },
         phase_of);
     // core::route's default hop limit, so that the hop-by-hop outcomes are core's.
     const auto ttl = static_cast<std::uint32_t>(std::min<std::size_t>(core::default_ttl(g, scheme), 0xffffffffu));
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       const auto [s, t] = pairs[i];
-      protocols::Node& node = fwd.node(s);
-      static_cast<protocols::ForwardingNode&>(lossy ? static_cast<protocols::ReliableNode&>(node).inner() : node)
-          .originate({i, g.id(t), circles[t], ttl, scheme, pos[t]});
+      forwarding_node(fwd.node(s)).originate({i, g.id(t), circles[t], ttl, scheme, pos[t]});
     }
     const sim::RunReport fwd_report = fwd.run();
     for (sim::NodeIndex v = 0; lossy && v < n; ++v)

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "laguerre/core/graph/GraphKind.hpp"
@@ -60,21 +61,15 @@ std::size_t expect_equal(const core::PlanarGraph& g, const core::CircleEmbedding
   sim::SimConfig config;
   config.seed = seed;
   Recorder sink;
-  protocols::ReliableParams reliable = protocols::lossy_link_params(sim::milliseconds(3));
-  reliable.probes = false;
-  sim::SimHost host(sim::network_of(g, link), config,
-                    [&](protocols::Runtime& rt, sim::NodeIndex v) -> std::unique_ptr<protocols::Node> {
-                      if (loss == 0) return scenarios::make_forwarding_node(rt, sink, g, v, phi, pos);
-                      std::vector<protocols::NodeId> nb;
-                      for (core::Vertex w : g.neighbours(v)) nb.push_back(g.id(w));
-                      return std::make_unique<protocols::ReliableNode>(rt, nb, reliable, [&](protocols::Runtime& inner) {
-                        return scenarios::make_forwarding_node(inner, sink, g, v, phi, pos);
-                      });
-                    });
-  const auto forwarder = [&](core::Vertex v) -> ForwardingNode& {
-    protocols::Node& node = host.node(v);
-    return static_cast<ForwardingNode&>(loss > 0 ? static_cast<protocols::ReliableNode&>(node).inner() : node);
-  };
+  std::optional<protocols::ReliableParams> reliable;
+  if (loss > 0) {
+    reliable = protocols::lossy_link_params(sim::milliseconds(3));
+    reliable->probes = false;
+  }
+  sim::SimHost host(sim::network_of(g, link), config, [&](protocols::Runtime& rt, sim::NodeIndex v) {
+    return scenarios::make_forwarding_node(rt, sink, g, v, phi, pos, reliable);
+  });
+  const auto forwarder = [&](core::Vertex v) -> ForwardingNode& { return scenarios::forwarding_node(host.node(v)); };
   const auto pairs = core::select_pairs(n, {n <= 30 ? std::size_t{0} : std::size_t{400}, seed});
   std::uint64_t packet = 0;
   for (core::Scheme s : core::all_schemes)

@@ -47,22 +47,15 @@ inline constexpr NodeId max_face_node_id = (NodeId{1} << 31) - 1;
 /// (both ≤ max_face_node_id): 2^63 + host·2^31 + successor, never a node id.
 constexpr NodeId face_vertex_id(NodeId host, NodeId successor) { return (NodeId{1} << 63) | (host << 31) | successor; }
 
-/// Parameters shared by all nodes of a run (the same values core::PackOptions would hold, plus the
-/// reliability layer's).
-struct PackingParams {
+/// Parameters shared by all nodes of a run: the values core::PackOptions would hold, plus the
+/// reliability layer's (inherited; `retransmit_after` = 0, the default, means reliable links and no
+/// layer).
+struct PackingParams : ReliableParams {
   int steps_per_check = 1;                                        ///< N: Thurston steps per round (≥ 1)
   int max_iterations = 100000;                                    ///< cap on steps (≥ 0)
   core::UpdateRule update = core::UpdateRule::uniform_neighbour;  ///< per-vertex update
   core::RootRule root = core::RootRule::deepest;                  ///< which root the election picks
-  Duration retransmit_after = 0;  ///< first retransmission period (ns); 0 = reliable links, no reliability layer
-  int backoff_cap = 8;            ///< longest retransmission period, in multiples of retransmit_after (≥ 1)
-  int max_retransmissions = 24;   ///< retransmissions without progress before a neighbour is suspected (≥ 1)
-  Duration ack_delay = 0;         ///< wait before a standalone ack (ns), in case a frame can carry it
-  Duration probe_after = 0;       ///< silence before a running node probes a neighbour (ns); 0 = 32 × retransmit_after
-  bool asynchronous = false;      ///< asynchronous Thurston updates (chaotic relaxation); not bit for bit with core
-  bool adaptive_rto = true;       ///< adapt each link's retransmission timeout to measured round trips
-  Duration rto_min = 0;           ///< lower clamp of the adaptive timeout (ns); 0 = retransmit_after / 4
-  std::uint32_t initial_seq = 0;  ///< first sequence number of every link (all nodes must agree)
+  bool asynchronous = false;  ///< asynchronous Thurston updates (chaotic relaxation); not bit for bit with core
 };
 
 /// Turns the reliability layer on with periods fitted to links whose one-way latency is at most
@@ -88,41 +81,17 @@ enum class PackingOutcome : std::uint8_t {
   neighbour_failed,  ///< some node stopped answering (PackingNode::suspect names it); the run was abandoned
 };
 
-/// Per-node message statistics (physical messages: a relayed envelope counts at every hop).
-struct PackingCounters {
-  std::uint64_t sent = 0;                                     ///< messages handed to the runtime (a broadcast counts once per neighbour)
-  std::uint64_t bytes_sent = 0;                               ///< their bytes
-  std::uint64_t received = 0;                                 ///< messages received
-  std::array<std::uint64_t, decode_status_count> decode{};    ///< received messages per DecodeStatus
-  std::uint64_t not_a_neighbour = 0;                          ///< from an id that is not a neighbour
-  std::uint64_t unexpected = 0;                               ///< of the node's set but not fitting its state
-  std::uint64_t relayed = 0;                                  ///< RelayMsg envelopes forwarded for others
-  std::uint64_t bad_payload = 0;                              ///< relay or frame payloads that did not decode
-  std::uint64_t frames = 0;                                   ///< frames sent for the first time (lossy mode)
-  std::uint64_t retransmissions = 0;                          ///< frames sent again after a timeout
-  std::uint64_t acks = 0;                                     ///< standalone acks sent
-  std::uint64_t duplicates = 0;                               ///< frames received again (never delivered twice)
-  std::uint64_t out_of_window = 0;                            ///< frames too far ahead, dropped unacknowledged
-  std::uint64_t probes = 0;                                   ///< empty frames sent to silent neighbours
-  std::uint64_t links_failed = 0;                             ///< links given up after max_retransmissions
+/// Per-node message statistics (physical messages: a relayed envelope counts at every hop): the
+/// reliability layer's on lossy links (inherited; zero otherwise, but for the fields both count), and
+/// the protocol's. `unexpected` also counts messages of the node's set that do not fit its state,
+/// `bad_payload` also relay payloads that did not decode.
+struct PackingCounters : ReliableCounters {
+  std::uint64_t relayed = 0;  ///< RelayMsg envelopes forwarded for others
 
   /// Adds `o` field by field (totals over nodes).
   PackingCounters& operator+=(const PackingCounters& o) {
-    sent += o.sent;
-    bytes_sent += o.bytes_sent;
-    received += o.received;
-    for (std::size_t i = 0; i < decode.size(); ++i) decode[i] += o.decode[i];
-    not_a_neighbour += o.not_a_neighbour;
-    unexpected += o.unexpected;
+    ReliableCounters::operator+=(o);
     relayed += o.relayed;
-    bad_payload += o.bad_payload;
-    frames += o.frames;
-    retransmissions += o.retransmissions;
-    acks += o.acks;
-    duplicates += o.duplicates;
-    out_of_window += o.out_of_window;
-    probes += o.probes;
-    links_failed += o.links_failed;
     return *this;
   }
 };

@@ -31,7 +31,7 @@ namespace laguerre::protocols {
 
 /// The layer's parameters (all nodes of a run must agree on them).
 struct ReliableParams {
-  Duration retransmit_after = 1;  ///< first retransmission period (ns, > 0)
+  Duration retransmit_after = 0;  ///< first retransmission period (ns; a ReliableNode needs > 0)
   int backoff_cap = 8;            ///< longest retransmission period, in multiples of retransmit_after (≥ 1)
   int max_retransmissions = 24;   ///< retransmissions without progress before a neighbour is suspected (≥ 1)
   Duration ack_delay = 0;         ///< wait before a standalone ack (ns), in case a frame can carry it
@@ -51,15 +51,15 @@ void validate(const ReliableParams& params);
 /// delay), the rest default.
 ReliableParams lossy_link_params(Duration max_latency);
 
-/// The layer's message statistics (physical messages).
+/// The layer's message statistics (physical messages; a broadcast counts once per neighbour).
 struct ReliableCounters {
   std::uint64_t sent = 0;                                   ///< messages handed to the host's runtime
   std::uint64_t bytes_sent = 0;                             ///< their bytes
   std::uint64_t received = 0;                               ///< messages received from the host
   std::array<std::uint64_t, decode_status_count> decode{};  ///< received messages per DecodeStatus (as LinkMessage)
   std::uint64_t not_a_neighbour = 0;                        ///< from an id that is not a neighbour
-  std::uint64_t unexpected = 0;                             ///< timers of the layer that fit no link
-  std::uint64_t bad_payload = 0;                            ///< failure notices that did not decode
+  std::uint64_t unexpected = 0;                             ///< timers that fit no link
+  std::uint64_t bad_payload = 0;                            ///< frame payloads that did not decode (failure notices)
   std::uint64_t frames = 0;                                 ///< frames sent for the first time
   std::uint64_t retransmissions = 0;                        ///< frames sent again after a timeout
   std::uint64_t acks = 0;                                   ///< standalone acks sent
@@ -67,6 +67,9 @@ struct ReliableCounters {
   std::uint64_t out_of_window = 0;                          ///< frames too far ahead, dropped unacknowledged
   std::uint64_t probes = 0;                                 ///< empty frames sent to silent neighbours
   std::uint64_t links_failed = 0;                           ///< links given up after max_retransmissions
+
+  /// Adds `o` field by field (totals over nodes).
+  ReliableCounters& operator+=(const ReliableCounters& o);
 };
 
 /// A node that runs an inner node over the reliability layer.

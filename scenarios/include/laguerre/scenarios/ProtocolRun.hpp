@@ -24,6 +24,7 @@
 #include "laguerre/core/routing/Routing.hpp"
 #include "laguerre/protocols/Forwarding.hpp"
 #include "laguerre/protocols/PackingNode.hpp"
+#include "laguerre/protocols/Reliable.hpp"
 #include "laguerre/protocols/Runtime.hpp"
 #include "laguerre/scenarios/NetworkModel.hpp"
 #include "laguerre/sim/Link.hpp"
@@ -108,11 +109,16 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
 std::string verify_against_core(const core::PlanarGraph& g, core::GraphKind kind, const ProtocolSetup& setup,
                                 const ProtocolOutcome& outcome);
 
-/// A forwarding node for vertex `v` of `g`, knowing its own and its neighbours' circles and positions.
+/// A forwarding node for vertex `v` of `g`, knowing its own and its neighbours' circles and positions;
+/// with `reliable`, inside a protocols::ReliableNode with those parameters (for lossy links).
 std::unique_ptr<protocols::Node> make_forwarding_node(protocols::Runtime& rt, protocols::PacketSink& sink,
                                                       const core::PlanarGraph& g, core::Vertex v,
                                                       const core::CircleEmbedding& circles,
-                                                      const std::vector<core::Point2>& positions);
+                                                      const std::vector<core::Point2>& positions,
+                                                      const std::optional<protocols::ReliableParams>& reliable = {});
+
+/// The forwarding node of a node make_forwarding_node built (inside its reliability layer, if any).
+protocols::ForwardingNode& forwarding_node(protocols::Node& node);
 
 /// Hop-by-hop forwarding of one scheme: outcomes and hop stretch against BFS shortest paths.
 struct ForwardingResult {
