@@ -68,7 +68,7 @@ public:
   void on_start() override { node_.start(); }
   void on_message(NodeId from, std::span<const std::byte> bytes) override { node_.receive(from, bytes); }
   void on_timer(TimerId) override { ++node_.counters_.unexpected; }
-  void on_failure(NodeId suspect) override { node_.abandon(suspect); }
+  void on_failure(NodeId suspect) override { node_.on_failure(suspect); }
   bool is_final() const override { return node_.is_final(); }
 
 private:
@@ -289,7 +289,7 @@ void PackingNode::transmit(std::size_t i, std::span<const std::byte> bytes) {
   counters_.bytes_sent += bytes.size();
 }
 
-void PackingNode::abandon(NodeId suspect) {
+void PackingNode::on_failure(NodeId suspect) {
   // The layer declared a failure: the run is abandoned, local deliveries are dropped.
   failed_ = true;
   suspect_ = suspect;

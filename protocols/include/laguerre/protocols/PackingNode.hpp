@@ -147,6 +147,9 @@ public:
   void on_recover() override;
   /// Whether the node is done: stopped by the decision, or ended by a failure.
   bool is_final() const override;
+  /// A reliability layer under the node (its own or one wrapping it) declared `suspect` failed: the
+  /// run is abandoned with PackingOutcome::neighbour_failed.
+  void on_failure(NodeId suspect) override;
 
   /// The current phase.
   PackingPhase phase() const;
@@ -212,7 +215,6 @@ private:
   void drain();
   void start();
   void receive(NodeId from, std::span<const std::byte> bytes);
-  void abandon(NodeId suspect);
   void transmit(std::size_t i, std::span<const std::byte> bytes);
 
   Runtime* rt_;  // the host's runtime, or the reliability layer's
