@@ -1,10 +1,10 @@
 #include "laguerre/protocols/PackingNode.hpp"
 
 #include <algorithm>
-#include <deque>
 #include <stdexcept>
 #include <string>
 
+#include "Neighbours.hpp"
 #include "PackingAgent.hpp"
 
 namespace laguerre::protocols {
@@ -41,9 +41,9 @@ LocalKnowledge local_knowledge(const core::PlanarGraph& g, core::Vertex v) {
 }
 
 void enable_lossy_links(PackingParams& params, Duration max_latency) {
-  const Duration l = std::max<Duration>(max_latency, 1);
-  params.ack_delay = l / 2;
-  params.retransmit_after = 3 * l;
+  const ReliableParams r = lossy_link_params(max_latency);
+  params.ack_delay = r.ack_delay;
+  params.retransmit_after = r.retransmit_after;
 }
 
 // ---- Private state ----------------------------------------------------------------------------------
@@ -55,82 +55,37 @@ struct PackingNode::Wedge {
   std::size_t agent = 0;     // index in agents_ if hosted here, else 0
 };
 
-// The reliability layer's state for one G-neighbour (docs/protocol.md, "Loss, duplication and crashes").
-struct PackingNode::Link {
-  struct Pending {  // a frame not yet acknowledged
-    std::uint32_t seq = 0;
-    std::vector<std::byte> payload;
-    Time sent_at = 0;            // first transmission
-    bool retransmitted = false;  // Karn: no RTT sample from it
-  };
-  std::uint32_t next_seq = 0;  // next sequence number to send
-  std::deque<Pending> unacked;  // by seq
-  TimerHandle retransmit_timer = 0;
-  Duration period = 0;  // current retransmission period
-  Duration rto = 0;     // current timeout (backoff resets to it)
-  Duration srtt = 0;    // smoothed round trip (ns)
-  Duration rttvar = 0;  // its mean deviation (ns)
-  bool has_rtt = false;  // a sample was taken
-  int attempts = 0;      // retransmissions since progress
-  AckInfo received;      // what we have of the reverse link
-  bool ack_pending = false;
-  TimerHandle ack_timer = 0;
-  Time last_heard = 0;
-  bool dead = false;
-};
-
 struct PackingNode::Local {
   std::size_t agent;
   std::size_t from_index;
   std::vector<std::byte> bytes;
 };
 
-namespace {
-// Timer ids: kind in the top byte, G-neighbour index below.
-constexpr TimerId timer_retransmit = TimerId{1} << 56;
-constexpr TimerId timer_ack = TimerId{2} << 56;
-constexpr TimerId timer_probe = TimerId{3} << 56;
-constexpr TimerId timer_kind = TimerId{0xff} << 56;
+// The protocol as seen by the reliability layer: its frames' payloads, its failure notification.
+class PackingNode::Protocol final : public Node {
+public:
+  explicit Protocol(PackingNode& node) : node_(node) {}
+  void on_start() override { node_.start(); }
+  void on_message(NodeId from, std::span<const std::byte> bytes) override { node_.receive(from, bytes); }
+  void on_timer(TimerId) override { ++node_.counters_.unexpected; }
+  void on_failure(NodeId suspect) override { node_.on_failure(suspect); }
+  bool is_final() const override { return node_.is_final(); }
 
-/// Serial-number order of 32-bit sequence numbers (RFC 1982): a is before b iff b − a, taken mod 2^32,
-/// lies in [1, 2^31).
-bool seq_before(std::uint32_t a, std::uint32_t b) { return a != b && static_cast<std::uint32_t>(b - a) < (1u << 31); }
-}  // namespace
+private:
+  PackingNode& node_;
+};
 
 PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingParams params)
-    : rt_(runtime), params_(params), know_(std::move(knowledge)), deg_(know_.neighbours.size()) {
+    : rt_(&runtime), params_(params), know_(std::move(knowledge)), deg_(know_.neighbours.size()) {
   const std::string who = "Node " + std::to_string(know_.id);
-  if (deg_ == 0) throw std::invalid_argument(who + " has no neighbours.");
-  if (deg_ >= 0xffffffffu) throw std::invalid_argument(who + " has too many neighbours.");
-  for (std::size_t i = 0; i < deg_; ++i) {
-    if (know_.neighbours[i] == know_.id) throw std::invalid_argument(who + " lists itself as a neighbour.");
-    sorted_ids_.emplace_back(know_.neighbours[i], static_cast<std::uint32_t>(i));
-  }
-  std::sort(sorted_ids_.begin(), sorted_ids_.end());
-  for (std::size_t i = 1; i < deg_; ++i)
-    if (sorted_ids_[i].first == sorted_ids_[i - 1].first)
-      throw std::invalid_argument(who + " lists neighbour " + std::to_string(sorted_ids_[i].first) + " twice.");
+  sorted_ids_ = detail::sorted_neighbours(know_.id, know_.neighbours);
   if (know_.boundary && know_.outer_gap >= deg_)
     throw std::invalid_argument(who + " is on the boundary but its outer-face wedge is not one of its wedges.");
   if (!know_.boundary && know_.outer_gap != LocalKnowledge::no_gap)
     throw std::invalid_argument(who + " is interior but has an outer-face wedge.");
   if (params.steps_per_check < 1) throw std::invalid_argument("steps_per_check must be at least 1.");
   if (params.max_iterations < 0) throw std::invalid_argument("max_iterations must not be negative.");
-  if (params.retransmit_after < 0 || params.ack_delay < 0 || params.probe_after < 0)
-    throw std::invalid_argument("retransmit_after, ack_delay and probe_after must not be negative.");
-  if (params.backoff_cap < 1 || params.max_retransmissions < 1)
-    throw std::invalid_argument("backoff_cap and max_retransmissions must be at least 1.");
-  if (params.rto_min < 0) throw std::invalid_argument("rto_min must not be negative.");
-  if (lossy()) {
-    if (params_.probe_after == 0) params_.probe_after = 32 * params_.retransmit_after;
-    if (params_.rto_min == 0) params_.rto_min = std::max<Duration>(1, params_.retransmit_after / 4);
-    links_.assign(deg_, Link{});
-    for (Link& l : links_) {
-      l.period = l.rto = params_.retransmit_after;
-      l.next_seq = params_.initial_seq;
-      l.received.next = params_.initial_seq;
-    }
-  }
+  validate(params);
   if (!know_.faces.empty() && know_.faces.size() != deg_)
     throw std::invalid_argument(who + " lists faces for some but not all of its wedges.");
 
@@ -184,14 +139,16 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
     w.agent = agents_.size();
     agents_.push_back(std::make_unique<detail::PackingAgent>(*host_, w.agent, std::move(fs), params));
   }
+  if (params.retransmit_after > 0)
+    link_ = std::make_unique<ReliableNode>(runtime, know_.neighbours, params, [this](Runtime& rt) {
+      rt_ = &rt;
+      return std::make_unique<Protocol>(*this);
+    });
 }
 
 PackingNode::~PackingNode() = default;
 
-std::size_t PackingNode::index_of(NodeId id) const {
-  const auto it = std::lower_bound(sorted_ids_.begin(), sorted_ids_.end(), std::make_pair(id, std::uint32_t{0}));
-  return it != sorted_ids_.end() && it->first == id ? it->second : deg_;
-}
+std::size_t PackingNode::index_of(NodeId id) const { return detail::neighbour_index(sorted_ids_, id); }
 
 const PackingNode::Wedge* PackingNode::wedge_of_face(NodeId face_id) const {
   for (const Wedge& w : wedges_)
@@ -285,286 +242,38 @@ void PackingNode::drain() {
     agents_[l.agent]->receive(l.from_index, m);
   }
   local_.clear();
-  if (finished_at_ < 0 && is_final()) finished_at_ = rt_.now();
+  if (finished_at_ < 0 && is_final()) finished_at_ = rt_->now();
 }
 
 void PackingNode::on_start() {
+  if (link_) link_->on_start();
+  else start();
+}
+
+void PackingNode::start() {
   for (auto& a : agents_) a->start();
   drain();
-  if (lossy()) probe_timer_ = rt_.schedule(params_.probe_after, timer_probe);
 }
 
 void PackingNode::on_timer(TimerId timer) {
-  const std::size_t i = static_cast<std::size_t>(timer & ~timer_kind);
-  const TimerId kind = timer & timer_kind;
-  if (!lossy() || (kind != timer_probe && i >= deg_)) {
-    ++counters_.unexpected;
-    return;
-  }
-  if (kind == timer_retransmit) {
-    links_[i].retransmit_timer = 0;
-    on_retransmit(i);
-  } else if (kind == timer_ack) {
-    links_[i].ack_timer = 0;
-    if (links_[i].ack_pending && !links_[i].dead) {
-      links_[i].ack_pending = false;
-      encode(AckMsg{links_[i].received}, frame_buffer_);
-      raw_send(know_.neighbours[i], frame_buffer_);
-      ++counters_.acks;
-    }
-  } else if (kind == timer_probe) {
-    probe_timer_ = 0;
-    on_probe();
-  } else {
-    ++counters_.unexpected;
-  }
-  drain();
+  if (link_) link_->on_timer(timer);
+  else ++counters_.unexpected;  // the protocol has no timers of its own
 }
 
 void PackingNode::on_recover() {
-  if (!lossy()) return;  // reliable links: nothing was armed
-  // Timers that fell in the outage are gone; those due later are still live. Cancel-then-schedule
-  // is right in both cases (cancelling a dead handle is a no-op).
-  for (std::size_t i = 0; i < deg_; ++i) {
-    Link& l = links_[i];
-    if (l.dead) continue;
-    if (!l.unacked.empty()) arm_retransmit(i);
-    if (l.ack_timer != 0) rt_.cancel(l.ack_timer);
-    l.ack_timer = 0;
-    if (l.ack_pending) ack_owed_.push_back(i);
-  }
-  if (probe_timer_ != 0) rt_.cancel(probe_timer_);
-  probe_timer_ = is_final() ? 0 : rt_.schedule(params_.probe_after, timer_probe);
-  flush_acks();
+  if (link_) link_->on_recover();  // reliable links: nothing was armed
 }
-
-// ---- The reliability layer (lossy mode; docs/protocol.md, "Loss, duplication and crashes") ----------
-
-void PackingNode::raw_send(NodeId to, std::span<const std::byte> bytes) {
-  rt_.send(to, bytes);
-  ++counters_.sent;
-  counters_.bytes_sent += bytes.size();
-}
-
-void PackingNode::transmit(std::size_t i, std::span<const std::byte> bytes) {
-  if (!lossy()) {
-    raw_send(know_.neighbours[i], bytes);
-    return;
-  }
-  send_frame(i, bytes);
-}
-
-void PackingNode::send_frame(std::size_t i, std::span<const std::byte> payload) {
-  Link& l = links_[i];
-  if (l.dead) return;  // its neighbour is suspected: the run is ending anyway
-  const std::uint32_t seq = l.next_seq++;
-  l.unacked.push_back({seq, std::vector<std::byte>(payload.begin(), payload.end()), rt_.now(), false});
-  ++counters_.frames;
-  put_frame(i, seq, payload);
-  if (l.retransmit_timer == 0) arm_retransmit(i);
-}
-
-void PackingNode::put_frame(std::size_t i, std::uint32_t seq, std::span<const std::byte> payload) {
-  Link& l = links_[i];
-  // The frame carries our acknowledgement of the reverse link: no standalone ack is owed any more.
-  FrameMsg f{seq, l.received, {payload.begin(), payload.end()}};
-  encode(f, frame_buffer_);
-  raw_send(know_.neighbours[i], frame_buffer_);
-  l.ack_pending = false;
-  if (l.ack_timer != 0) {
-    rt_.cancel(l.ack_timer);
-    l.ack_timer = 0;
-  }
-}
-
-void PackingNode::arm_retransmit(std::size_t i) {
-  Link& l = links_[i];
-  if (l.retransmit_timer != 0) rt_.cancel(l.retransmit_timer);
-  l.retransmit_timer = rt_.schedule(l.period, timer_retransmit | i);
-}
-
-void PackingNode::on_retransmit(std::size_t i) {
-  Link& l = links_[i];
-  if (l.dead || l.unacked.empty()) return;
-  if (l.attempts >= params_.max_retransmissions) {
-    give_up(i);
-    return;
-  }
-  ++l.attempts;
-  for (Link::Pending& p : l.unacked) {
-    put_frame(i, p.seq, p.payload);
-    p.retransmitted = true;
-    ++counters_.retransmissions;
-  }
-  l.period = std::min(2 * l.period, params_.backoff_cap * params_.retransmit_after);
-  arm_retransmit(i);
-}
-
-void PackingNode::handle_ack(std::size_t i, const AckInfo& a) {
-  // Drop every frame the neighbour proves it has: below a.next, or flagged in the bitmap above it.
-  Link& l = links_[i];
-  const std::size_t before = l.unacked.size();
-  bool timed = false;  // Karn: the newest newly acknowledged frame sent only once gives the sample
-  Time timed_at = 0;
-  std::erase_if(l.unacked, [&](const Link::Pending& e) {
-    const std::uint32_t k = e.seq - a.next;  // mod 2^32
-    const bool acked = seq_before(e.seq, a.next) || (k >= 1 && k <= 64 && ((a.bits >> (k - 1)) & 1u) != 0);
-    if (acked && !e.retransmitted && (!timed || e.sent_at > timed_at)) {
-      timed = true;
-      timed_at = e.sent_at;
-    }
-    return acked;
-  });
-  if (l.unacked.size() == before) return;
-  if (timed && params_.adaptive_rto) sample_rtt(l, rt_.now() - timed_at);
-  // Progress: the link is alive; start the backoff again (or stop the timer if nothing is left).
-  l.attempts = 0;
-  l.period = l.rto;
-  if (l.unacked.empty()) {
-    if (l.retransmit_timer != 0) rt_.cancel(l.retransmit_timer);
-    l.retransmit_timer = 0;
-  } else {
-    arm_retransmit(i);
-  }
-}
-
-void PackingNode::sample_rtt(Link& l, Duration r) {
-  // Jacobson/Karels in integer nanoseconds (docs/protocol.md, "Adaptive timeout").
-  r = std::max<Duration>(r, 0);
-  if (!l.has_rtt) {
-    l.srtt = r;
-    l.rttvar = r / 2;
-    l.has_rtt = true;
-  } else {
-    const Duration err = l.srtt > r ? l.srtt - r : r - l.srtt;
-    l.rttvar = (3 * l.rttvar + err) / 4;
-    l.srtt = (7 * l.srtt + r) / 8;
-  }
-  l.rto = std::clamp<Duration>(l.srtt + 4 * l.rttvar, params_.rto_min,
-                               std::max<Duration>(params_.rto_min, params_.backoff_cap * params_.retransmit_after));
-}
-
-void PackingNode::handle_frame(std::size_t i, FrameMsg& f) {
-  Link& l = links_[i];
-  handle_ack(i, f.ack);
-  // Every copy re-arms our ack: if the copy is a retransmission, our earlier ack was lost.
-  if (!l.ack_pending) {
-    l.ack_pending = true;
-    ack_owed_.push_back(i);
-  }
-  AckInfo& r = l.received;
-  bool fresh = false;
-  if (f.seq == r.next) {
-    // Advance past every sequence number already held (bit k ↔ r.next + 1 + k).
-    fresh = true;
-    for (;;) {
-      ++r.next;
-      const bool have = (r.bits & 1u) != 0;
-      r.bits >>= 1;
-      if (!have) break;
-    }
-  } else if (seq_before(r.next, f.seq)) {
-    const std::uint32_t k = f.seq - r.next - 1;  // mod 2^32
-    if (k >= 64) {
-      ++counters_.out_of_window;
-      return;
-    }
-    fresh = ((r.bits >> k) & 1u) == 0;
-    r.bits |= std::uint64_t{1} << k;
-  }
-  if (!fresh) {
-    ++counters_.duplicates;
-    return;
-  }
-  deliver_frame_payload(i, f.payload);
-}
-
-void PackingNode::deliver_frame_payload(std::size_t i, std::span<const std::byte> payload) {
-  if (payload.empty()) return;  // a probe: its only purpose was the ack
-  FramePayload m;  // frames never nest
-  if (decode(payload, m) != DecodeStatus::ok) {
-    ++counters_.bad_payload;
-    return;
-  }
-  if (const auto* fail = std::get_if<FailureMsg>(&m)) {
-    declare_failure(fail->suspect, i);
-    return;
-  }
-  if (failed_) return;  // the run is abandoned: the protocol does not run any more
-  handle_hop(i, std::get<PackingHop>(m));
-}
-
-void PackingNode::flush_acks() {
-  // After a callback: acks still owed (no frame to that neighbour carried them) go alone, at once or
-  // after ack_delay in case a frame leaves first.
-  for (std::size_t i : ack_owed_) {
-    Link& l = links_[i];
-    if (!l.ack_pending || l.dead) continue;
-    if (params_.ack_delay == 0) {
-      l.ack_pending = false;
-      encode(AckMsg{l.received}, frame_buffer_);
-      raw_send(know_.neighbours[i], frame_buffer_);
-      ++counters_.acks;
-    } else if (l.ack_timer == 0) {
-      l.ack_timer = rt_.schedule(params_.ack_delay, timer_ack | i);
-    }
-  }
-  ack_owed_.clear();
-}
-
-void PackingNode::on_probe() {
-  if (is_final()) return;  // a finished node no longer probes: the queue may drain
-  const Time now = rt_.now();
-  for (std::size_t i = 0; i < deg_; ++i) {
-    Link& l = links_[i];
-    if (l.dead || !l.unacked.empty() || now - l.last_heard < params_.probe_after) continue;
-    ++counters_.probes;
-    send_frame(i, {});
-  }
-  probe_timer_ = rt_.schedule(params_.probe_after, timer_probe);
-}
-
-void PackingNode::give_up(std::size_t i) {
-  Link& l = links_[i];
-  l.dead = true;
-  l.unacked.clear();
-  l.ack_pending = false;
-  if (l.ack_timer != 0) rt_.cancel(l.ack_timer);
-  l.ack_timer = 0;
-  ++counters_.links_failed;
-  declare_failure(know_.neighbours[i], deg_);
-}
-
-void PackingNode::declare_failure(NodeId suspect, std::size_t except) {
-  if (failed_) return;  // the notice already went out from here: the flood stops
-  failed_ = true;
-  suspect_ = suspect;
-  if (probe_timer_ != 0) rt_.cancel(probe_timer_);
-  probe_timer_ = 0;
-  const std::vector<std::byte> notice = encode(FailureMsg{suspect});
-  for (std::size_t j = 0; j < deg_; ++j)
-    if (j != except) send_frame(j, notice);
-}
-
-bool PackingNode::is_final() const { return failed_ || agents_[0]->phase() == PackingPhase::finished; }
 
 void PackingNode::on_message(NodeId from, std::span<const std::byte> bytes) {
+  if (link_) link_->on_message(from, bytes);
+  else receive(from, bytes);
+}
+
+void PackingNode::receive(NodeId from, std::span<const std::byte> bytes) {
   ++counters_.received;
   const std::size_t i = index_of(from);
   if (i == deg_) {
     ++counters_.not_a_neighbour;
-    return;
-  }
-  if (lossy()) {
-    LinkMessage m;  // on lossy links everything travels in frames
-    const DecodeStatus s = decode(bytes, m);
-    ++counters_.decode[static_cast<std::size_t>(s)];
-    if (s != DecodeStatus::ok) return;
-    links_[i].last_heard = rt_.now();
-    if (auto* f = std::get_if<FrameMsg>(&m)) handle_frame(i, *f);
-    else handle_ack(i, std::get<AckMsg>(m).ack);
-    drain();
-    flush_acks();
     return;
   }
   PackingHop m;
@@ -574,7 +283,35 @@ void PackingNode::on_message(NodeId from, std::span<const std::byte> bytes) {
   drain();
 }
 
-Duration PackingNode::rto(std::size_t i) const { return i < links_.size() ? links_[i].rto : 0; }
+void PackingNode::transmit(std::size_t i, std::span<const std::byte> bytes) {
+  rt_->send(know_.neighbours[i], bytes);
+  ++counters_.sent;
+  counters_.bytes_sent += bytes.size();
+}
+
+void PackingNode::on_failure(NodeId suspect) {
+  // The layer declared a failure: the run is abandoned, local deliveries are dropped.
+  failed_ = true;
+  suspect_ = suspect;
+  local_.clear();
+  if (finished_at_ < 0) finished_at_ = rt_->now();
+}
+
+bool PackingNode::is_final() const { return failed_ || agents_[0]->phase() == PackingPhase::finished; }
+
+PackingCounters PackingNode::counters() const {
+  if (!link_) return counters_;
+  // On lossy links the wire traffic is the layer's; the protocol's received/decode count payloads,
+  // and a payload it could not decode is a bad payload.
+  PackingCounters c;
+  static_cast<ReliableCounters&>(c) = link_->counters();
+  c.unexpected += counters_.unexpected;
+  c.relayed = counters_.relayed;
+  c.bad_payload += counters_.bad_payload + counters_.received - counters_.decode[static_cast<std::size_t>(DecodeStatus::ok)];
+  return c;
+}
+
+Duration PackingNode::rto(std::size_t i) const { return link_ && i < deg_ ? link_->rto(i) : 0; }
 PackingPhase PackingNode::phase() const { return agents_[0]->phase(); }
 PackingOutcome PackingNode::outcome() const {
   return failed_ ? PackingOutcome::neighbour_failed : agents_[0]->outcome();

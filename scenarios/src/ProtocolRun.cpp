@@ -8,6 +8,7 @@
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/protocols/Codec.hpp"
+#include "laguerre/protocols/Reliable.hpp"
 #include "laguerre/sim/SimHost.hpp"
 
 namespace laguerre::scenarios {
@@ -193,7 +194,15 @@ std::string verify_against_core(const core::PlanarGraph& g, core::GraphKind kind
 std::unique_ptr<protocols::Node> make_forwarding_node(protocols::Runtime& rt, protocols::PacketSink& sink,
                                                       const core::PlanarGraph& g, core::Vertex v,
                                                       const core::CircleEmbedding& circles,
-                                                      const std::vector<core::Point2>& positions) {
+                                                      const std::vector<core::Point2>& positions,
+                                                      const std::optional<protocols::ReliableParams>& reliable) {
+  if (reliable) {
+    std::vector<protocols::NodeId> ids;
+    for (const core::Vertex w : g.neighbours(v)) ids.push_back(g.id(w));
+    return std::make_unique<protocols::ReliableNode>(rt, std::move(ids), *reliable, [&](protocols::Runtime& inner) {
+      return make_forwarding_node(inner, sink, g, v, circles, positions);
+    });
+  }
   std::vector<protocols::NodeId> nb;
   std::vector<core::Circle> nb_circles;
   std::vector<core::Point2> nb_points;
@@ -206,6 +215,11 @@ std::unique_ptr<protocols::Node> make_forwarding_node(protocols::Runtime& rt, pr
                                                      nb_points);
 }
 
+protocols::ForwardingNode& forwarding_node(protocols::Node& node) {
+  auto* layer = dynamic_cast<protocols::ReliableNode*>(&node);
+  return static_cast<protocols::ForwardingNode&>(layer ? layer->inner() : node);
+}
+
 std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
                                              const std::vector<core::Point2>& positions, const sim::LinkModel& link,
                                              std::uint64_t seed, const std::vector<core::Scheme>& schemes,
@@ -214,10 +228,15 @@ std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const c
   std::vector<core::Point2> pos(n);
   for (core::Vertex v = 0; v < n; ++v) pos[v] = positions.empty() ? core::centre(circles[v]) : positions[v];
   const std::vector<std::vector<std::uint32_t>> hop_distance = bfs_from_sources(g, pairs);
-  // Forwarding has no retransmission: packets travel over the same latencies without loss/duplication.
-  sim::LinkModel fwd_link = link;
-  fwd_link.loss = 0;
-  fwd_link.duplication = 0;
+  // On lossy links every node runs the reliability layer under its forwarding node: each hop is
+  // delivered exactly once, so the packets take core::route's paths. No probes: an idle forwarder has
+  // nothing to watch, and the queue drains once every packet has arrived and been acknowledged.
+  const bool lossy = link.loss > 0 || link.duplication > 0;
+  std::optional<protocols::ReliableParams> reliable;
+  if (lossy) {
+    reliable = protocols::lossy_link_params(max_latency(make_network(g, positions, link), link));
+    reliable->probes = false;
+  }
   sim::SimConfig config;
   config.seed = seed;
   std::vector<ForwardingResult> results;
@@ -227,16 +246,20 @@ std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const c
     res.packets = pairs.size();
     Collector sink;
     sim::SimHost fwd(
-        make_network(g, positions, fwd_link), config,
-        [&](protocols::Runtime& rt, sim::NodeIndex v) { return make_forwarding_node(rt, sink, g, v, circles, pos); },
+        make_network(g, positions, link), config,
+        [&](protocols::Runtime& rt, sim::NodeIndex v) {
+          return make_forwarding_node(rt, sink, g, v, circles, pos, reliable);
+        },
         phase_of);
     // core::route's default hop limit, so that the hop-by-hop outcomes are core's.
     const auto ttl = static_cast<std::uint32_t>(std::min<std::size_t>(core::default_ttl(g, scheme), 0xffffffffu));
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       const auto [s, t] = pairs[i];
-      static_cast<protocols::ForwardingNode&>(fwd.node(s)).originate({i, g.id(t), circles[t], ttl, scheme, pos[t]});
+      forwarding_node(fwd.node(s)).originate({i, g.id(t), circles[t], ttl, scheme, pos[t]});
     }
     const sim::RunReport fwd_report = fwd.run();
+    for (sim::NodeIndex v = 0; lossy && v < n; ++v)
+      res.retransmissions += static_cast<const protocols::ReliableNode&>(fwd.node(v)).counters().retransmissions;
     res.simulated_seconds = sim::to_seconds(fwd_report.simulated_time);
     std::vector<double> stretch;
     double hops = 0;

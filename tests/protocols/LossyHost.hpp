@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <queue>
 #include <span>
@@ -78,13 +79,22 @@ public:
     std::vector<NodeId> neighbours_;
   };
 
+  // Builds the node of a vertex from its runtime and static knowledge.
+  using Factory = std::function<std::unique_ptr<Node>(Runtime&, const LocalKnowledge&)>;
+
+  // Packing nodes with `params`.
   LossyHost(const core::PlanarGraph& g, PackingParams params, LossyConfig config)
+      : LossyHost(g, [&](Runtime& rt, const LocalKnowledge& k) { return std::make_unique<PackingNode>(rt, k, params); },
+                  std::move(config)) {}
+
+  // The nodes `make` builds.
+  LossyHost(const core::PlanarGraph& g, const Factory& make, LossyConfig config)
       : config_(std::move(config)), rng_(config_.seed * 0x9e3779b97f4a7c15ull + 17) {
     for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
       const LocalKnowledge k = local_knowledge(g, v);
       runtimes_.push_back(std::make_unique<NodeRuntime>(*this, v, k.id, k.neighbours));
       index_[k.id] = v;
-      nodes_.push_back(std::make_unique<PackingNode>(*runtimes_.back(), k, params));
+      nodes_.push_back(make(*runtimes_.back(), k));
     }
     crash_at_.assign(nodes_.size(), -1);
     for (auto [id, t] : config_.crashes) crash_at_[index_.at(id)] = t;
@@ -113,7 +123,9 @@ public:
     return stats_;
   }
 
-  PackingNode& node(core::Vertex v) { return *nodes_[v]; }
+  PackingNode& node(core::Vertex v) { return as<PackingNode>(v); }
+  template <class T>
+  T& as(core::Vertex v) { return static_cast<T&>(*nodes_[v]); }
   std::size_t size() const { return nodes_.size(); }
   bool crashed(core::Vertex v) const { return crash_at_[v] >= 0; }
 
@@ -165,7 +177,7 @@ private:
   LossyConfig config_;
   std::uint64_t rng_;
   std::vector<std::unique_ptr<NodeRuntime>> runtimes_;
-  std::vector<std::unique_ptr<PackingNode>> nodes_;
+  std::vector<std::unique_ptr<Node>> nodes_;
   std::unordered_map<NodeId, core::Vertex> index_;
   std::vector<Time> crash_at_;
   std::priority_queue<Event, std::vector<Event>, Later> queue_;

@@ -30,6 +30,8 @@ constexpr CommandHelp simulate_help{
     "schemes use the file's coordinates, or the packing's centres when it has none.\n"
     "With --loss, --dup or --crash the nodes run the reliability layer (acks, retransmissions,\n"
     "duplicate detection, crash detection); a detected crash ends every survivor with neighbour_failed.\n"
+    "Forwarding runs over the same lossy links, each node over the reliability layer: every packet\n"
+    "takes the hops it takes without loss (only the timing differs).\n"
     "A recovering node keeps its state: an outage shorter than the detection time is masked (the run\n"
     "converges); after a longer one it ends with neighbour_failed as well.\n"
     "Exit status: 0 converged, 3 not converged or a node failed, 2 bad input."};
@@ -241,7 +243,7 @@ int run_simulate(const SimulateArgs& a) {
         std::printf("forwarding   %-13s %zu/%zu packets delivered hop by hop%s, %.2f hops on average; %zu dead ends, "
                     "%zu loops, %zu TTL exceeded; hop stretch mean %.3f, p95 %.3f, max %.3f\n",
                     std::string(core::to_string(r.scheme)).c_str(), r.delivered, r.packets,
-                    lossy ? " (over loss-free links)" : "", r.hops_mean, r.dead_ends, r.loops, r.ttl_exceeded,
+                    setup.link.loss > 0 || setup.link.duplication > 0 ? " (over the lossy links, reliability layer)" : "", r.hops_mean, r.dead_ends, r.loops, r.ttl_exceeded,
                     r.stretch_mean, r.stretch_p95, r.stretch_max);
     if (failed == 0 && std::any_of(schemes.begin(), schemes.end(), [](core::Scheme sc) { return sc != core::Scheme::greedy_power; }))
       std::printf("positions    %s (greedy Euclidean, compass, gfg)\n",

@@ -2,13 +2,17 @@
 // overtake each other): each packet's path, outcome, stopping node and hop count equal
 // core::route's, on random triangulations and 3-connected graphs, with the packing's circles for
 // greedy power and the graph's drawing (or the packing's centres) for the geometric schemes. The nodes
-// are built as `laguerre simulate` builds them (scenarios::make_forwarding_node).
+// are built as `laguerre simulate` builds them (scenarios::make_forwarding_node). Over lossy,
+// duplicating links each forwarding node runs over the reliability layer (protocols::ReliableNode),
+// and the paths are still core::route's; scenarios::run_forwarding under loss delivers the same
+// packets with the same hops as without.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "laguerre/core/graph/GraphKind.hpp"
@@ -16,6 +20,7 @@
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/protocols/Forwarding.hpp"
+#include "laguerre/protocols/Reliable.hpp"
 #include "laguerre/scenarios/ProtocolRun.hpp"
 #include "laguerre/sim/SimHost.hpp"
 
@@ -40,29 +45,49 @@ std::string_view name(PacketOutcome o) { return protocols::to_string(o); }
 
 // Routes a seeded sample of pairs (plus every pair for small graphs) with every scheme in one
 // simulation and compares with core::route. Returns the number of packets that were not delivered.
+// With `loss` > 0 the links also lose (and duplicate 5 % of) the messages, and each node runs over
+// the reliability layer.
 std::size_t expect_equal(const core::PlanarGraph& g, const core::CircleEmbedding& phi,
-                         const std::vector<core::Point2>& pos, std::uint64_t seed, const std::string& label) {
+                         const std::vector<core::Point2>& pos, std::uint64_t seed, const std::string& label,
+                         double loss = 0) {
   SCOPED_TRACE(label);
   const std::size_t n = g.num_vertices();
   core::CircleEmbedding geo(n);
   for (core::Vertex v = 0; v < n; ++v) geo[v] = {pos[v].x, pos[v].y, 0.0};
   sim::LinkModel link;
   link.latency = sim::LatencyModel::uniform(sim::microseconds(100), sim::milliseconds(3));
+  link.loss = loss;
+  link.duplication = loss > 0 ? 0.05 : 0.0;
   sim::SimConfig config;
   config.seed = seed;
   Recorder sink;
+  std::optional<protocols::ReliableParams> reliable;
+  if (loss > 0) {
+    reliable = protocols::lossy_link_params(sim::milliseconds(3));
+    reliable->probes = false;
+  }
   sim::SimHost host(sim::network_of(g, link), config, [&](protocols::Runtime& rt, sim::NodeIndex v) {
-    return scenarios::make_forwarding_node(rt, sink, g, v, phi, pos);
+    return scenarios::make_forwarding_node(rt, sink, g, v, phi, pos, reliable);
   });
+  const auto forwarder = [&](core::Vertex v) -> ForwardingNode& { return scenarios::forwarding_node(host.node(v)); };
   const auto pairs = core::select_pairs(n, {n <= 30 ? std::size_t{0} : std::size_t{400}, seed});
   std::uint64_t packet = 0;
   for (core::Scheme s : core::all_schemes)
     for (const auto& [a, b] : pairs)
-      static_cast<ForwardingNode&>(host.node(a))
-          .originate({packet++, g.id(b), phi[b], static_cast<std::uint32_t>(core::default_ttl(g, core::Scheme::greedy_power)),
+      forwarder(a).originate({packet++, g.id(b), phi[b], static_cast<std::uint32_t>(core::default_ttl(g, core::Scheme::greedy_power)),
                       s, pos[b]});
   const sim::RunReport report = host.run();
   EXPECT_EQ(report.reason, sim::StopReason::queue_empty);
+  if (loss > 0) {
+    std::uint64_t retransmissions = 0;
+    for (core::Vertex v = 0; v < n; ++v) {
+      const auto& r = static_cast<const protocols::ReliableNode&>(host.node(v));
+      EXPECT_FALSE(r.failed());
+      retransmissions += r.counters().retransmissions;
+      EXPECT_EQ(forwarder(v).counters().duplicates, 0u) << "the layer delivers each hop once";
+    }
+    EXPECT_GT(retransmissions, 0u);
+  }
 
   std::size_t failed = 0;
   packet = 0;
@@ -129,4 +154,48 @@ TEST(ForwardingSim, EverySchemeEqualsCoreOnThreeConnectedGraphs) {
       failed += expect_equal(in.graph, flat, pos, seed, label + " drawing");
     }
   EXPECT_GT(failed, 0u) << "greedy routing on sparse drawings must exercise the failures";
+}
+
+TEST(ForwardingSim, EverySchemeEqualsCoreOverLossyLinks) {
+  const core::GraphInput tri = core::random_delaunay_triangulation(40, 5);
+  const core::GraphInput tc = core::random_three_connected(30, 6);
+  for (const core::GraphInput* in : {&tri, &tc}) {
+    const core::PlanarGraph g = core::prepare_for_packing(*in);
+    const core::PackResult r = core::pack(g);
+    ASSERT_EQ(r.status, core::PackStatus::converged);
+    for (std::uint64_t seed = 1; seed <= 2; ++seed)
+      expect_equal(g, r.circles, centres_of(r.circles), seed, "n=" + std::to_string(g.num_vertices()) + " seed=" +
+                   std::to_string(seed) + " loss 0.2", 0.2);
+  }
+}
+
+TEST(ForwardingSim, RunForwardingUnderLossDeliversWhatTheLosslessRunDelivers) {
+  // scenarios::run_forwarding, as `laguerre simulate --loss 0.2` runs it: the same packets delivered,
+  // dead-ended, looped, with the same hops; only later.
+  const core::PlanarGraph g = core::prepare_for_packing(core::random_delaunay_triangulation(60, 12));
+  const core::PackResult r = core::pack(g);
+  ASSERT_EQ(r.status, core::PackStatus::converged);
+  const auto pairs = core::select_pairs(g.num_vertices(), {300, 4});
+  sim::LinkModel link;
+  link.latency = sim::LatencyModel::uniform(sim::milliseconds(1), sim::milliseconds(4));
+  const std::vector<core::Scheme> schemes(core::all_schemes.begin(), core::all_schemes.end());
+  const auto clean = scenarios::run_forwarding(g, r.circles, {}, link, 3, schemes, pairs);
+  link.loss = 0.2;
+  link.duplication = 0.05;
+  const auto lossy = scenarios::run_forwarding(g, r.circles, {}, link, 3, schemes, pairs);
+  ASSERT_EQ(clean.size(), lossy.size());
+  for (std::size_t i = 0; i < clean.size(); ++i) {
+    SCOPED_TRACE(std::string(core::to_string(clean[i].scheme)));
+    EXPECT_EQ(lossy[i].packets, pairs.size());
+    EXPECT_EQ(lossy[i].delivered, clean[i].delivered);
+    EXPECT_EQ(lossy[i].dead_ends, clean[i].dead_ends);
+    EXPECT_EQ(lossy[i].loops, clean[i].loops);
+    EXPECT_EQ(lossy[i].ttl_exceeded, clean[i].ttl_exceeded);
+    EXPECT_EQ(lossy[i].hops_mean, clean[i].hops_mean);
+    EXPECT_EQ(clean[i].retransmissions, 0u);
+    EXPECT_GT(lossy[i].retransmissions, 0u);
+    EXPECT_GT(lossy[i].simulated_seconds, clean[i].simulated_seconds);
+  }
+  EXPECT_EQ(clean[0].scheme, core::Scheme::greedy_power);
+  EXPECT_EQ(clean[0].delivered, pairs.size()) << "greedy power on a packing delivers everything";
 }

@@ -13,6 +13,7 @@
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/protocols/PackingNode.hpp"
+#include "laguerre/protocols/Reliable.hpp"
 #include "laguerre/sim/SimHost.hpp"
 
 using namespace laguerre;
@@ -41,20 +42,34 @@ protocols::PackingParams params(int steps) {
 struct SimRun {
   std::unique_ptr<sim::SimHost> host;
   sim::RunReport report;
-  PackingNode& node(core::Vertex v) { return static_cast<PackingNode&>(host->node(v)); }
+  bool outside = false;
+  PackingNode& node(core::Vertex v) {
+    protocols::Node& n = host->node(v);
+    return static_cast<PackingNode&>(outside ? static_cast<protocols::ReliableNode&>(n).inner() : n);
+  }
 };
 
+// With `outside`, each node is a ReliableNode wrapping a PackingNode on reliable links (instead of
+// the PackingNode's own layer), with the same reliability parameters.
 SimRun simulate(const core::PlanarGraph& g, const protocols::PackingParams& p, double loss, double dup, std::uint64_t seed,
-             std::optional<std::pair<core::Vertex, sim::Time>> crash = std::nullopt) {
+             std::optional<std::pair<core::Vertex, sim::Time>> crash = std::nullopt, bool outside = false) {
   sim::Network net = lossy_network(g, loss, dup);
   if (crash) net.add_crash(crash->first, crash->second);
   sim::SimConfig config;
   config.seed = seed;
   config.trace = sim::TraceMode::hash_only;
   SimRun r;
-  r.host = std::make_unique<sim::SimHost>(std::move(net), config, [&](protocols::Runtime& rt, sim::NodeIndex v) {
-    return std::make_unique<PackingNode>(rt, protocols::local_knowledge(g, v), p);
-  });
+  r.outside = outside;
+  protocols::PackingParams reliable_links = p;
+  reliable_links.retransmit_after = 0;
+  r.host = std::make_unique<sim::SimHost>(
+      std::move(net), config, [&](protocols::Runtime& rt, sim::NodeIndex v) -> std::unique_ptr<protocols::Node> {
+        const protocols::LocalKnowledge k = protocols::local_knowledge(g, v);
+        if (!outside) return std::make_unique<PackingNode>(rt, k, p);
+        return std::make_unique<protocols::ReliableNode>(rt, k.neighbours, p, [&](protocols::Runtime& inner) {
+          return std::make_unique<PackingNode>(inner, k, reliable_links);
+        });
+      });
   r.report = r.host->run({.until = sim::seconds(3600)});
   return r;
 }
@@ -143,4 +158,28 @@ TEST(LossyPackingSim, LossyRunsAreDeterministicPerSeedAndDifferAcrossSeeds) {
   EXPECT_NE(a.host->simulator().trace().hash(), c.host->simulator().trace().hash());
   for (core::Vertex v = 0; v < g.num_vertices(); ++v)  // the packing itself does not depend on the seed
     EXPECT_EQ(bits(a.node(v).h()), bits(c.node(v).h()));
+}
+
+TEST(LossyPackingSim, TheLayerAroundAPackingNodeIsTheLayerInsideIt) {
+  // A ReliableNode wrapping a PackingNode on reliable links runs exactly the run of a PackingNode
+  // with its own layer: same trace hash, same end, same outcome, with or without a crash.
+  const core::PlanarGraph g = core::prepare_for_packing(core::random_three_connected(30, 8));
+  for (const bool crash : {false, true}) {
+    SCOPED_TRACE(crash ? "crash" : "no crash");
+    std::optional<std::pair<core::Vertex, sim::Time>> c;
+    if (crash) c = std::pair{core::Vertex{4}, sim::milliseconds(40)};
+    SimRun in = simulate(g, params(2), 0.2, 0.1, 9, c);
+    SimRun out = simulate(g, params(2), 0.2, 0.1, 9, c, true);
+    ASSERT_EQ(out.report.reason, sim::StopReason::queue_empty);
+    EXPECT_EQ(in.host->simulator().trace().hash(), out.host->simulator().trace().hash());
+    EXPECT_EQ(in.report.simulated_time, out.report.simulated_time);
+    EXPECT_EQ(in.report.events_processed, out.report.events_processed);
+    for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
+      if (crash && v == 4) continue;
+      EXPECT_EQ(out.node(v).outcome(), in.node(v).outcome()) << "vertex " << v;
+      EXPECT_EQ(out.node(v).outcome(), crash ? PackingOutcome::neighbour_failed : PackingOutcome::converged);
+      EXPECT_EQ(bits(out.node(v).h()), bits(in.node(v).h()));
+      EXPECT_EQ(out.node(v).finished_at(), in.node(v).finished_at());
+    }
+  }
 }

@@ -30,6 +30,7 @@
 #include "laguerre/core/packing/Thurston.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 #include "laguerre/protocols/Codec.hpp"
+#include "laguerre/protocols/Reliable.hpp"
 #include "laguerre/protocols/Runtime.hpp"
 
 namespace laguerre::protocols {
@@ -46,22 +47,15 @@ inline constexpr NodeId max_face_node_id = (NodeId{1} << 31) - 1;
 /// (both ≤ max_face_node_id): 2^63 + host·2^31 + successor, never a node id.
 constexpr NodeId face_vertex_id(NodeId host, NodeId successor) { return (NodeId{1} << 63) | (host << 31) | successor; }
 
-/// Parameters shared by all nodes of a run (the same values core::PackOptions would hold, plus the
-/// reliability layer's).
-struct PackingParams {
+/// Parameters shared by all nodes of a run: the values core::PackOptions would hold, plus the
+/// reliability layer's (inherited; `retransmit_after` = 0, the default, means reliable links and no
+/// layer).
+struct PackingParams : ReliableParams {
   int steps_per_check = 1;                                        ///< N: Thurston steps per round (≥ 1)
   int max_iterations = 100000;                                    ///< cap on steps (≥ 0)
   core::UpdateRule update = core::UpdateRule::uniform_neighbour;  ///< per-vertex update
   core::RootRule root = core::RootRule::deepest;                  ///< which root the election picks
-  Duration retransmit_after = 0;  ///< first retransmission period (ns); 0 = reliable links, no reliability layer
-  int backoff_cap = 8;            ///< longest retransmission period, in multiples of retransmit_after (≥ 1)
-  int max_retransmissions = 24;   ///< retransmissions without progress before a neighbour is suspected (≥ 1)
-  Duration ack_delay = 0;         ///< wait before a standalone ack (ns), in case a frame can carry it
-  Duration probe_after = 0;       ///< silence before a running node probes a neighbour (ns); 0 = 32 × retransmit_after
-  bool asynchronous = false;      ///< asynchronous Thurston updates (chaotic relaxation); not bit for bit with core
-  bool adaptive_rto = true;       ///< adapt each link's retransmission timeout to measured round trips
-  Duration rto_min = 0;           ///< lower clamp of the adaptive timeout (ns); 0 = retransmit_after / 4
-  std::uint32_t initial_seq = 0;  ///< first sequence number of every link (all nodes must agree)
+  bool asynchronous = false;  ///< asynchronous Thurston updates (chaotic relaxation); not bit for bit with core
 };
 
 /// Turns the reliability layer on with periods fitted to links whose one-way latency is at most
@@ -87,41 +81,17 @@ enum class PackingOutcome : std::uint8_t {
   neighbour_failed,  ///< some node stopped answering (PackingNode::suspect names it); the run was abandoned
 };
 
-/// Per-node message statistics (physical messages: a relayed envelope counts at every hop).
-struct PackingCounters {
-  std::uint64_t sent = 0;                                     ///< messages handed to the runtime (a broadcast counts once per neighbour)
-  std::uint64_t bytes_sent = 0;                               ///< their bytes
-  std::uint64_t received = 0;                                 ///< messages received
-  std::array<std::uint64_t, decode_status_count> decode{};    ///< received messages per DecodeStatus
-  std::uint64_t not_a_neighbour = 0;                          ///< from an id that is not a neighbour
-  std::uint64_t unexpected = 0;                               ///< of the node's set but not fitting its state
-  std::uint64_t relayed = 0;                                  ///< RelayMsg envelopes forwarded for others
-  std::uint64_t bad_payload = 0;                              ///< relay or frame payloads that did not decode
-  std::uint64_t frames = 0;                                   ///< frames sent for the first time (lossy mode)
-  std::uint64_t retransmissions = 0;                          ///< frames sent again after a timeout
-  std::uint64_t acks = 0;                                     ///< standalone acks sent
-  std::uint64_t duplicates = 0;                               ///< frames received again (never delivered twice)
-  std::uint64_t out_of_window = 0;                            ///< frames too far ahead, dropped unacknowledged
-  std::uint64_t probes = 0;                                   ///< empty frames sent to silent neighbours
-  std::uint64_t links_failed = 0;                             ///< links given up after max_retransmissions
+/// Per-node message statistics (physical messages: a relayed envelope counts at every hop): the
+/// reliability layer's on lossy links (inherited; zero otherwise, but for the fields both count), and
+/// the protocol's. `unexpected` also counts messages of the node's set that do not fit its state,
+/// `bad_payload` also relay payloads that did not decode.
+struct PackingCounters : ReliableCounters {
+  std::uint64_t relayed = 0;  ///< RelayMsg envelopes forwarded for others
 
   /// Adds `o` field by field (totals over nodes).
   PackingCounters& operator+=(const PackingCounters& o) {
-    sent += o.sent;
-    bytes_sent += o.bytes_sent;
-    received += o.received;
-    for (std::size_t i = 0; i < decode.size(); ++i) decode[i] += o.decode[i];
-    not_a_neighbour += o.not_a_neighbour;
-    unexpected += o.unexpected;
+    ReliableCounters::operator+=(o);
     relayed += o.relayed;
-    bad_payload += o.bad_payload;
-    frames += o.frames;
-    retransmissions += o.retransmissions;
-    acks += o.acks;
-    duplicates += o.duplicates;
-    out_of_window += o.out_of_window;
-    probes += o.probes;
-    links_failed += o.links_failed;
     return *this;
   }
 };
@@ -147,7 +117,8 @@ class AgentHost;
 }  // namespace detail
 
 /// One node of the packing protocol: its own protocol vertex plus the face vertices it hosts, and (on
-/// lossy links) the reliability layer under them.
+/// lossy links, `PackingParams::retransmit_after` > 0) the reliability layer under them: a
+/// ReliableNode (Reliable.hpp) that the node owns and through which its protocol talks to the host.
 class PackingNode final : public Node {
 public:
   /// A node with its static knowledge; `runtime` must outlive it. Throws std::invalid_argument if the
@@ -174,6 +145,11 @@ public:
   /// Back from an outage: re-arms the reliability layer's timers (retransmissions, owed acks, probes
   /// while running); the node's state survived, lost messages are recovered like any loss.
   void on_recover() override;
+  /// Whether the node is done: stopped by the decision, or ended by a failure.
+  bool is_final() const override;
+  /// A reliability layer under the node (its own or one wrapping it) declared `suspect` failed: the
+  /// run is abandoned with PackingOutcome::neighbour_failed.
+  void on_failure(NodeId suspect) override;
 
   /// The current phase.
   PackingPhase phase() const;
@@ -181,8 +157,6 @@ public:
   PackingOutcome outcome() const;
   /// The node suspected of having failed (meaningful when outcome() is neighbour_failed).
   NodeId suspect() const { return suspect_; }
-  /// Whether the node is done: stopped by the decision, or ended by a failure.
-  bool is_final() const;
   /// When the node became final (the runtime's clock at the end of that callback); -1 while running.
   Time finished_at() const { return finished_at_; }
   /// The current retransmission timeout towards neighbour i (lossy mode; 0 without it).
@@ -211,8 +185,8 @@ public:
   core::LocalCondition local_condition() const;
   /// Whether the run packs G′ (some inner face is not a triangle; known after the set-up).
   bool polygon_faces() const;
-  /// Message statistics.
-  const PackingCounters& counters() const { return counters_; }
+  /// Message statistics (the protocol's and, on lossy links, the reliability layer's).
+  PackingCounters counters() const;
   /// Number of face vertices this node hosts.
   std::size_t hosted_faces() const { return agents_.size() - 1; }
   /// The walk (ids, from this node) of hosted face k < hosted_faces().
@@ -227,9 +201,9 @@ public:
 
 private:
   friend class detail::AgentHost;
-  struct Wedge;  // a non-triangle inner face at this node
-  struct Link;   // the reliability layer's state for one G-neighbour
-  struct Local;  // a message between two agents of this node, delivered after the callback
+  struct Wedge;     // a non-triangle inner face at this node
+  struct Local;     // a message between two agents of this node, delivered after the callback
+  class Protocol;   // the protocol as the reliability layer's inner node
 
   std::size_t index_of(NodeId id) const;
   const Wedge* wedge_of_face(NodeId face_id) const;
@@ -239,23 +213,11 @@ private:
   void handle_relay(std::size_t from, RelayMsg& m);
   void deliver_payload(std::size_t agent, std::size_t from_index, std::span<const std::byte> bytes);
   void drain();
-  bool lossy() const { return params_.retransmit_after > 0; }
+  void start();
+  void receive(NodeId from, std::span<const std::byte> bytes);
   void transmit(std::size_t i, std::span<const std::byte> bytes);
-  void send_frame(std::size_t i, std::span<const std::byte> payload);
-  void put_frame(std::size_t i, std::uint32_t seq, std::span<const std::byte> payload);
-  void handle_frame(std::size_t i, FrameMsg& f);
-  void handle_ack(std::size_t i, const AckInfo& a);
-  void sample_rtt(Link& l, Duration r);
-  void deliver_frame_payload(std::size_t i, std::span<const std::byte> payload);
-  void flush_acks();
-  void arm_retransmit(std::size_t i);
-  void on_retransmit(std::size_t i);
-  void on_probe();
-  void give_up(std::size_t i);
-  void declare_failure(NodeId suspect, std::size_t except);
-  void raw_send(NodeId to, std::span<const std::byte> bytes);
 
-  Runtime& rt_;
+  Runtime* rt_;  // the host's runtime, or the reliability layer's
   PackingParams params_;
   LocalKnowledge know_;
   std::size_t deg_ = 0;
@@ -265,14 +227,11 @@ private:
   std::unique_ptr<detail::AgentHost> host_;
   std::vector<Local> local_;                                  // FIFO, emptied by drain()
   std::vector<std::byte> relay_buffer_;
-  std::vector<std::byte> frame_buffer_;
-  std::vector<Link> links_;                                   // per G-neighbour (lossy mode)
-  std::vector<std::size_t> ack_owed_;                         // links with ack_pending, to flush
-  TimerHandle probe_timer_ = 0;
+  std::unique_ptr<ReliableNode> link_;                        // lossy mode: the layer under the protocol
   bool failed_ = false;
   NodeId suspect_ = 0;
   Time finished_at_ = -1;
-  PackingCounters counters_;
+  PackingCounters counters_;  // the protocol's (on lossy links, received/decode count frame payloads)
 };
 
 }  // namespace laguerre::protocols

@@ -107,6 +107,12 @@ public:
   /// state survived, but messages sent to it and timers due during the outage were lost: a node
   /// re-arms what it needs here. The default does nothing.
   virtual void on_recover() {}
+  /// A layer under the node (ReliableNode, Reliable.hpp) declared node `suspect` failed and delivers
+  /// nothing more to it; called at most once. The default does nothing.
+  virtual void on_failure(NodeId suspect) { static_cast<void>(suspect); }
+  /// Whether the node's work is done for good: a layer under it then stops probing its neighbours
+  /// for liveness. The default: never.
+  virtual bool is_final() const { return false; }
 };
 
 }  // namespace laguerre::protocols

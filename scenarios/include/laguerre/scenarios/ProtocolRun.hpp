@@ -24,6 +24,7 @@
 #include "laguerre/core/routing/Routing.hpp"
 #include "laguerre/protocols/Forwarding.hpp"
 #include "laguerre/protocols/PackingNode.hpp"
+#include "laguerre/protocols/Reliable.hpp"
 #include "laguerre/protocols/Runtime.hpp"
 #include "laguerre/scenarios/NetworkModel.hpp"
 #include "laguerre/sim/Link.hpp"
@@ -108,11 +109,16 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
 std::string verify_against_core(const core::PlanarGraph& g, core::GraphKind kind, const ProtocolSetup& setup,
                                 const ProtocolOutcome& outcome);
 
-/// A forwarding node for vertex `v` of `g`, knowing its own and its neighbours' circles and positions.
+/// A forwarding node for vertex `v` of `g`, knowing its own and its neighbours' circles and positions;
+/// with `reliable`, inside a protocols::ReliableNode with those parameters (for lossy links).
 std::unique_ptr<protocols::Node> make_forwarding_node(protocols::Runtime& rt, protocols::PacketSink& sink,
                                                       const core::PlanarGraph& g, core::Vertex v,
                                                       const core::CircleEmbedding& circles,
-                                                      const std::vector<core::Point2>& positions);
+                                                      const std::vector<core::Point2>& positions,
+                                                      const std::optional<protocols::ReliableParams>& reliable = {});
+
+/// The forwarding node of a node make_forwarding_node built (inside its reliability layer, if any).
+protocols::ForwardingNode& forwarding_node(protocols::Node& node);
 
 /// Hop-by-hop forwarding of one scheme: outcomes and hop stretch against BFS shortest paths.
 struct ForwardingResult {
@@ -127,11 +133,13 @@ struct ForwardingResult {
   double stretch_p95 = std::numeric_limits<double>::quiet_NaN();   ///< its nearest-rank 95th percentile (NaN if none)
   double stretch_max = std::numeric_limits<double>::quiet_NaN();   ///< its maximum (NaN if none)
   double simulated_seconds = 0;   ///< simulated time of the forwarding run
+  std::uint64_t retransmissions = 0;  ///< frames the reliability layer sent again (lossy links; else 0)
 };
 
 /// Forwards one packet per pair in `pairs` hop by hop, one simulation per scheme, over the links of
-/// `link` without loss or duplication (forwarding has no retransmission) and the simulator seeded with
-/// `seed`. Greedy power routes on `circles`; the other schemes on `positions` if not empty (they also
+/// `link` and the simulator seeded with `seed`; on lossy or duplicating links every forwarding node
+/// runs over the reliability layer (protocols::ReliableNode), so each hop arrives exactly once and
+/// the outcomes and hop counts are those of loss-free links (only the timing differs). Greedy power routes on `circles`; the other schemes on `positions` if not empty (they also
 /// place the network's nodes for distance latencies), else on the circles' centres. Each packet's
 /// hop limit is core::default_ttl, so the outcomes are core::route's.
 std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
