@@ -7,9 +7,11 @@
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Exact_rational.h>
 #include <CGAL/Regular_triangulation_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <array>
 #include <cmath>
 
 #include "detail/AffineCells.hpp"
@@ -20,6 +22,23 @@ namespace laguerre::core {
 
 namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+/// The (weighted) circumcentre of three sites in exact rational arithmetic, rounded once: for the faces
+/// whose inexact construction divides by a determinant that rounds to 0 (nearly collinear sites, which
+/// the exact predicates still see as a proper triangle), where the inexact result is not finite.
+/// Solves 2 (p_j − p_0) · c = (|p_j|² − w_j) − (|p_0|² − w_0), j = 1, 2, by Cramer's rule.
+K::Point_2 exact_centre(const std::array<WeightedPoint, 3>& s, const K::Point_2& inexact) {
+  using Q = CGAL::Exact_rational;
+  const auto lift = [](const WeightedPoint& p) -> Q {  // -> Q: gmpxx expressions must not outlive their operands
+    return Q(p.x) * Q(p.x) + Q(p.y) * Q(p.y) - Q(p.w);
+  };
+  const Q ax = Q(s[1].x) - Q(s[0].x), ay = Q(s[1].y) - Q(s[0].y);
+  const Q bx = Q(s[2].x) - Q(s[0].x), by = Q(s[2].y) - Q(s[0].y);
+  const Q ra = (lift(s[1]) - lift(s[0])) / 2, rb = (lift(s[2]) - lift(s[0])) / 2;
+  const Q det = ax * by - ay * bx;
+  if (det == 0) return inexact;  // truly collinear: not a face of a 2D triangulation
+  return K::Point_2(CGAL::to_double((ra * by - ay * rb) / det), CGAL::to_double((ax * rb - bx * ra) / det));
+}
 
 template <class Site>
 struct Traits;
@@ -113,7 +132,11 @@ AffineDiagram<Site>::AffineDiagram(std::vector<Site> sites, const Box& box) : im
   }
   if (m.rt.dimension() == 2)
     for (auto f = m.rt.finite_faces_begin(); f != m.rt.finite_faces_end(); ++f) {
-      const K::Point_2 c = T::centre(m.rt, f);
+      K::Point_2 c = T::centre(m.rt, f);
+      if (!std::isfinite(c.x()) || !std::isfinite(c.y()))
+        c = exact_centre({T::weighted(m.sites[f->vertex(0)->info()]), T::weighted(m.sites[f->vertex(1)->info()]),
+                          T::weighted(m.sites[f->vertex(2)->info()])},
+                         c);
       m.vertices.push_back({{c.x(), c.y()}, {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
     }
   m.cells = detail::build_affine_cells(m.weighted, m.hidden, neighbours, box);

@@ -147,3 +147,22 @@ TEST(AffineDiagrams, RejectBadInput) {
   EXPECT_THROW(PowerDiagram({{0, 0, NAN}}, {0, 0, 1, 1}), InputError);
   EXPECT_THROW(VoronoiDiagram({{0, 0}}, {0, 0, -1, 1}), InputError);
 }
+
+// Fuzz finding sites-4: (0.15, 0.2), (0.5, 0.1), (0.85, 0) are a proper triangle for the exact
+// orientation predicate, but the inexact weighted circumcentre divides by a determinant that rounds to 0.
+// The vertex is then computed in exact rational arithmetic: finite, far outside the box, and the
+// diagram is valid (it was a [null, null] vertex and "valid": false).
+TEST(PowerDiagram, NearlyCollinearSitesGetAFiniteVertex) {
+  const std::vector<WeightedPoint> sites{{0.15, 0.2, 0.01}, {0.5, 0.1, 0.004}, {0.85, 0.0, 0.025},
+                                         {0.3, 0.5, 0.03},  {0.62, 0.45, 0.002}, {0.5, 0.8, 0.004}};
+  std::vector<Point2> points;
+  for (const auto& s : sites) points.push_back({s.x, s.y});
+  const PowerDiagram d(sites, bounding_box(points, 0.15));
+  EXPECT_TRUE(d.is_valid(true));
+  bool far = false;
+  for (const auto& v : d.vertices()) {
+    EXPECT_TRUE(std::isfinite(v.point.x) && std::isfinite(v.point.y));
+    far = far || std::abs(v.point.x) > 1e6;
+  }
+  EXPECT_TRUE(far) << "the nearly flat triangle's vertex lies far away";
+}
