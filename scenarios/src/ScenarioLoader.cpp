@@ -159,6 +159,28 @@ void check_keys(Checker& c, const YAML::Node& m, const std::string& path, const 
   }
 }
 
+/// Reports every key that repeats an earlier key of the same mapping, at any depth of `n` (yaml-cpp keeps
+/// both entries, and lookup would silently take the first).
+void check_duplicate_keys(Checker& c, const YAML::Node& n, const std::string& path) {
+  if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i) check_duplicate_keys(c, n[i], path + "[" + std::to_string(i) + "]");
+    return;
+  }
+  if (!n.IsMap()) return;
+  std::vector<YAML::Node> keys;
+  for (auto it = n.begin(); it != n.end(); ++it) {
+    const YAML::Node key = it->first;
+    const std::string k = key.IsScalar() ? key.Scalar() : "?";
+    const auto first = std::find_if(keys.begin(), keys.end(),
+                                    [&](const YAML::Node& e) { return key.IsScalar() && e.IsScalar() && e.Scalar() == k; });
+    if (first != keys.end())
+      c.report(key, it->second, key_of(path, k), "a duplicate key (first at line " + std::to_string(first->Mark().line + 1) + ")",
+               "each key once in a mapping");
+    keys.push_back(key);
+    check_duplicate_keys(c, it->second, key_of(path, k));
+  }
+}
+
 bool expect_map(Checker& c, const YAML::Node& n, const std::string& path) {
   if (n.IsMap()) return true;
   c.report(n, path, found(n), "a mapping of keys to values");
@@ -639,6 +661,7 @@ Scenario load(const YAML::Node& doc, const std::string& source, const std::strin
     c.report(doc, "(top level)", found(doc), "a mapping with name, seed, repetitions, topology, …");
     throw ScenarioError(c.issues());
   }
+  check_duplicate_keys(c, doc, "");
   // Top-level overrides apply to the base document.
   for (const auto& o : overrides) {
     if (o.path.size() == 1 && (o.key == "seed" || o.key == "repetitions" || o.key == "name"))

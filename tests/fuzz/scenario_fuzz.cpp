@@ -1,11 +1,12 @@
 // Fuzz harness: scenario files (scenarios/ScenarioLoader.hpp, load_scenario_from_string), with relative
 // paths resolved against the repository's scenarios/ folder (so the seeds' graph and domain files are
 // found). Leading lines `#set KEY=VALUE` (YAML comments) become `--set` overrides. On success every
-// sweep point has the sweep's values.
+// sweep point has the sweep's values, and no sweep key repeats.
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "FuzzTarget.hpp"
 #include "laguerre/core/Error.hpp"
@@ -27,5 +28,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   LAGUERRE_FUZZ_CHECK(!s.points.empty());
   for (const scenarios::ScenarioPoint& p : s.points) LAGUERRE_FUZZ_CHECK(p.values.size() == s.sweep_keys.size());
+  // A key given twice in a mapping is an error, so no sweep key repeats.
+  std::vector<std::string> keys = s.sweep_keys;
+  std::sort(keys.begin(), keys.end());
+  LAGUERRE_FUZZ_CHECK(std::adjacent_find(keys.begin(), keys.end()) == keys.end());
   return 0;
 }

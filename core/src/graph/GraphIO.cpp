@@ -9,6 +9,7 @@
 
 #include "io/Formats.hpp"
 #include "laguerre/core/InputFile.hpp"
+#include "laguerre/core/graph/GraphKind.hpp"
 
 namespace laguerre::core {
 
@@ -104,9 +105,21 @@ void check_positions(const PlanarGraph& g, const std::vector<Point2>& positions,
                             std::to_string(positions.size()) + " for " + std::to_string(g.num_vertices()) + " vertices.");
 }
 
-std::string outer_ids(const PlanarGraph& g) {
+// The readers honour an outer face only if it is a simple cycle of at least 3 vertices that is a face of
+// the embedding they compute: of the drawing (any face of it), or of Boyer–Myrvold's embedding with an
+// apex joined to the cycle, which is forced to have that face when the graph is 3-connected (Whitney) or
+// a triangulated disc (graph and apex then form a triangulation of the sphere). A boundary walk that
+// repeats a vertex (a path, a pendant vertex on the outer face), a single edge, or a cycle of a graph of
+// another kind (whose face Boyer–Myrvold may not keep) is left out, so that what is written reads back.
+std::string outer_ids(const PlanarGraph& g, bool drawn) {
+  if (g.outer_face() == none) return {};
+  const std::vector<Vertex> cycle = g.boundary_cycle();
+  std::vector<Vertex> sorted = cycle;
+  std::sort(sorted.begin(), sorted.end());
+  if (cycle.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return {};
+  if (!drawn && !g.inner_faces_are_triangles() && !is_three_connected(g)) return {};
   std::string out;
-  for (Vertex v : g.boundary_cycle()) out += (out.empty() ? "" : " ") + std::to_string(g.id(v));
+  for (Vertex v : cycle) out += (out.empty() ? "" : " ") + std::to_string(g.id(v));
   return out;
 }
 

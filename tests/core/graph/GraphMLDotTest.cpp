@@ -208,3 +208,46 @@ TEST(GraphMLDot, AutomaticDetectionKeepsTheOtherFormats) {
             std::string::npos);
   EXPECT_THROW(write_graphml(random_delaunay_triangulation(5, 1).graph, {{0, 0}}), InternalError);
 }
+
+TEST(GraphMLDot, EveryWriterReadsBackWhenTheBoundaryIsNoCycle) {
+  // Fuzz finding graph-1: a path (boundary walk 0 1 2 3 2 1), one edge (4 5), a pendant vertex b on a
+  // graph that is neither 3-connected nor a triangulated disc; and a drawing of a triangle with a
+  // pendant vertex outside it (unbounded face 0 1 3 1 2).
+  const std::vector<GraphInput> inputs = {
+      read_one("0 1\n1 2\n2 3\n"), read_one("4 5\n"),
+      read_one("graph { a -- f -- c -- d -- a; a -- c; subgraph s { e; } e -- a; e -- b; }"),
+      read_one("vertices\n0 0 0\n1 1 0\n2 0 1\n3 2 0\nedges\n0 1\n1 2\n2 0\n1 3\n")};
+  for (const GraphInput& in : inputs) {
+    const std::vector<std::pair<GraphFormat, std::string>> written = {
+        {GraphFormat::edges, write_edge_list(in.graph)},
+        {GraphFormat::graphml, write_graphml(in.graph, in.positions)},
+        {GraphFormat::dot, write_dot(in.graph, in.positions)}};
+    for (const auto& [format, text] : written) {
+      SCOPED_TRACE(text);
+      EXPECT_EQ(text.find("outer:"), std::string::npos);  // no '# outer:' line
+      EXPECT_EQ(text.find("outer="), std::string::npos);  // no DOT attribute
+      EXPECT_EQ(text.find("<data key=\"outer\">"), std::string::npos);
+      const GraphInput back = read_one(text, format);
+      EXPECT_EQ(back.graph.ids(), in.graph.ids());
+      EXPECT_EQ(back.graph.num_faces(), in.graph.num_faces());
+      EXPECT_EQ(write_edge_list(back.graph), write_edge_list(in.graph));
+      if (format != GraphFormat::edges) {
+        EXPECT_EQ(back.positions.size(), in.positions.size());
+      }
+    }
+  }
+  // A drawing keeps any simple outer face: here its inner triangle made the outer face.
+  const GraphInput& drawn = inputs[3];
+  Dart inner_dart = 0;
+  while (drawn.graph.face_of(inner_dart) == drawn.graph.outer_face()) ++inner_dart;
+  const PlanarGraph inner = drawn.graph.with_outer_dart(inner_dart);
+  ASSERT_EQ(inner.boundary_cycle().size(), 3u);
+  for (const std::string& text : {write_graphml(inner, drawn.positions), write_dot(inner, drawn.positions)}) {
+    const GraphInput back = read_one(text);
+    EXPECT_EQ(back.graph.face_of(back.graph.find_dart(inner.boundary_cycle()[0], inner.boundary_cycle()[1])),
+              back.graph.outer_face())
+        << text;
+    EXPECT_EQ(write_edge_list(back.graph), write_edge_list(inner));
+  }
+  EXPECT_EQ(write_edge_list(inner).find("# outer:"), std::string::npos);  // without the drawing: left out
+}

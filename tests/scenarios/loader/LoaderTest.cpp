@@ -52,7 +52,7 @@ Scenario from_text(const std::string& text, const LoadOptions& options = {}) {
 // Golden files: every problem of each bad file, located by line and column, in file order.
 TEST(ScenarioLoader, GoldenMessages) {
   const std::string dir = fs::path(data_dir).lexically_normal().string();
-  for (const char* name : {"bad-types", "bad-keys", "bad-files"}) {
+  for (const char* name : {"bad-types", "bad-keys", "bad-files", "duplicate-keys"}) {
     std::vector<std::string> expected;
     for (const auto& l : lines_of(data_dir + "/" + name + ".expected")) expected.push_back(replace_all(l, "{DIR}", dir));
     EXPECT_EQ(issues_of(std::string(name) + ".yaml"), expected) << name;
@@ -60,7 +60,7 @@ TEST(ScenarioLoader, GoldenMessages) {
 }
 
 TEST(ScenarioLoader, EveryMessageHasTheDocumentedShape) {
-  for (const char* name : {"bad-types.yaml", "bad-keys.yaml", "bad-files.yaml"})
+  for (const char* name : {"bad-types.yaml", "bad-keys.yaml", "bad-files.yaml", "duplicate-keys.yaml"})
     for (const auto& m : issues_of(name)) {
       // FILE:LINE:COLUMN: key.path: found X, expected Y
       const std::size_t c1 = m.find(':'), c2 = m.find(':', c1 + 1), c3 = m.find(':', c2 + 1);

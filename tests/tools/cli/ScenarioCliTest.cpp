@@ -87,7 +87,7 @@ TEST_F(ScenarioCli, JobsDoNotChangeResults) {
 
 // The golden messages, through the program: stderr lists them all, exit status 2, nothing written.
 TEST_F(ScenarioCli, ValidationMessagesAndExitStatus) {
-  for (const char* name : {"bad-types", "bad-keys"}) {
+  for (const char* name : {"bad-types", "bad-keys", "duplicate-keys"}) {
     const Result r = run_laguerre("run " + data + name + ".yaml -o " + out(name));
     EXPECT_EQ(r.status, 2) << name;
     std::istringstream expected(slurp(data + name + ".expected"));

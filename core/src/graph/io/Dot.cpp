@@ -96,7 +96,8 @@ bool looks_like_dot(std::string_view data) {
 std::string write_dot(const PlanarGraph& g, const std::vector<Point2>& positions) {
   detail::check_positions(g, positions, "write_dot");
   std::string out = "graph G {\n";
-  if (g.outer_face() != none) out += "  outer=\"" + detail::outer_ids(g) + "\";\n";
+  if (const std::string outer = detail::outer_ids(g, !positions.empty()); !outer.empty())
+    out += "  outer=\"" + outer + "\";\n";
   for (Vertex v = 0; v < g.num_vertices(); ++v) {
     out += "  " + std::to_string(g.id(v));
     if (!positions.empty()) out += " [pos=\"" + detail::exact_number(positions[v].x) + "," + detail::exact_number(positions[v].y) + "\"]";

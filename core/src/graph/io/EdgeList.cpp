@@ -72,7 +72,7 @@ GraphInput build_from_edges_text(const TextGraph& text, const std::string& sourc
 std::string write_edge_list(const PlanarGraph& g) {
   std::string out = "# laguerre edge list: " + std::to_string(g.num_vertices()) + " vertices, " +
                     std::to_string(g.num_edges()) + " edges\n";
-  if (g.outer_face() != none) out += "# outer: " + detail::outer_ids(g) + "\n";
+  if (const std::string outer = detail::outer_ids(g, false); !outer.empty()) out += "# outer: " + outer + "\n";
   for (auto [a, b] : detail::sorted_id_edges(g)) out += std::to_string(a) + " " + std::to_string(b) + "\n";
   return out;
 }

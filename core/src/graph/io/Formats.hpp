@@ -59,7 +59,8 @@ std::vector<std::pair<std::uint64_t, std::uint64_t>> sorted_id_edges(const Plana
 std::string exact_number(double value);
 /// Precondition: `positions` is empty or has one entry per vertex.
 void check_positions(const PlanarGraph& g, const std::vector<Point2>& positions, const char* writer);
-/// The user ids of boundary_cycle(), separated by spaces.
-std::string outer_ids(const PlanarGraph& g);
+/// The user ids of boundary_cycle(), separated by spaces, if the readers honour it as the outer face
+/// (of a drawing when `drawn`, else of the graph alone); else "".
+std::string outer_ids(const PlanarGraph& g, bool drawn);
 
 }  // namespace laguerre::core::detail

@@ -184,7 +184,8 @@ std::string write_graphml(const PlanarGraph& g, const std::vector<Point2>& posit
     out += "  <key id=\"x\" for=\"node\" attr.name=\"x\" attr.type=\"double\"/>\n"
            "  <key id=\"y\" for=\"node\" attr.name=\"y\" attr.type=\"double\"/>\n";
   out += "  <graph id=\"G\" edgedefault=\"undirected\">\n";
-  if (g.outer_face() != none) out += "    <data key=\"outer\">" + detail::outer_ids(g) + "</data>\n";
+  if (const std::string outer = detail::outer_ids(g, !positions.empty()); !outer.empty())
+    out += "    <data key=\"outer\">" + outer + "</data>\n";
   for (Vertex v = 0; v < g.num_vertices(); ++v) {
     out += "    <node id=\"" + std::to_string(g.id(v)) + "\"";
     if (positions.empty()) {

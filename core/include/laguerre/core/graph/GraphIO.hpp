@@ -122,17 +122,21 @@ std::vector<GraphInput> read_graphs_from_string(std::string_view data, const std
                                                 GraphFormat format = GraphFormat::automatic);
 
 /// Writes `g` in the edges format: a comment, a `# outer:` line (boundary_cycle() order) and one
-/// `u v` line per edge (user ids, smaller first, sorted).
+/// `u v` line per edge (user ids, smaller first, sorted). The `# outer:` line is written only when the
+/// reader honours it: the boundary is a simple cycle of at least 3 vertices and g is 3-connected or a
+/// triangulated disc; else the outer face is left to the reader, so that every output reads back.
 std::string write_edge_list(const PlanarGraph& g);
 
 /// Writes `g` as GraphML: nodes with the user ids as GraphML ids, undirected edges sorted as in
-/// write_edge_list, a graph key `outer` (boundary_cycle() order) and, when `positions` is not empty
-/// (one per vertex: a precondition), node keys `x` and `y` with 17 significant digits.
+/// write_edge_list, a graph key `outer` (boundary_cycle() order; when positions are given, whenever the
+/// boundary is a simple cycle of at least 3 vertices, else as in write_edge_list) and, when `positions`
+/// is not empty (one per vertex, a drawing of g: a precondition), node keys `x` and `y` with 17
+/// significant digits.
 std::string write_graphml(const PlanarGraph& g, const std::vector<Point2>& positions = {});
 
 /// Writes `g` as an undirected Graphviz graph: node names are user ids, `pos="x,y"` when `positions`
-/// is not empty (one per vertex: a precondition), a graph attribute `outer`, edges sorted
-/// as in write_edge_list.
+/// is not empty (one per vertex: a precondition), a graph attribute `outer` (when write_graphml writes
+/// its key `outer`), edges sorted as in write_edge_list.
 std::string write_dot(const PlanarGraph& g, const std::vector<Point2>& positions = {});
 
 /// Writes graphs in planar_code with the header `>>planar_code le<<`; vertex i becomes i + 1 (user ids
