@@ -12,9 +12,7 @@
 #include <vector>
 
 #include "FuzzTarget.hpp"
-#ifndef LAGUERRE_FUZZ_NO_MOBIUS
 #include "laguerre/core/diagrams/MobiusDiagram.hpp"
-#endif
 #include "laguerre/core/diagrams/PowerDiagram.hpp"
 #include "laguerre/core/diagrams/VoronoiDiagram.hpp"
 
@@ -89,14 +87,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       check<core::PowerDiagram>(std::move(sites), points);
       break;
     }
-#ifndef LAGUERRE_FUZZ_NO_MOBIUS  // set in the clang build (open finding clang-1)
     case 4: {
       std::vector<core::MobiusSite> sites;
       for (const auto& r : rows) sites.push_back({r[0], r[1], r[2], r[3]});
       check<core::MobiusDiagram>(std::move(sites), points, true);
       break;
     }
-#endif
     default: break;
   }
   return 0;

@@ -300,7 +300,8 @@ void MobiusDiagram::Impl::build_edges(const std::unordered_map<std::uint64_t, st
   };
   std::vector<LineEdge> lines;
   const std::vector<std::size_t> none;
-  for (const auto& [i, j] : lifted) {
+  for (const auto& ij : lifted) {
+    const SiteIndex i = ij.first, j = ij.second;  // plain variables: the lambdas below capture them
     const MobiusSite &si = sites[i], &sj = sites[j];
     const auto it = on_pair.find(key(i, j));
     const std::vector<std::size_t>& on = it == on_pair.end() ? none : it->second;
