@@ -25,12 +25,6 @@ std::unique_ptr<core::MetricField> parse(const std::string& spec) {
   return field;
 }
 
-// The fields whose at() returns metric_from_sizes unchecked: tiny or huge sizes give infinite or zero
-// entries instead of a FieldError (open finding metric-2 in tests/fuzz/open/README.md).
-bool unchecked_at(const std::string& spec) {
-  return spec.rfind("sizes", 0) == 0 || spec.rfind("shock", 0) == 0 || spec.rfind("thesis", 0) == 0;
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -41,7 +35,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const core::Point2 p : {core::Point2{0.0, 0.0}, {0.5, 0.5}, {1.0, 0.25}, {-3.0, 7.0}}) {
     core::Metric m;
     if (laguerre::fuzz::parses<core::FieldError>([&] { m = field->at(p.x, p.y); }))
-      LAGUERRE_FUZZ_CHECK(core::is_metric(m) || unchecked_at(spec));
+      LAGUERRE_FUZZ_CHECK(core::is_metric(m));
   }
   const std::string description = field->describe();
   const std::unique_ptr<core::MetricField> again = parse(description);

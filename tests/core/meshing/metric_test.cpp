@@ -144,6 +144,31 @@ TEST(MetricField, ExpressionsAgreeWithBuiltIns) {
   EXPECT_THROW(abc->at(2, 2), FieldError);  // det = 5·2 − 16 < 0 there
 }
 
+// Positive finite sizes whose squares leave the doubles give infinite or zero entries: a FieldError
+// naming the field, as for expr fields (fuzz finding metric-2).
+TEST(MetricField, SizesBeyondTheDoublesThrowAtThePoint) {
+  auto message = [](const MetricField& field, double x, double y) {
+    try {
+      (void)field.at(x, y);
+    } catch (const FieldError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const auto sizes = parse_metric_field("sizes:h1=0.1+x;h2=0.01e-300;theta=atan2(y,x)");
+  EXPECT_NE(message(*sizes, 0, 0).find("metric field 'sizes:h1=0.1+x;h2=0.01e-300;theta=atan2(y,x)': the matrix"),
+            std::string::npos)
+      << message(*sizes, 0, 0);
+  EXPECT_TRUE(is_metric(parse_metric_field("sizes:h1=0.1+x;h2=0.01;theta=0")->at(0, 0)));
+  const auto shock = shock_layer_field(1e-200, 0.1, 0.02, 0.5);
+  EXPECT_NE(message(*shock, 0.5, 0).find("metric field 'shock:1e-200:0.1:0.02:0.5'"), std::string::npos)
+      << message(*shock, 0.5, 0);
+  EXPECT_TRUE(is_metric(shock->at(0.9, 0)));  // far from the layer the size across is about HMAX
+  const auto thesis = thesis_field(1e-160, 4, 0.1, 0.5);
+  EXPECT_THROW((void)thesis->at(0, 0.9), FieldError);
+  EXPECT_THROW((void)thesis_field(1e160, 4, 0.1, 0.5)->at(0, 0.9), FieldError);  // zero entries
+}
+
 TEST(MetricField, BadSpecificationsAreExplained) {
   auto message = [](const std::string& spec) {
     try {
