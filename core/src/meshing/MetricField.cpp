@@ -5,6 +5,7 @@
 #include <muParser.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -31,19 +32,28 @@ Metric checked(const Metric& m, double x, double y, const MetricField& field) {
   return m;
 }
 
+/// The shortest decimal form that reads back (strtod, muparser) as the same double.
+std::string exact_number(double v) {
+  char text[32];
+  return {text, std::to_chars(text, text + sizeof text, v).ptr};
+}
+
+/// A constant field. It describes itself by the specification that reads back to the same matrix bit
+/// for bit: the sizes it was parsed from (sizes recomputed from the matrix need not, and for extreme
+/// anisotropy may not even give an SPD matrix), or else its entries.
 class UniformField final : public MetricField {
 public:
-  explicit UniformField(const Metric& m) : m_(m) {
+  UniformField(const Metric& m, std::string description) : m_(m), description_(std::move(description)) {
     if (!is_metric(m)) throw FieldError("uniform field: the matrix is not symmetric positive definite");
   }
+  explicit UniformField(const Metric& m)
+      : UniformField(m, "expr:a=" + exact_number(m.a) + ";b=" + exact_number(m.b) + ";c=" + exact_number(m.c)) {}
   Metric at(double, double) const override { return m_; }
-  std::string describe() const override {
-    const auto [h1, h2, theta] = sizes_of(m_);
-    return "uniform:" + number(h1) + ":" + number(h2) + ":" + number(theta * 180 / M_PI);
-  }
+  std::string describe() const override { return description_; }
 
 private:
   Metric m_;
+  std::string description_;
 };
 
 class ShockLayerField final : public MetricField {
@@ -309,7 +319,9 @@ std::unique_ptr<MetricField> parse_metric_field(const std::string& spec) {
     if (parts.size() < 3) throw FieldError("metric field '" + spec + "': usage uniform:H1:H2[:THETA_DEGREES]");
     const auto p = parameters(spec, parts, {0, 0, 0}, "uniform:H1:H2[:THETA_DEGREES]");
     if (!(p[0] > 0) || !(p[1] > 0)) throw FieldError("metric field '" + spec + "': sizes must be positive");
-    return uniform_field(metric_from_sizes(p[0], p[1], p[2] * M_PI / 180));
+    return std::make_unique<UniformField>(metric_from_sizes(p[0], p[1], p[2] * M_PI / 180),
+                                          "uniform:" + exact_number(p[0]) + ":" + exact_number(p[1]) + ":" +
+                                              exact_number(p[2]));
   }
   if (kind == "shock") {
     const auto p = parameters(spec, parts, {0.002, 0.1, 0.02, 0.5}, "shock[:HMIN:HMAX:WIDTH:X0]");

@@ -169,6 +169,27 @@ TEST(MetricField, SizesBeyondTheDoublesThrowAtThePoint) {
   EXPECT_THROW((void)thesis_field(1e160, 4, 0.1, 0.5)->at(0, 0.9), FieldError);  // zero entries
 }
 
+// A uniform field's description parses back to the same matrix bit for bit (fuzz finding metric-1).
+TEST(MetricField, UniformDescriptionsReadBackExactly) {
+  for (const char* spec : {"uniform:065536.2:1844674407370955161601e30", "uniform:617:0.05:30", "uniform:0.1:0.05:30",
+                           "uniform:0.3:0.3", "uniform:0.02:0.1:-17.25", "uniform:1e-100:3e-100:1e-300"}) {
+    const auto field = parse_metric_field(spec);
+    const std::string description = field->describe();
+    const auto again = parse_metric_field(description);
+    const Metric m = field->at(0, 0), n = again->at(0, 0);
+    EXPECT_TRUE(m.a == n.a && m.b == n.b && m.c == n.c) << spec << " -> " << description;
+    EXPECT_EQ(again->describe(), description) << spec;
+  }
+  EXPECT_EQ(parse_metric_field("uniform:065536.2:1844674407370955161601e30")->describe(),
+            "uniform:65536.2:1.8446744073709553e+51:0");
+  EXPECT_EQ(parse_metric_field("uniform:0.3:0.3")->describe(), "uniform:0.3:0.3:0");  // default THETA filled in
+  // Built from a matrix: described by its entries.
+  const Metric m{2.5, -0.1, 1.0 / 3};
+  const auto field = uniform_field(m);
+  const Metric n = parse_metric_field(field->describe())->at(0.5, 0.5);
+  EXPECT_TRUE(m.a == n.a && m.b == n.b && m.c == n.c) << field->describe();
+}
+
 TEST(MetricField, BadSpecificationsAreExplained) {
   auto message = [](const std::string& spec) {
     try {
