@@ -147,3 +147,27 @@ TEST(AffineDiagrams, RejectBadInput) {
   EXPECT_THROW(PowerDiagram({{0, 0, NAN}}, {0, 0, 1, 1}), InputError);
   EXPECT_THROW(VoronoiDiagram({{0, 0}}, {0, 0, -1, 1}), InputError);
 }
+
+// A small box far from the origin: the area check sums cell areas relative to a box corner, not in
+// absolute coordinates, whose rounding (~1e-17 · 0.5²) is far above 1e-7 of a ~4e-13 box (fuzz finding
+// sites-3). In the far cluster the vertices themselves are rounded to ~1e-7 of the box's side.
+TEST(AffineDiagrams, SmallBoxesFarFromTheOriginAreValid) {
+  const std::vector<Point2> pair{{0.5, 0.500001}, {0.5, 0.5}};
+  const VoronoiDiagram tiny(pair, bounding_box(pair, 0.15));
+  EXPECT_TRUE(tiny.is_valid(true));
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1e-6);
+  std::vector<Point2> cluster;
+  std::vector<WeightedPoint> weighted;
+  for (int k = 0; k < 30; ++k) {
+    cluster.push_back({1e3 + u(rng), -2e3 + u(rng)});
+    weighted.push_back({cluster.back().x, cluster.back().y, 1e-14 * u(rng)});
+  }
+  const Box box = bounding_box(cluster, 0.15);
+  EXPECT_TRUE(VoronoiDiagram(cluster, box).is_valid(true));
+  EXPECT_TRUE(PowerDiagram(weighted, box).is_valid(true));
+  double total = 0;
+  const VoronoiDiagram d(cluster, box);
+  for (SiteIndex i = 0; i < cluster.size(); ++i) total += signed_area(d.cell(i), {box.xmin, box.ymin});
+  EXPECT_NEAR(total, box.width() * box.height(), 1e-7 * box.width() * box.height());  // is_valid's tolerance
+}
