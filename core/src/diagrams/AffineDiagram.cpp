@@ -5,12 +5,15 @@
 #include "laguerre/core/diagrams/PowerDiagram.hpp"
 #include "laguerre/core/diagrams/VoronoiDiagram.hpp"
 
+#include <CGAL/Cartesian_converter.h>
 #include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Regular_triangulation_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <cmath>
+#include <type_traits>
 
 #include "detail/AffineCells.hpp"
 #include "detail/Validity.hpp"
@@ -20,6 +23,21 @@ namespace laguerre::core {
 
 namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using EK = CGAL::Exact_predicates_exact_constructions_kernel;
+
+/// The exact circumcentre rounded to doubles, for the faces whose centre the doubles overflow to
+/// inf or 0/0 (nearly collinear sites on the hull: their determinant rounds to 0).
+template <class RT>
+Point2 exact_centre(typename RT::Finite_faces_iterator f) {
+  const CGAL::Cartesian_converter<K, EK> to_exact;
+  const auto p = [&](int k) { return to_exact(f->vertex(k)->point()); };
+  EK::Point_2 c;
+  if constexpr (std::is_same_v<typename RT::Point, K::Point_2>)
+    c = EK().construct_circumcenter_2_object()(p(0), p(1), p(2));
+  else
+    c = EK().construct_weighted_circumcenter_2_object()(p(0), p(1), p(2));
+  return {CGAL::to_double(c.x()), CGAL::to_double(c.y())};
+}
 
 template <class Site>
 struct Traits;
@@ -114,7 +132,9 @@ AffineDiagram<Site>::AffineDiagram(std::vector<Site> sites, const Box& box) : im
   if (m.rt.dimension() == 2)
     for (auto f = m.rt.finite_faces_begin(); f != m.rt.finite_faces_end(); ++f) {
       const K::Point_2 c = T::centre(m.rt, f);
-      m.vertices.push_back({{c.x(), c.y()}, {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
+      Point2 x{c.x(), c.y()};
+      if (!std::isfinite(x.x) || !std::isfinite(x.y)) x = exact_centre<RT>(f);
+      m.vertices.push_back({x, {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
     }
   m.cells = detail::build_affine_cells(m.weighted, m.hidden, neighbours, box);
 }

@@ -171,3 +171,16 @@ TEST(AffineDiagrams, SmallBoxesFarFromTheOriginAreValid) {
   for (SiteIndex i = 0; i < cluster.size(); ++i) total += signed_area(d.cell(i), {box.xmin, box.ymin});
   EXPECT_NEAR(total, box.width() * box.height(), 1e-7 * box.width() * box.height());  // is_valid's tolerance
 }
+
+// Nearly collinear sites on the hull make a sliver face whose circumcentre the doubles compute as
+// inf or 0/0: it is then constructed exactly (found by the sites fuzz harness).
+TEST(AffineDiagrams, SliverFacesHaveFiniteVertices) {
+  const std::vector<Point2> sites{{0.15, 0.2}, {0.5, 0.1}, {0.85, 0}, {0.62, 0.45}, {0.9, 0.6},
+                                  {0.12, 0.82}, {0.5, 0.8}, {0.78, 0.9}};
+  const VoronoiDiagram d(sites, bounding_box(sites, 0.15));
+  for (const DiagramVertex& v : d.vertices()) EXPECT_TRUE(std::isfinite(v.point.x) && std::isfinite(v.point.y));
+  EXPECT_TRUE(d.is_valid(true));
+  std::vector<WeightedPoint> weighted;
+  for (const Point2& p : sites) weighted.push_back({p.x, p.y, 0.0});
+  EXPECT_TRUE(PowerDiagram(weighted, bounding_box(sites, 0.15)).is_valid(true));
+}
