@@ -7,7 +7,7 @@
 #   tools/fuzz.sh [--executions N] [--seconds S] [--jobs J] [--max-len L] [--no-build] [HARNESS...]
 #
 # HARNESS is a name of tests/fuzz/corpus (edges, coords, planar_code, graphml, dot, scenario, sites,
-# domain, metric, codec); all but scenario by default. --executions is libFuzzer's -runs per harness
+# domain, metric, codec); all of them by default. --executions is libFuzzer's -runs per harness
 # (default 1000000), --seconds a time cap per harness (-max_total_time, default none), --jobs how many
 # harnesses run at once (default 1). Work files and reproducers go to build/fuzz/campaign/<harness>/.
 set -euo pipefail
@@ -28,9 +28,7 @@ while [ $# -gt 0 ]; do
   esac
 done
 if [ ${#harnesses[@]} -eq 0 ]; then
-  # Not scenario by default: it needs all of laguerre_core, which clang-14 does not compile yet (open
-  # finding clang-1 in tests/fuzz/open/README.md).
-  harnesses=(edges coords planar_code graphml dot sites domain metric codec)
+  harnesses=(edges coords planar_code graphml dot scenario sites domain metric codec)
 fi
 for h in "${harnesses[@]}"; do
   [ -d "$root/tests/fuzz/corpus/$h" ] || { echo "fuzz.sh: no harness '$h' (no tests/fuzz/corpus/$h)" >&2; exit 2; }

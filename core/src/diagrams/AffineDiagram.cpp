@@ -5,14 +5,15 @@
 #include "laguerre/core/diagrams/PowerDiagram.hpp"
 #include "laguerre/core/diagrams/VoronoiDiagram.hpp"
 
+#include <CGAL/Cartesian_converter.h>
 #include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Exact_rational.h>
 #include <CGAL/Regular_triangulation_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
-#include <array>
 #include <cmath>
+#include <type_traits>
 
 #include "detail/AffineCells.hpp"
 #include "detail/Validity.hpp"
@@ -22,22 +23,20 @@ namespace laguerre::core {
 
 namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using EK = CGAL::Exact_predicates_exact_constructions_kernel;
 
-/// The (weighted) circumcentre of three sites in exact rational arithmetic, rounded once: for the faces
-/// whose inexact construction divides by a determinant that rounds to 0 (nearly collinear sites, which
-/// the exact predicates still see as a proper triangle), where the inexact result is not finite.
-/// Solves 2 (p_j − p_0) · c = (|p_j|² − w_j) − (|p_0|² − w_0), j = 1, 2, by Cramer's rule.
-K::Point_2 exact_centre(const std::array<WeightedPoint, 3>& s, const K::Point_2& inexact) {
-  using Q = CGAL::Exact_rational;
-  const auto lift = [](const WeightedPoint& p) -> Q {  // -> Q: gmpxx expressions must not outlive their operands
-    return Q(p.x) * Q(p.x) + Q(p.y) * Q(p.y) - Q(p.w);
-  };
-  const Q ax = Q(s[1].x) - Q(s[0].x), ay = Q(s[1].y) - Q(s[0].y);
-  const Q bx = Q(s[2].x) - Q(s[0].x), by = Q(s[2].y) - Q(s[0].y);
-  const Q ra = (lift(s[1]) - lift(s[0])) / 2, rb = (lift(s[2]) - lift(s[0])) / 2;
-  const Q det = ax * by - ay * bx;
-  if (det == 0) return inexact;  // truly collinear: not a face of a 2D triangulation
-  return K::Point_2(CGAL::to_double((ra * by - ay * rb) / det), CGAL::to_double((ax * rb - bx * ra) / det));
+/// The exact circumcentre rounded to doubles, for the faces whose centre the doubles overflow to
+/// inf or 0/0 (nearly collinear sites on the hull: their determinant rounds to 0).
+template <class RT>
+Point2 exact_centre(typename RT::Finite_faces_iterator f) {
+  const CGAL::Cartesian_converter<K, EK> to_exact;
+  const auto p = [&](int k) { return to_exact(f->vertex(k)->point()); };
+  EK::Point_2 c;
+  if constexpr (std::is_same_v<typename RT::Point, K::Point_2>)
+    c = EK().construct_circumcenter_2_object()(p(0), p(1), p(2));
+  else
+    c = EK().construct_weighted_circumcenter_2_object()(p(0), p(1), p(2));
+  return {CGAL::to_double(c.x()), CGAL::to_double(c.y())};
 }
 
 template <class Site>
@@ -132,12 +131,10 @@ AffineDiagram<Site>::AffineDiagram(std::vector<Site> sites, const Box& box) : im
   }
   if (m.rt.dimension() == 2)
     for (auto f = m.rt.finite_faces_begin(); f != m.rt.finite_faces_end(); ++f) {
-      K::Point_2 c = T::centre(m.rt, f);
-      if (!std::isfinite(c.x()) || !std::isfinite(c.y()))
-        c = exact_centre({T::weighted(m.sites[f->vertex(0)->info()]), T::weighted(m.sites[f->vertex(1)->info()]),
-                          T::weighted(m.sites[f->vertex(2)->info()])},
-                         c);
-      m.vertices.push_back({{c.x(), c.y()}, {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
+      const K::Point_2 c = T::centre(m.rt, f);
+      Point2 x{c.x(), c.y()};
+      if (!std::isfinite(x.x) || !std::isfinite(x.y)) x = exact_centre<RT>(f);
+      m.vertices.push_back({x, {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
     }
   m.cells = detail::build_affine_cells(m.weighted, m.hidden, neighbours, box);
 }

@@ -425,7 +425,9 @@ RestrictedAnisotropicDiagram restrict_anisotropic(const AnisotropicDiagram& diag
       }
     }
   // Chain the segments of each pair into polylines.
-  for (auto& [pair, segs] : segments) {
+  for (auto& entry : segments) {
+    const auto& pair = entry.first;
+    auto& segs = entry.second;  // a reference, not a structured binding: the lambda `walk` captures it
     std::map<long, std::vector<std::size_t>> at;
     for (std::size_t s = 0; s < segs.size(); ++s) at[segs[s][0]].push_back(s), at[segs[s][1]].push_back(s);
     std::vector<char> done(segs.size(), 0);

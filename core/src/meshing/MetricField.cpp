@@ -5,6 +5,7 @@
 #include <muParser.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -23,26 +24,36 @@ std::string number(double v) {
   return s.str();
 }
 
-Metric checked(const Metric& m, double x, double y, const std::string& what) {
+/// `m`, the value of `field` at (x, y), if it is a metric; otherwise a FieldError naming the field.
+Metric checked(const Metric& m, double x, double y, const MetricField& field) {
   if (!is_metric(m))
-    throw FieldError(what + ": the matrix [[" + number(m.a) + ", " + number(m.b) + "], [" + number(m.b) + ", " +
-                     number(m.c) + "]] at (" + number(x) + ", " + number(y) + ") is not symmetric positive definite");
+    throw FieldError("metric field '" + field.describe() + "': the matrix [[" + number(m.a) + ", " + number(m.b) +
+                     "], [" + number(m.b) + ", " + number(m.c) + "]] at (" + number(x) + ", " + number(y) + ") is not symmetric positive definite");
   return m;
 }
 
+/// The shortest decimal form that reads back (strtod, muparser) as the same double.
+std::string exact_number(double v) {
+  char text[32];
+  return {text, std::to_chars(text, text + sizeof text, v).ptr};
+}
+
+/// A constant field. It describes itself by the specification that reads back to the same matrix bit
+/// for bit: the sizes it was parsed from (sizes recomputed from the matrix need not, and for extreme
+/// anisotropy may not even give an SPD matrix), or else its entries.
 class UniformField final : public MetricField {
 public:
-  explicit UniformField(const Metric& m) : m_(m) {
+  UniformField(const Metric& m, std::string description) : m_(m), description_(std::move(description)) {
     if (!is_metric(m)) throw FieldError("uniform field: the matrix is not symmetric positive definite");
   }
+  explicit UniformField(const Metric& m)
+      : UniformField(m, "expr:a=" + exact_number(m.a) + ";b=" + exact_number(m.b) + ";c=" + exact_number(m.c)) {}
   Metric at(double, double) const override { return m_; }
-  std::string describe() const override {
-    const auto [h1, h2, theta] = sizes_of(m_);
-    return "uniform:" + number(h1) + ":" + number(h2) + ":" + number(theta * 180 / M_PI);
-  }
+  std::string describe() const override { return description_; }
 
 private:
   Metric m_;
+  std::string description_;
 };
 
 class ShockLayerField final : public MetricField {
@@ -52,9 +63,9 @@ public:
     if (!(h_min > 0) || !(h_max >= h_min) || !(width > 0) || !std::isfinite(h_max) || !std::isfinite(x0))
       throw FieldError("shock field: expected 0 < HMIN <= HMAX, WIDTH > 0 and a finite X0");
   }
-  Metric at(double x, double) const override {
+  Metric at(double x, double y) const override {
     const double across = h_min_ + (h_max_ - h_min_) * (1 - std::exp(-std::abs(x - x0_) / width_));
-    return {1 / (across * across), 0, 1 / (h_max_ * h_max_)};
+    return checked({1 / (across * across), 0, 1 / (h_max_ * h_max_)}, x, y, *this);
   }
   std::string describe() const override {
     return "shock:" + number(h_min_) + ":" + number(h_max_) + ":" + number(width_) + ":" + number(x0_);
@@ -70,12 +81,12 @@ public:
     if (!(h > 0) || !(ratio >= 1) || !(width > 0) || !std::isfinite(h) || !std::isfinite(ratio) || !std::isfinite(y0))
       throw FieldError("thesis field: expected H > 0, RATIO >= 1, WIDTH > 0 and a finite Y0");
   }
-  Metric at(double, double y) const override {
+  Metric at(double x, double y) const override {
     // s = +1 above the band (long horizontally), −1 below (long vertically), linear in between; the
     // sizes are h·RATIO^{±s/2}, so log-sizes are continuous and piecewise linear in y.
     const double s = std::clamp((y - y0_) / width_, -1.0, 1.0);
     const double hx = h_ * std::pow(ratio_, 0.5 * s), hy = h_ * std::pow(ratio_, -0.5 * s);
-    return {1 / (hx * hx), 0, 1 / (hy * hy)};
+    return checked({1 / (hx * hx), 0, 1 / (hy * hy)}, x, y, *this);
   }
   std::string describe() const override {
     return "thesis:" + number(h_) + ":" + number(ratio_) + ":" + number(width_) + ":" + number(y0_);
@@ -121,9 +132,11 @@ public:
       if (!(v[0] > 0) || !(v[1] > 0) || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
         throw FieldError("metric field '" + spec_ + "': sizes h1=" + number(v[0]) + ", h2=" + number(v[1]) +
                          " at (" + number(x) + ", " + number(y) + ") are not positive and finite");
-      return metric_from_sizes(v[0], v[1], v[2]);
+      // Positive finite sizes can still give a matrix the doubles cannot hold (sizes below about
+      // 1e-154 or above 1e154, or an extreme ratio): checked like the entries of expr fields.
+      return checked(metric_from_sizes(v[0], v[1], v[2]), x, y, *this);
     }
-    return checked({v[0], v[1], v[2]}, x, y, "metric field '" + spec_ + "'");
+    return checked({v[0], v[1], v[2]}, x, y, *this);
   }
   std::string describe() const override { return spec_; }
 
@@ -306,7 +319,9 @@ std::unique_ptr<MetricField> parse_metric_field(const std::string& spec) {
     if (parts.size() < 3) throw FieldError("metric field '" + spec + "': usage uniform:H1:H2[:THETA_DEGREES]");
     const auto p = parameters(spec, parts, {0, 0, 0}, "uniform:H1:H2[:THETA_DEGREES]");
     if (!(p[0] > 0) || !(p[1] > 0)) throw FieldError("metric field '" + spec + "': sizes must be positive");
-    return uniform_field(metric_from_sizes(p[0], p[1], p[2] * M_PI / 180));
+    return std::make_unique<UniformField>(metric_from_sizes(p[0], p[1], p[2] * M_PI / 180),
+                                          "uniform:" + exact_number(p[0]) + ":" + exact_number(p[1]) + ":" +
+                                              exact_number(p[2]));
   }
   if (kind == "shock") {
     const auto p = parameters(spec, parts, {0.002, 0.1, 0.02, 0.5}, "shock[:HMIN:HMAX:WIDTH:X0]");

@@ -282,7 +282,8 @@ private:
   /// A triangle whose angle at an acute input corner is that input angle (its two other vertices on the
   /// two constraints): no refinement can improve it, rule 3 leaves it (corner_shells).
   bool at_acute_corner(const std::array<Index, 3>& label) const {
-    for (const auto& [c, e1, e2] : acute_)
+    for (const auto& corner : acute_) {
+      const Index c = corner[0], e1 = corner[1], e2 = corner[2];  // plain variables: the lambda captures c
       for (int k = 0; k < 3; ++k) {
         if (label[static_cast<std::size_t>(k)] != c) continue;
         const Index p = label[static_cast<std::size_t>((k + 1) % 3)], q = label[static_cast<std::size_t>((k + 2) % 3)];
@@ -292,6 +293,7 @@ private:
         };
         if ((on(p, e1) && on(q, e2)) || (on(p, e2) && on(q, e1))) return true;
       }
+    }
     return false;
   }
 

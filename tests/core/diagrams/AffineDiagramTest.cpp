@@ -166,3 +166,40 @@ TEST(PowerDiagram, NearlyCollinearSitesGetAFiniteVertex) {
   }
   EXPECT_TRUE(far) << "the nearly flat triangle's vertex lies far away";
 }
+
+// A small box far from the origin: the area check sums cell areas relative to a box corner, not in
+// absolute coordinates, whose rounding (~1e-17 · 0.5²) is far above 1e-7 of a ~4e-13 box (fuzz finding
+// sites-3). In the far cluster the vertices themselves are rounded to ~1e-7 of the box's side.
+TEST(AffineDiagrams, SmallBoxesFarFromTheOriginAreValid) {
+  const std::vector<Point2> pair{{0.5, 0.500001}, {0.5, 0.5}};
+  const VoronoiDiagram tiny(pair, bounding_box(pair, 0.15));
+  EXPECT_TRUE(tiny.is_valid(true));
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1e-6);
+  std::vector<Point2> cluster;
+  std::vector<WeightedPoint> weighted;
+  for (int k = 0; k < 30; ++k) {
+    cluster.push_back({1e3 + u(rng), -2e3 + u(rng)});
+    weighted.push_back({cluster.back().x, cluster.back().y, 1e-14 * u(rng)});
+  }
+  const Box box = bounding_box(cluster, 0.15);
+  EXPECT_TRUE(VoronoiDiagram(cluster, box).is_valid(true));
+  EXPECT_TRUE(PowerDiagram(weighted, box).is_valid(true));
+  double total = 0;
+  const VoronoiDiagram d(cluster, box);
+  for (SiteIndex i = 0; i < cluster.size(); ++i) total += signed_area(d.cell(i), {box.xmin, box.ymin});
+  EXPECT_NEAR(total, box.width() * box.height(), 1e-7 * box.width() * box.height());  // is_valid's tolerance
+}
+
+// Nearly collinear sites on the hull make a sliver face whose circumcentre the doubles compute as
+// inf or 0/0: it is then constructed exactly (found by the sites fuzz harness).
+TEST(AffineDiagrams, SliverFacesHaveFiniteVertices) {
+  const std::vector<Point2> sites{{0.15, 0.2}, {0.5, 0.1}, {0.85, 0}, {0.62, 0.45}, {0.9, 0.6},
+                                  {0.12, 0.82}, {0.5, 0.8}, {0.78, 0.9}};
+  const VoronoiDiagram d(sites, bounding_box(sites, 0.15));
+  for (const DiagramVertex& v : d.vertices()) EXPECT_TRUE(std::isfinite(v.point.x) && std::isfinite(v.point.y));
+  EXPECT_TRUE(d.is_valid(true));
+  std::vector<WeightedPoint> weighted;
+  for (const Point2& p : sites) weighted.push_back({p.x, p.y, 0.0});
+  EXPECT_TRUE(PowerDiagram(weighted, bounding_box(sites, 0.15)).is_valid(true));
+}

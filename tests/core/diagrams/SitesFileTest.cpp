@@ -84,15 +84,19 @@ TEST(SitesFile, MissingFileAndDirectory) {
   EXPECT_THROW(read_site_rows(::testing::TempDir() + "/no-such-sites.txt", "x y", "Voronoi diagram"), InputError);
 }
 
-TEST(SitesFile, VerticesTheDoublesCannotConstructAreComputedExactly) {
-  // Built directly (no reader): three sites 1e-300 apart have a circumcentre the inexact construction
-  // cannot compute (squared differences underflow to 0); it is then computed in exact rational
-  // arithmetic and rounded once, so the diagram is right and says so.
+TEST(SitesFile, UnrepresentableVerticesAreNeverValid) {
+  // Built directly (no reader): the circumcentre of these sites is about (0, -5e599), beyond the
+  // doubles; the diagram must not call itself valid.
+  const VoronoiDiagram huge({{-1e300, 0}, {1e300, 0}, {0, 1}}, {-1, -1, 1, 1});
+  ASSERT_EQ(huge.vertices().size(), 1u);
+  const Point2 v = huge.vertices()[0].point;
+  EXPECT_FALSE(std::isfinite(v.x) && std::isfinite(v.y)) << v.x << ", " << v.y;
+  EXPECT_FALSE(huge.is_valid());
+  // Three sites 1e-300 apart: the doubles' construction underflows (0/0), the exact fallback does not.
   const VoronoiDiagram tiny({{0, 0}, {1e-300, 0}, {0, 1e-300}}, {-1, -1, 1, 1});
   ASSERT_EQ(tiny.vertices().size(), 1u);
-  const Point2 v = tiny.vertices()[0].point;
-  EXPECT_EQ(v.x, 0.5e-300);
-  EXPECT_EQ(v.y, 0.5e-300);
+  EXPECT_EQ(tiny.vertices()[0].point.x, 5e-301);
+  EXPECT_EQ(tiny.vertices()[0].point.y, 5e-301);
   EXPECT_TRUE(tiny.is_valid(true));
   // The same triangle at a representable scale is valid.
   const VoronoiDiagram fine({{0, 0}, {1e-100, 0}, {0, 1e-100}}, {-1, -1, 1, 1});

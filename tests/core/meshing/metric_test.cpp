@@ -144,6 +144,52 @@ TEST(MetricField, ExpressionsAgreeWithBuiltIns) {
   EXPECT_THROW(abc->at(2, 2), FieldError);  // det = 5·2 − 16 < 0 there
 }
 
+// Positive finite sizes whose squares leave the doubles give infinite or zero entries: a FieldError
+// naming the field, as for expr fields (fuzz finding metric-2).
+TEST(MetricField, SizesBeyondTheDoublesThrowAtThePoint) {
+  auto message = [](const MetricField& field, double x, double y) {
+    try {
+      (void)field.at(x, y);
+    } catch (const FieldError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const auto sizes = parse_metric_field("sizes:h1=0.1+x;h2=0.01e-300;theta=atan2(y,x)");
+  EXPECT_NE(message(*sizes, 0, 0).find("metric field 'sizes:h1=0.1+x;h2=0.01e-300;theta=atan2(y,x)': the matrix"),
+            std::string::npos)
+      << message(*sizes, 0, 0);
+  EXPECT_TRUE(is_metric(parse_metric_field("sizes:h1=0.1+x;h2=0.01;theta=0")->at(0, 0)));
+  const auto shock = shock_layer_field(1e-200, 0.1, 0.02, 0.5);
+  EXPECT_NE(message(*shock, 0.5, 0).find("metric field 'shock:1e-200:0.1:0.02:0.5'"), std::string::npos)
+      << message(*shock, 0.5, 0);
+  EXPECT_TRUE(is_metric(shock->at(0.9, 0)));  // far from the layer the size across is about HMAX
+  const auto thesis = thesis_field(1e-160, 4, 0.1, 0.5);
+  EXPECT_THROW((void)thesis->at(0, 0.9), FieldError);
+  EXPECT_THROW((void)thesis_field(1e160, 4, 0.1, 0.5)->at(0, 0.9), FieldError);  // zero entries
+}
+
+// A uniform field's description parses back to the same matrix bit for bit (fuzz finding metric-1).
+TEST(MetricField, UniformDescriptionsReadBackExactly) {
+  for (const char* spec : {"uniform:065536.2:1844674407370955161601e30", "uniform:617:0.05:30", "uniform:0.1:0.05:30",
+                           "uniform:0.3:0.3", "uniform:0.02:0.1:-17.25", "uniform:1e-100:3e-100:1e-300"}) {
+    const auto field = parse_metric_field(spec);
+    const std::string description = field->describe();
+    const auto again = parse_metric_field(description);
+    const Metric m = field->at(0, 0), n = again->at(0, 0);
+    EXPECT_TRUE(m.a == n.a && m.b == n.b && m.c == n.c) << spec << " -> " << description;
+    EXPECT_EQ(again->describe(), description) << spec;
+  }
+  EXPECT_EQ(parse_metric_field("uniform:065536.2:1844674407370955161601e30")->describe(),
+            "uniform:65536.2:1.8446744073709553e+51:0");
+  EXPECT_EQ(parse_metric_field("uniform:0.3:0.3")->describe(), "uniform:0.3:0.3:0");  // default THETA filled in
+  // Built from a matrix: described by its entries.
+  const Metric m{2.5, -0.1, 1.0 / 3};
+  const auto field = uniform_field(m);
+  const Metric n = parse_metric_field(field->describe())->at(0.5, 0.5);
+  EXPECT_TRUE(m.a == n.a && m.b == n.b && m.c == n.c) << field->describe();
+}
+
 TEST(MetricField, BadSpecificationsAreExplained) {
   auto message = [](const std::string& spec) {
     try {

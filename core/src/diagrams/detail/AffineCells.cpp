@@ -2,11 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 
 namespace laguerre::core::detail {
 
 namespace {
+
+/// `v` with 6 significant digits (%g: small areas do not print as 0.000000).
+std::string short_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
 
 /// A polygon vertex with the label of the side that leaves it (a neighbour, or no_site for the box).
 struct LabelledVertex {
@@ -100,12 +108,15 @@ std::string check_affine_cells(const std::vector<WeightedPoint>& sites, const st
   for (std::size_t k = 0; k < vertices.size(); ++k)
     if (!std::isfinite(vertices[k].point.x) || !std::isfinite(vertices[k].point.y))
       return fail("vertex " + std::to_string(k) + " is not finite: the sites' coordinates are beyond what doubles represent");
+  // Areas relative to a corner of the box: in absolute coordinates their rounding grows with the box's
+  // distance from the origin and swamps the areas of a small box far away.
+  const Point2 corner{box.xmin, box.ymin};
   double total = 0;
   for (SiteIndex i = 0; i < n; ++i) {
     const Polygon& c = cells.cells[i];
     if (hidden[i] && !c.empty()) return fail("hidden site " + std::to_string(i) + " has a non-empty cell");
     if (c.empty()) continue;
-    const double a = signed_area(c);
+    const double a = signed_area(c, corner);
     if (a < 0) return fail("cell " + std::to_string(i) + " is clockwise");
     total += a;
     for (std::size_t k = 0; k < c.size(); ++k) {
@@ -131,7 +142,7 @@ std::string check_affine_cells(const std::vector<WeightedPoint>& sites, const st
       return fail("dual edge (" + std::to_string(a) + ", " + std::to_string(b) + ") is malformed");
   const double area = box.width() * box.height();
   if (n > 0 && std::fabs(total - area) > 1e-7 * area)
-    return fail("cell areas add up to " + std::to_string(total) + ", the box has area " + std::to_string(area));
+    return fail("cell areas add up to " + short_number(total) + ", the box has area " + short_number(area));
   return "";
 }
 

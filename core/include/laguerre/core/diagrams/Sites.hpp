@@ -100,12 +100,14 @@ inline Box bounding_box(std::span<const Point2> points, double relative_margin =
 /// A simple polygon as its vertices in counter-clockwise order (not repeated at the end).
 using Polygon = std::vector<Point2>;
 
-/// Signed area of a polygon (positive when counter-clockwise), in doubles.
-inline double signed_area(const Polygon& polygon) {
+/// Signed area of a polygon (positive when counter-clockwise), in doubles, summed in coordinates
+/// relative to `origin`: a point near the polygon (e.g. a corner of its box) keeps the rounding relative
+/// to the polygon's size rather than to its distance from (0, 0).
+inline double signed_area(const Polygon& polygon, Point2 origin = {0, 0}) {
   double a = 0;
   for (std::size_t i = 0, n = polygon.size(); i < n; ++i) {
     const Point2 &p = polygon[i], &q = polygon[(i + 1) % n];
-    a += p.x * q.y - p.y * q.x;
+    a += (p.x - origin.x) * (q.y - origin.y) - (p.y - origin.y) * (q.x - origin.x);
   }
   return a / 2;
 }
