@@ -78,3 +78,11 @@ TEST_F(CliBadInput, UniformLatencyNeedsLoBelowHi) {
   expect_bad("simulate " + graph + " --latency uniform:5ms:1ms", {"--latency", "LO <= HI"});
   EXPECT_EQ(run("simulate " + graph + " --latency uniform:1ms:1ms --pairs 3").status, 0);
 }
+
+TEST_F(CliBadInput, LossAndDuplicationAreProbabilities) {  // exited 1 ("error: ...") before issue 15
+  expect_bad("simulate " + graph + " --loss 2", {"--loss", "not in range"});
+  expect_bad("simulate " + graph + " --loss -0.1", {"--loss"});
+  expect_bad("simulate " + graph + " --dup -1", {"--dup", "not in range"});
+  expect_bad("simulate " + graph + " --dup 1.5", {"--dup"});
+  EXPECT_EQ(run("simulate " + graph + " --loss 0 --dup 0 --pairs 3").status, 0);
+}
