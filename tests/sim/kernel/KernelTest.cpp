@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/sim/Kernel.hpp"
 #include "laguerre/sim/Random.hpp"
 

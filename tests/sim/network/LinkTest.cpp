@@ -5,6 +5,7 @@
 #include <cstring>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/sim/Simulator.hpp"
 
 namespace laguerre::sim {

@@ -3,6 +3,7 @@
 #include <limits>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/sim/Network.hpp"
 
 namespace laguerre::sim {

@@ -5,6 +5,7 @@
 #include <set>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/sim/Random.hpp"
 
 namespace laguerre::sim {

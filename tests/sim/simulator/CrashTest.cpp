@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/sim/Simulator.hpp"
 
 namespace laguerre::sim {

@@ -3,6 +3,7 @@
 #include <memory>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/protocols/Runtime.hpp"
 #include "laguerre/sim/SimHost.hpp"
 
