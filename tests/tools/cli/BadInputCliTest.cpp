@@ -92,7 +92,8 @@ TEST_F(CliBadInput, EmbeddingWithAnInvalidRotationSystemIsNamed) {
   // PlanarGraph::from_rotation reports bad rotations as core::InputError; the embedding reader names
   // the file (exit 2, not an internal error).
   const std::string file = path("asymmetric.json");
-  std::ofstream(file) << R"({"vertices": [{"id": 0, "x": 0, "y": 0, "r": 1, "neighbours": [1]},
+  std::ofstream(file) << R"({"format": "laguerre-embedding",
+                             "vertices": [{"id": 0, "x": 0, "y": 0, "r": 1, "neighbours": [1]},
                                            {"id": 1, "x": 2, "y": 0, "r": 1, "neighbours": []}],
                              "outer_face": [0, 1]})";
   expect_bad("route " + file, {"asymmetric.json", "rotation system is invalid"});
