@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "laguerre/core/Error.hpp"
+
 namespace laguerre::sim {
 
 namespace {
@@ -22,7 +24,7 @@ std::string_view to_string(StopReason reason) {
 Kernel::Kernel() = default;
 
 HandlerId Kernel::add_handler(std::string name, HandlerFn fn, void* context) {
-  if (fn == nullptr) throw std::invalid_argument("Kernel::add_handler needs a non-null function.");
+  LAGUERRE_PRECONDITION(fn != nullptr, "Kernel::add_handler needs a non-null function.");
   if (handlers_.size() > 0xffff) {
     throw std::length_error("The kernel's handler table is full (65536 handlers).");
   }
@@ -31,14 +33,14 @@ HandlerId Kernel::add_handler(std::string name, HandlerFn fn, void* context) {
 }
 
 void Kernel::throw_past(Time at) const {
-  throw std::invalid_argument("Cannot schedule an event at time " + std::to_string(at) +
-                              " ns, before the current time " + std::to_string(now_) + " ns.");
+  throw core::InternalError("precondition failed: Cannot schedule an event at time " + std::to_string(at) +
+                            " ns, before the current time " + std::to_string(now_) + " ns.");
 }
 
 void Kernel::throw_delay(Duration delay) const {
-  throw std::invalid_argument("Cannot schedule an event after a delay of " + std::to_string(delay) +
-                              " ns at time " + std::to_string(now_) +
-                              " ns: delays must be non-negative and keep the clock representable.");
+  throw core::InternalError("precondition failed: Cannot schedule an event after a delay of " +
+                            std::to_string(delay) + " ns at time " + std::to_string(now_) +
+                            " ns: delays must be non-negative and keep the clock representable.");
 }
 
 EventHandle Kernel::schedule_cancellable_at(Time at, HandlerId handler, std::uint32_t target,

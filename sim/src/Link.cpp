@@ -1,8 +1,9 @@
 #include "laguerre/sim/Link.hpp"
 
 #include <cmath>
-#include <stdexcept>
 #include <string>
+
+#include "laguerre/core/Error.hpp"
 
 namespace laguerre::sim {
 
@@ -19,10 +20,8 @@ LatencyModel LatencyModel::constant(Duration latency) {
 }
 
 LatencyModel LatencyModel::uniform(Duration lo, Duration hi) {
-  if (hi < lo) {
-    throw std::invalid_argument("A uniform latency needs lo <= hi, got [" + std::to_string(lo) +
-                                ", " + std::to_string(hi) + "] ns.");
-  }
+  LAGUERRE_PRECONDITION(lo <= hi, "A uniform latency needs lo <= hi, got [" + std::to_string(lo) + ", " +
+                                       std::to_string(hi) + "] ns.");
   LatencyModel m{LatencyKind::uniform, lo, hi - lo, 0};
   m.validate();
   return m;
@@ -35,20 +34,11 @@ LatencyModel LatencyModel::distance(Duration base, double ns_per_unit, Duration 
 }
 
 void LatencyModel::validate() const {
-  if (base < 0) {
-    throw std::invalid_argument("A latency cannot be negative, got " + std::to_string(base) + " ns.");
-  }
-  if (spread < 0) {
-    throw std::invalid_argument("A latency spread cannot be negative, got " + std::to_string(spread) +
-                                " ns.");
-  }
-  if (kind == LatencyKind::constant && spread != 0) {
-    throw std::invalid_argument("A constant latency has no spread.");
-  }
-  if (!std::isfinite(per_unit) || per_unit < 0) {
-    throw std::invalid_argument("A distance-based latency needs a finite, non-negative slope (ns per "
-                                "unit of distance).");
-  }
+  LAGUERRE_PRECONDITION(base >= 0, "A latency cannot be negative, got " + std::to_string(base) + " ns.");
+  LAGUERRE_PRECONDITION(spread >= 0, "A latency spread cannot be negative, got " + std::to_string(spread) + " ns.");
+  LAGUERRE_PRECONDITION(kind != LatencyKind::constant || spread == 0, "A constant latency has no spread.");
+  LAGUERRE_PRECONDITION(std::isfinite(per_unit) && per_unit >= 0,
+                        "A distance-based latency needs a finite, non-negative slope (ns per unit of distance).");
 }
 
 Duration LatencyModel::min_latency(double d) const {
@@ -69,14 +59,10 @@ Duration LatencyModel::draw(double d, RandomStream& rng) const {
 
 void LinkModel::validate() const {
   latency.validate();
-  if (!(loss >= 0 && loss <= 1)) {
-    throw std::invalid_argument("A loss probability must lie in [0, 1], got " + std::to_string(loss) +
-                                ".");
-  }
-  if (!(duplication >= 0 && duplication <= 1)) {
-    throw std::invalid_argument("A duplication probability must lie in [0, 1], got " +
-                                std::to_string(duplication) + ".");
-  }
+  LAGUERRE_PRECONDITION(loss >= 0 && loss <= 1,
+                        "A loss probability must lie in [0, 1], got " + std::to_string(loss) + ".");
+  LAGUERRE_PRECONDITION(duplication >= 0 && duplication <= 1,
+                        "A duplication probability must lie in [0, 1], got " + std::to_string(duplication) + ".");
 }
 
 LinkDecision decide(const LinkModel& model, double d, RandomStream& rng) {

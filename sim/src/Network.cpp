@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "laguerre/core/Error.hpp"
+
 namespace laguerre::sim {
 
 Network::Network(std::size_t node_count, std::span<const Edge> edges) {
@@ -15,14 +17,11 @@ Network::Network(std::size_t node_count, std::span<const Edge> edges) {
   std::vector<std::pair<NodeIndex, NodeIndex>> arcs;
   arcs.reserve(2 * edges.size());
   for (const auto& [u, v] : edges) {
-    if (u >= node_count || v >= node_count) {
-      throw std::invalid_argument("Edge (" + std::to_string(u) + ", " + std::to_string(v) +
-                                  ") names a node outside 0.." + std::to_string(node_count) + " - 1.");
-    }
-    if (u == v) {
-      throw std::invalid_argument("Edge (" + std::to_string(u) + ", " + std::to_string(v) +
-                                  ") is a self-loop; a node cannot be its own neighbour.");
-    }
+    LAGUERRE_PRECONDITION(u < node_count && v < node_count,
+                          "Edge (" + std::to_string(u) + ", " + std::to_string(v) + ") names a node outside 0.." +
+                              std::to_string(node_count) + " - 1.");
+    LAGUERRE_PRECONDITION(u != v, "Edge (" + std::to_string(u) + ", " + std::to_string(v) +
+                                      ") is a self-loop; a node cannot be its own neighbour.");
     arcs.emplace_back(u, v);
     arcs.emplace_back(v, u);
   }
@@ -50,16 +49,13 @@ std::optional<LinkIndex> Network::find_link(NodeIndex u, NodeIndex v) const {
 }
 
 void Network::set_ids(std::vector<std::uint64_t> ids) {
-  if (ids.size() != node_count()) {
-    throw std::invalid_argument("Expected " + std::to_string(node_count()) + " node ids, got " +
-                                std::to_string(ids.size()) + ".");
-  }
+  LAGUERRE_PRECONDITION(ids.size() == node_count(), "Expected " + std::to_string(node_count()) + " node ids, got " +
+                                                        std::to_string(ids.size()) + ".");
   std::unordered_map<std::uint64_t, NodeIndex> index;
   index.reserve(ids.size());
   for (std::size_t v = 0; v < ids.size(); ++v) {
-    if (!index.emplace(ids[v], static_cast<NodeIndex>(v)).second) {
-      throw std::invalid_argument("Node id " + std::to_string(ids[v]) + " is given to two nodes.");
-    }
+    const bool fresh = index.emplace(ids[v], static_cast<NodeIndex>(v)).second;
+    LAGUERRE_PRECONDITION(fresh, "Node id " + std::to_string(ids[v]) + " is given to two nodes.");
   }
   ids_ = std::move(ids);
   index_of_id_ = std::move(index);
@@ -76,15 +72,11 @@ std::optional<NodeIndex> Network::index_of(std::uint64_t id) const {
 }
 
 void Network::set_positions(std::vector<Position> positions) {
-  if (positions.size() != node_count()) {
-    throw std::invalid_argument("Expected " + std::to_string(node_count()) + " positions, got " +
-                                std::to_string(positions.size()) + ".");
-  }
-  for (std::size_t v = 0; v < positions.size(); ++v) {
-    if (!std::isfinite(positions[v].x) || !std::isfinite(positions[v].y)) {
-      throw std::invalid_argument("The position of node " + std::to_string(v) + " is not finite.");
-    }
-  }
+  LAGUERRE_PRECONDITION(positions.size() == node_count(), "Expected " + std::to_string(node_count()) +
+                                                              " positions, got " + std::to_string(positions.size()) + ".");
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    LAGUERRE_PRECONDITION(std::isfinite(positions[v].x) && std::isfinite(positions[v].y),
+                          "The position of node " + std::to_string(v) + " is not finite.");
   positions_ = std::move(positions);
 }
 
@@ -104,37 +96,28 @@ void Network::set_link_model(const LinkModel& model) {
 void Network::set_link_model(NodeIndex u, NodeIndex v, const LinkModel& model) {
   model.validate();
   const auto link = find_link(u, v);
-  if (!link) {
-    throw std::invalid_argument("There is no link from node " + std::to_string(u) + " to node " +
-                                std::to_string(v) + ".");
-  }
+  LAGUERRE_PRECONDITION(link.has_value(),
+                        "There is no link from node " + std::to_string(u) + " to node " + std::to_string(v) + ".");
   if (models_.size() >= 0xffffffffu) throw std::length_error("Too many distinct link models.");
   models_.push_back(model);
   model_of_link_[*link] = static_cast<std::uint32_t>(models_.size() - 1);
 }
 
 void Network::add_crash(NodeIndex node, Time at, std::optional<Time> recover_at) {
-  if (node >= node_count()) {
-    throw std::invalid_argument("Cannot crash node " + std::to_string(node) + ": the network has " +
-                                std::to_string(node_count()) + " nodes.");
-  }
-  if (at < 0) throw std::invalid_argument("A crash time cannot be negative.");
-  if (recover_at && *recover_at <= at) {
-    throw std::invalid_argument("Node " + std::to_string(node) + " must recover after it crashes (at " +
-                                std::to_string(at) + " ns), not at " + std::to_string(*recover_at) +
-                                " ns.");
-  }
+  LAGUERRE_PRECONDITION(node < node_count(), "Cannot crash node " + std::to_string(node) + ": the network has " +
+                                                 std::to_string(node_count()) + " nodes.");
+  LAGUERRE_PRECONDITION(at >= 0, "A crash time cannot be negative.");
+  LAGUERRE_PRECONDITION(!recover_at || *recover_at > at,
+                        "Node " + std::to_string(node) + " must recover after it crashes (at " + std::to_string(at) +
+                            " ns), not at " + std::to_string(recover_at.value_or(0)) + " ns.");
   crashes_.push_back(Crash{node, at, recover_at});
 }
 
 void Network::validate() const {
   if (!positions_.empty()) return;
-  for (const LinkModel& m : models_) {
-    if (m.latency.kind == LatencyKind::distance) {
-      throw std::invalid_argument("A distance-based latency needs node positions; call "
-                                  "Network::set_positions first.");
-    }
-  }
+  for (const LinkModel& m : models_)
+    LAGUERRE_PRECONDITION(m.latency.kind != LatencyKind::distance,
+                          "A distance-based latency needs node positions; call Network::set_positions first.");
 }
 
 Network network_of(const core::PlanarGraph& g, const LinkModel& link) {

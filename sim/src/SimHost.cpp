@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "laguerre/core/Error.hpp"
+
 namespace laguerre::sim {
 
 /// The Runtime of one node: a (host, index) pair forwarding to the simulator.
@@ -15,11 +17,9 @@ public:
 
   void send(protocols::NodeId to, std::span<const std::byte> bytes) override {
     const auto index = host_.simulator_.network().index_of(to);
-    if (!index) {
-      ++host_.bad_destinations_;
-      throw std::invalid_argument("Node " + std::to_string(self()) + " cannot send to node " +
-                                  std::to_string(to) + ": no such node in the network.");
-    }
+    if (!index) ++host_.bad_destinations_;
+    LAGUERRE_PRECONDITION(index.has_value(), "Node " + std::to_string(self()) + " cannot send to node " +
+                                                 std::to_string(to) + ": no such node in the network.");
     if (!host_.simulator_.network().find_link(v_, *index)) ++host_.bad_destinations_;
     host_.simulator_.send(v_, *index, bytes, host_.phase(bytes));  // throws for a non-neighbour
   }
@@ -51,10 +51,8 @@ SimHost::SimHost(Network network, SimConfig config, const NodeFactory& factory, 
   for (NodeIndex v = 0; v < n; ++v) {
     runtimes_.push_back(std::make_unique<NodeRuntime>(*this, v));
     nodes_.push_back(factory(*runtimes_.back(), v));
-    if (!nodes_.back()) {
-      throw std::invalid_argument("The node factory returned no node for index " + std::to_string(v) +
-                                  ".");
-    }
+    LAGUERRE_PRECONDITION(nodes_.back() != nullptr,
+                          "The node factory returned no node for index " + std::to_string(v) + ".");
   }
 }
 

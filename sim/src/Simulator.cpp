@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "laguerre/core/Error.hpp"
+
 namespace laguerre::sim {
 
 Simulator::Simulator(Network network, SimConfig config, NodeHandler& handler)
@@ -111,11 +113,8 @@ void Simulator::transmit(LinkIndex link, std::uint32_t message, std::uint32_t si
 
 void Simulator::send(NodeIndex from, NodeIndex to, std::span<const std::byte> bytes, Phase phase) {
   const auto link = network_.find_link(from, to);
-  if (!link) {
-    throw std::invalid_argument("Node " + std::to_string(network_.id(from)) +
-                                " cannot send to node " + std::to_string(network_.id(to)) +
-                                ": they are not neighbours.");
-  }
+  LAGUERRE_PRECONDITION(link.has_value(), "Node " + std::to_string(network_.id(from)) + " cannot send to node " +
+                                              std::to_string(network_.id(to)) + ": they are not neighbours.");
   const auto size = static_cast<std::uint32_t>(bytes.size());
   if (down_[from]) {
     TrafficCounters& c = traffic_.at(from, phase);

@@ -83,7 +83,7 @@ EmbeddedGraph read_embedding(const std::string& path) {
     core::PlanarGraph g;
     try {
       g = core::PlanarGraph::from_rotation(rotation, ids);
-    } catch (const std::invalid_argument& e) {
+    } catch (const core::InputError& e) {
       throw core::GraphInputError(path, 0, 0, std::string("the rotation system is invalid: ") + e.what());
     }
     const json& outer = need(doc, "outer_face", "");

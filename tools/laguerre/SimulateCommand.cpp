@@ -263,8 +263,11 @@ Action add_simulate_command(CLI::App& app) {
       ->capture_default_str();
   c.cmd->add_option("--latency", c.args->latency, "constant:D, uniform:LO:HI or distance:BASE:NS_PER_UNIT[:JITTER]")
       ->capture_default_str();
-  c.cmd->add_option("--loss", c.args->loss, "Loss probability per copy (turns the reliability layer on)")->capture_default_str();
+  c.cmd->add_option("--loss", c.args->loss, "Loss probability per copy (turns the reliability layer on)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   c.cmd->add_option("--dup", c.args->dup, "Duplication probability per message (turns the reliability layer on)")
+      ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   c.cmd->add_option("--crash", c.args->crashes,
                   "Crash node ID at TIME for good (17@40ms) or until T2 (17@40ms-90ms); repeatable");

@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "laguerre/core/Error.hpp"
 #include "../detail/FastFilter.hpp"
 #include "../detail/Filtered.hpp"
 
@@ -39,9 +40,10 @@ std::vector<std::array<std::size_t, 3>> delaunay_triangles(std::span<const Point
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return std::pair{key(a), a} < std::pair{key(b), b}; });
     for (std::size_t k = 1; k < n; ++k)
       if (key(order[k]) == key(order[k - 1]))
-        throw std::invalid_argument("delaunay_triangles needs distinct points, but points " + std::to_string(order[k - 1]) +
-                                    " and " + std::to_string(order[k]) + " are equal.");
-    throw std::invalid_argument("delaunay_triangles: some points could not be inserted (non-finite coordinates?).");
+        throw InternalError("precondition failed: delaunay_triangles needs distinct points, but points " +
+                            std::to_string(order[k - 1]) + " and " + std::to_string(order[k]) + " are equal.");
+    throw InternalError(
+        "precondition failed: delaunay_triangles: some points could not be inserted (non-finite coordinates?).");
   }
   if (dt.dimension() < 2) return triangles;
   triangles.reserve(dt.number_of_faces());

@@ -33,7 +33,7 @@ PlanarGraph build_graph(std::vector<std::vector<Vertex>> rotation, std::vector<s
                         const std::string& source, std::size_t graph_index, Dart outer) {
   try {
     return PlanarGraph::from_rotation(std::move(rotation), std::move(ids), outer);
-  } catch (const std::invalid_argument& e) {
+  } catch (const InputError& e) {
     std::string message = e.what();
     if (!message.empty() && std::isupper(static_cast<unsigned char>(message[0])))
       message[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(message[0])));

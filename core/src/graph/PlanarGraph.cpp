@@ -7,12 +7,13 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "laguerre/core/Error.hpp"
 #include "detail/Connectivity.hpp"
 
 namespace laguerre::core {
 
 namespace {
-[[noreturn]] void fail(const std::string& what) { throw std::invalid_argument(what); }
+[[noreturn]] void fail(const std::string& what) { throw InputError(what); }
 }  // namespace
 
 PlanarGraph PlanarGraph::from_rotation(std::vector<std::vector<Vertex>> rotation,

@@ -1,5 +1,6 @@
 #include "laguerre/core/packing/Packer.hpp"
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/packing/Accelerator.hpp"
 #include "laguerre/core/packing/Newton.hpp"
 #include "laguerre/core/packing/PackingNames.hpp"
@@ -36,7 +37,7 @@ double max_tangency_error(const PlanarGraph& g, const CircleEmbedding& circles) 
 }
 
 PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* visitor) {
-  if (options.steps_per_check < 1) throw std::invalid_argument("steps_per_check must be at least 1.");
+  LAGUERRE_PRECONDITION(options.steps_per_check >= 1, "steps_per_check must be at least 1.");
   const PackingComplex k = PackingComplex::from_graph(g);
   PackResult result;
   result.rule = options.stop;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "laguerre/core/Error.hpp"
 #include "PowerDetail.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 
@@ -62,8 +63,8 @@ void for_each_triangulated_face(const PlanarGraph& g, const CircleEmbedding& phi
     if (!is_strictly_convex(circles)) {
       std::string list;
       for (Vertex u : verts) list += (list.empty() ? "" : ", ") + std::to_string(g.id(u));
-      throw std::invalid_argument("The face (" + list +
-                                  ") is not strictly convex in the embedding, so it has no φ-triangulation.");
+      throw InternalError("precondition failed: The face (" + list +
+                          ") is not strictly convex in the embedding, so it has no φ-triangulation.");
     }
     fn(f, verts, regular_triangulation_diagonals(circles, ids));
   }

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
 #include "laguerre/core/routing/NextHop.hpp"
 #include "laguerre/core/routing/Router.hpp"
@@ -18,15 +19,15 @@ namespace laguerre::core {
 namespace {
 
 void check_embedding(const PlanarGraph& g, const CircleEmbedding& phi) {
-  if (phi.size() != g.num_vertices())
-    throw std::invalid_argument("The circle embedding has " + std::to_string(phi.size()) + " circles for a graph of " +
-                                std::to_string(g.num_vertices()) + " vertices.");
+  LAGUERRE_PRECONDITION(phi.size() == g.num_vertices(), "The circle embedding has " + std::to_string(phi.size()) +
+                                                            " circles for a graph of " +
+                                                            std::to_string(g.num_vertices()) + " vertices.");
   // Routing decisions are exact on the stored doubles: a NaN or infinite circle (an unrepresentable
   // layout) has no answer, so it is refused here with the vertex named rather than deep in a predicate.
   for (Vertex v = 0; v < phi.size(); ++v)
-    if (!std::isfinite(phi[v].x) || !std::isfinite(phi[v].y) || !std::isfinite(phi[v].r))
-      throw std::invalid_argument("The circle of vertex " + std::to_string(g.id(v)) +
-                                  " is not finite (NaN or infinite): the embedding cannot be routed on.");
+    LAGUERRE_PRECONDITION(std::isfinite(phi[v].x) && std::isfinite(phi[v].y) && std::isfinite(phi[v].r),
+                          "The circle of vertex " + std::to_string(g.id(v)) +
+                              " is not finite (NaN or infinite): the embedding cannot be routed on.");
 }
 
 std::size_t saturating_mul(std::size_t a, std::size_t b) {
@@ -103,10 +104,9 @@ Route route(const PlanarGraph& g, const CircleEmbedding& phi, Scheme s, Vertex s
 Router::Router(const PlanarGraph& g, const CircleEmbedding& phi) : g_(&g), phi_(&phi) { check_embedding(g, phi); }
 
 void Router::check_vertex(Vertex v, const char* role) const {
-  if (v >= g_->num_vertices())
-    throw std::invalid_argument(std::string("The ") + role + " vertex index " + std::to_string(v) +
-                                " is out of range for a graph of " + std::to_string(g_->num_vertices()) +
-                                " vertices.");
+  LAGUERRE_PRECONDITION(v < g_->num_vertices(), std::string("The ") + role + " vertex index " + std::to_string(v) +
+                                                    " is out of range for a graph of " +
+                                                    std::to_string(g_->num_vertices()) + " vertices.");
 }
 
 Vertex Router::hop(Scheme s, Vertex at, Vertex target) const {
@@ -125,9 +125,9 @@ Vertex Router::hop(Scheme s, Vertex at, Vertex target) const {
 Vertex Router::next_hop(Scheme s, Vertex at, Vertex target) const {
   check_vertex(at, "current");
   check_vertex(target, "target");
-  if (s == Scheme::gfg)
-    throw std::invalid_argument("Greedy-face-greedy routing has no memoryless next hop: its decisions depend on the "
-                                "perimeter state carried by the packet.");
+  LAGUERRE_PRECONDITION(s != Scheme::gfg,
+                        "Greedy-face-greedy routing has no memoryless next hop: its decisions depend on the "
+                        "perimeter state carried by the packet.");
   return at == target ? none : hop(s, at, target);
 }
 

@@ -1,5 +1,6 @@
 #include "laguerre/scenarios/fields/Deployment.hpp"
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/random/Random.hpp"
 
 #include <algorithm>
@@ -21,9 +22,9 @@ namespace {
 std::size_t draw_budget(std::size_t n) { return 1000 * n + 1000000; }
 
 [[noreturn]] void hopeless(std::size_t n, std::size_t accepted, const char* what) {
-  throw std::invalid_argument(std::string("the ") + what + " deployment accepted only " + std::to_string(accepted) +
-                              " of " + std::to_string(n) + " points after " + std::to_string(draw_budget(n)) +
-                              " draws; the domain is too thin for rejection sampling.");
+  throw core::InputError(std::string("the ") + what + " deployment accepted only " + std::to_string(accepted) +
+                         " of " + std::to_string(n) + " points after " + std::to_string(draw_budget(n)) +
+                         " draws; the domain is too thin for rejection sampling.");
 }
 
 /// Uniform point of the domain's bounding box, kept iff strictly inside; `budget` counts draws.
@@ -61,7 +62,7 @@ void make_distinct(std::vector<Point2>& points, Draw&& draw) {
 }  // namespace
 
 std::vector<Point2> deploy_uniform(const core::Domain& domain, std::size_t n, std::uint64_t seed) {
-  if (n == 0) throw std::invalid_argument("a deployment needs at least one point.");
+  LAGUERRE_PRECONDITION(n > 0, "a deployment needs at least one point.");
   core::SeededRandom random(seed);
   std::size_t budget = draw_budget(n);
   std::vector<Point2> points(n);
@@ -77,11 +78,11 @@ std::vector<Point2> deploy_uniform(const core::Domain& domain, std::size_t n, st
 
 std::vector<Point2> deploy_clustered(const core::Domain& domain, std::size_t n, const ClusterOptions& options,
                                      std::uint64_t seed) {
-  if (n == 0) throw std::invalid_argument("a deployment needs at least one point.");
-  if (options.clusters == 0) throw std::invalid_argument("a clustered deployment needs at least one cluster.");
-  if (!(options.spread > 0) || !std::isfinite(options.spread))
-    throw std::invalid_argument("the cluster spread must be a positive finite number, not " +
-                                std::to_string(options.spread) + ".");
+  LAGUERRE_PRECONDITION(n > 0, "a deployment needs at least one point.");
+  LAGUERRE_PRECONDITION(options.clusters > 0, "a clustered deployment needs at least one cluster.");
+  LAGUERRE_PRECONDITION(options.spread > 0 && std::isfinite(options.spread),
+                        "the cluster spread must be a positive finite number, not " + std::to_string(options.spread) +
+                            ".");
   core::SeededRandom random(seed);
   std::size_t budget = draw_budget(n);
   std::vector<Point2> parents(options.clusters);

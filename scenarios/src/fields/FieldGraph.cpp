@@ -1,5 +1,7 @@
 #include "laguerre/scenarios/fields/FieldGraph.hpp"
 
+#include "laguerre/core/Error.hpp"
+
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/biconnected_components.hpp>
 
@@ -34,7 +36,7 @@ constexpr std::pair<RepairPolicy, std::string_view> policy_names[] = {
     {RepairPolicy::three_connected_core, "three-connected-core"},
     {RepairPolicy::triangulate_faces, "triangulate-faces"}};
 
-/// The value called `name` in `names`, else std::invalid_argument listing the names.
+/// The value called `name` in `names`, else core::InputError listing the names.
 template <class E, std::size_t N>
 E value_named(const std::pair<E, std::string_view> (&names)[N], std::string_view name, const char* what) {
   std::string expected;
@@ -42,8 +44,8 @@ E value_named(const std::pair<E, std::string_view> (&names)[N], std::string_view
     if (text == name) return value;
     expected += (expected.empty() ? "" : ", ") + std::string(text);
   }
-  throw std::invalid_argument("unknown " + std::string(what) + " '" + std::string(name) + "'; expected one of " +
-                              expected + ".");
+  throw core::InputError("unknown " + std::string(what) + " '" + std::string(name) + "'; expected one of " + expected +
+                         ".");
 }
 
 /// The name of `value` in `names`, or "unknown".
@@ -306,8 +308,8 @@ std::string FieldGraphReport::summary(std::string_view name) const {
 }
 
 double radius_for_mean_degree(const core::Domain& domain, std::size_t n, double degree) {
-  if (n == 0 || !(degree > 0) || !std::isfinite(degree))
-    throw std::invalid_argument("radius_for_mean_degree needs n > 0 and a positive finite degree.");
+  LAGUERRE_PRECONDITION(n > 0 && degree > 0 && std::isfinite(degree),
+                        "radius_for_mean_degree needs n > 0 and a positive finite degree.");
   return std::sqrt(degree * domain.area() / (3.141592653589793 * static_cast<double>(n)));
 }
 
@@ -319,7 +321,7 @@ EdgeList field_edges(const core::Domain& domain, std::span<const Point2> points,
     case FieldGraphType::relative_neighbourhood: return relative_neighbourhood_edges(points, options.radius);
     case FieldGraphType::local_delaunay: return local_delaunay_edges(points, options.radius, options.hops);
   }
-  throw std::invalid_argument("unknown field graph type.");
+  throw core::InternalError("unknown field graph type.");  // unreachable: every FieldGraphType is handled
 }
 
 FieldGraph build_field_graph(const core::Domain& domain, std::span<const Point2> points, const FieldGraphOptions& options) {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/geometry/Delaunay.hpp"
 
 namespace laguerre::scenarios {
@@ -18,8 +19,8 @@ using core::Vertex;
 namespace {
 
 void check_radius(double radius) {
-  if (!(radius > 0) || !std::isfinite(radius))
-    throw std::invalid_argument("the unit-disk radius must be a positive finite number, not " + std::to_string(radius) + ".");
+  LAGUERRE_PRECONDITION(radius > 0 && std::isfinite(radius),
+                        "the unit-disk radius must be a positive finite number, not " + std::to_string(radius) + ".");
 }
 
 /// Points bucketed in a uniform grid of square cells of side h ≥ R(1 + 1e-9): two points at distance
@@ -182,8 +183,8 @@ EdgeList delaunay_edges(std::span<const Point2> points) {
 
 EdgeList restricted_delaunay_edges(const core::Domain& domain, std::span<const Point2> points) {
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (domain.locate(points[i]) != core::DomainSide::inside)
-      throw std::invalid_argument("point " + std::to_string(i) + " is not strictly inside the domain.");
+    LAGUERRE_PRECONDITION(domain.locate(points[i]) == core::DomainSide::inside,
+                          "point " + std::to_string(i) + " is not strictly inside the domain.");
   EdgeList edges;
   for (const auto& t : core::delaunay_triangles(points))
     if (domain.triangle_inside(points[t[0]], points[t[1]], points[t[2]])) add_triangle_edges(edges, t);
@@ -206,7 +207,7 @@ EdgeList relative_neighbourhood_edges(std::span<const Point2> points, double rad
 }
 
 EdgeList local_delaunay_edges(std::span<const Point2> points, double radius, unsigned k) {
-  if (k == 0) throw std::invalid_argument("the localized Delaunay graph needs k >= 1 hops.");
+  LAGUERRE_PRECONDITION(k > 0, "the localized Delaunay graph needs k >= 1 hops.");
   EdgeList edges = gabriel_edges(points, radius);
   const std::size_t n = points.size();
   const Grid grid(points, radius);

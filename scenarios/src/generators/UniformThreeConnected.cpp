@@ -1,5 +1,7 @@
 #include "laguerre/scenarios/generators/UniformThreeConnected.hpp"
 
+#include "laguerre/core/Error.hpp"
+
 #include <algorithm>
 #include <array>
 #include <stdexcept>
@@ -230,15 +232,14 @@ std::runtime_error too_many_attempts(const std::string& what) {
 }  // namespace
 
 PlanarGraph uniform_three_connected(std::size_t n, std::uint64_t seed, std::size_t faces, ThreeConnectedStats* stats) {
-  if (n < 4 || n >= (std::size_t{1} << 28))
-    throw std::invalid_argument(
-        "A uniform random 3-connected planar graph needs between 4 and 2^28 - 1 vertices, not " + std::to_string(n) +
-        ".");
+  LAGUERRE_PRECONDITION(n >= 4 && n < (std::size_t{1} << 28),
+                        "A uniform random 3-connected planar graph needs between 4 and 2^28 - 1 vertices, not " +
+                            std::to_string(n) + ".");
   const std::size_t lo_faces = (n + 5) / 2, hi_faces = 2 * n - 4;  // n <= 2f - 4 and f <= 2n - 4
-  if (faces != 0 && (faces < lo_faces || faces > hi_faces))
-    throw std::invalid_argument("A 3-connected planar graph with " + std::to_string(n) + " vertices has between " +
-                                std::to_string(lo_faces) + " and " + std::to_string(hi_faces) + " faces, not " +
-                                std::to_string(faces) + " (0 draws the number of faces).");
+  LAGUERRE_PRECONDITION(faces == 0 || (faces >= lo_faces && faces <= hi_faces),
+                        "A 3-connected planar graph with " + std::to_string(n) + " vertices has between " +
+                            std::to_string(lo_faces) + " and " + std::to_string(hi_faces) + " faces, not " +
+                            std::to_string(faces) + " (0 draws the number of faces).");
   core::SeededRandom random(seed);
   const std::size_t a = n - 3;
   std::vector<double> weights;
@@ -266,11 +267,9 @@ PlanarGraph uniform_three_connected(std::size_t n, std::uint64_t seed, std::size
 }
 
 PlanarGraph uniform_three_connected_map_by_edges(std::size_t edges, std::uint64_t seed, ThreeConnectedStats* stats) {
-  if (edges < 6 || edges == 7 || edges >= (std::size_t{1} << 29))
-    throw std::invalid_argument(
-        "A uniform random 3-connected planar map needs 6 or at least 8 edges (and fewer than "
-        "2^29), not " +
-        std::to_string(edges) + ".");
+  LAGUERRE_PRECONDITION(edges >= 6 && edges != 7 && edges < (std::size_t{1} << 29),
+                        "A uniform random 3-connected planar map needs 6 or at least 8 edges (and fewer than 2^29), "
+                        "not " + std::to_string(edges) + ".");
   core::SeededRandom random(seed);
   for (std::size_t attempt = 1; attempt <= max_attempts; ++attempt) {
     const BinaryTree tree = random_binary_tree(edges - 4, random);

@@ -1,5 +1,7 @@
 #include "laguerre/scenarios/generators/UniformTriangulation.hpp"
 
+#include "laguerre/core/Error.hpp"
+
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -52,9 +54,9 @@ detail::Blossoming decode_tree(const std::vector<std::uint8_t>& word, std::size_
 }  // namespace
 
 core::PlanarGraph uniform_triangulation(std::size_t n, std::uint64_t seed) {
-  if (n < 3 || n >= (std::size_t{1} << 30))
-    throw std::invalid_argument("A uniform random triangulation needs between 3 and 2^30 - 1 vertices, not " +
-                                std::to_string(n) + ".");
+  LAGUERRE_PRECONDITION(n >= 3 && n < (std::size_t{1} << 30),
+                        "A uniform random triangulation needs between 3 and 2^30 - 1 vertices, not " +
+                            std::to_string(n) + ".");
   const std::size_t m = n - 2;  // tree nodes
   core::SeededRandom random(seed);
   // Uniform word with m - 1 nodes (+3) and 3m - 1 empty trees (-1); its 2 good rotations are the codes
@@ -81,7 +83,7 @@ core::PlanarGraph uniform_triangulation(std::size_t n, std::uint64_t seed) {
 namespace laguerre::scenarios {
 
 core::PlanarGraph puncture_at_max_degree(const core::PlanarGraph& g) {
-  if (g.num_vertices() < 4) throw std::invalid_argument("puncturing needs at least 4 vertices");
+  LAGUERRE_PRECONDITION(g.num_vertices() >= 4, "puncturing needs at least 4 vertices");
   core::Vertex hub = 0;
   for (core::Vertex v = 1; v < g.num_vertices(); ++v)
     if (g.degree(v) > g.degree(hub)) hub = v;

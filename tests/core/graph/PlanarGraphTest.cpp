@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/PlanarGraph.hpp"
 
 using namespace laguerre::core;
@@ -34,9 +35,9 @@ TEST(PlanarGraph, FaceWalkTurnsAroundTwinsConsistently) {
 }
 
 TEST(PlanarGraph, RejectsAsymmetricAndNonPlanarRotations) {
-  EXPECT_THROW(PlanarGraph::from_rotation({{1}, {}}), std::invalid_argument);
-  EXPECT_THROW(PlanarGraph::from_rotation({{1, 1}, {0, 0}}), std::invalid_argument);
+  EXPECT_THROW(PlanarGraph::from_rotation({{1}, {}}), laguerre::core::InputError);
+  EXPECT_THROW(PlanarGraph::from_rotation({{1, 1}, {0, 0}}), laguerre::core::InputError);
   // K4 with a rotation that is not planar (genus 1): Euler characteristic 0.
-  EXPECT_THROW(PlanarGraph::from_rotation({{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}}), std::invalid_argument);
-  EXPECT_THROW(PlanarGraph::from_rotation({{1}, {0}, {3}, {2}}), std::invalid_argument);  // disconnected
+  EXPECT_THROW(PlanarGraph::from_rotation({{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}}), laguerre::core::InputError);
+  EXPECT_THROW(PlanarGraph::from_rotation({{1}, {0}, {3}, {2}}), laguerre::core::InputError);  // disconnected
 }

@@ -11,6 +11,7 @@
 #include <set>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 
 using namespace laguerre::core;
@@ -129,7 +130,7 @@ TEST(Glpd, NonConvexFaceIsReported) {
   EXPECT_EQ(check_glpd(gr.g, gr.phi, 8), LocalCondition::holds);  // the far corner's faces are fine
   gr.phi[4] = {1, 1, 1};  // collinear corners: not strictly convex
   EXPECT_EQ(check_glpd(gr.g, gr.phi, 0), LocalCondition::face_not_convex);
-  EXPECT_THROW(phi_triangulation(gr.g, gr.phi), std::invalid_argument);
+  EXPECT_THROW(phi_triangulation(gr.g, gr.phi), laguerre::core::InternalError);
 }
 
 TEST(Glpd, LocalCellCrossingAFarFaceEdgeFails) {

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "DrawingGraph.hpp"
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
 #include "laguerre/core/routing/Routing.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
@@ -20,12 +21,12 @@ TEST(NonFinite, RoutingRefusesTheEmbeddingNamingTheVertex) {
   try {
     (void)evaluate_routing(g, phi, Scheme::greedy_power, {});
     FAIL() << "routed on a NaN circle";
-  } catch (const std::invalid_argument& e) {
+  } catch (const laguerre::core::InternalError& e) {
     EXPECT_NE(std::string(e.what()).find("vertex 2 is not finite"), std::string::npos) << e.what();
   }
   phi[2].x = 0;
   phi[1].r = std::numeric_limits<double>::infinity();
-  EXPECT_THROW((void)route(g, phi, Scheme::gfg, 0, 3), std::invalid_argument);
+  EXPECT_THROW((void)route(g, phi, Scheme::gfg, 0, 3), laguerre::core::InternalError);
 }
 
 TEST(NonFinite, ExactPredicatesThrowInsteadOfAborting) {

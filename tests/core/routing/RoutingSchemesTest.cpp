@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
 #include "laguerre/core/routing/Router.hpp"
 #include "laguerre/core/routing/Routing.hpp"
@@ -33,9 +34,9 @@ TEST(Routing, SchemeAndOutcomeNamesRoundTrip) {
 TEST(Routing, RejectsBadInput) {
   const CircleEmbedding phi{{0, 0, 1}, {2, 0, 1}};
   const PlanarGraph g = graph_of(phi, {{0, 1}});
-  EXPECT_THROW(route(g, CircleEmbedding{{0, 0, 1}}, Scheme::greedy_power, 0, 1), std::invalid_argument);
-  EXPECT_THROW(route(g, phi, Scheme::greedy_power, 0, 2), std::invalid_argument);
-  EXPECT_THROW(Router(g, phi).next_hop(Scheme::gfg, 0, 1), std::invalid_argument);
+  EXPECT_THROW(route(g, CircleEmbedding{{0, 0, 1}}, Scheme::greedy_power, 0, 1), laguerre::core::InternalError);
+  EXPECT_THROW(route(g, phi, Scheme::greedy_power, 0, 2), laguerre::core::InternalError);
+  EXPECT_THROW(Router(g, phi).next_hop(Scheme::gfg, 0, 1), laguerre::core::InternalError);
 }
 
 TEST(Routing, SourceEqualsTargetIsDeliveredInZeroHops) {

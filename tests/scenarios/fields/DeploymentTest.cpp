@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/scenarios/fields/Deployment.hpp"
 
 using namespace laguerre::scenarios;
@@ -63,7 +64,7 @@ TEST(Deployment, ClusteredPointsAreInsideDeterministicAndClustered) {
     // 1000 points in 5 clusters of radius ~0.2 are far denser than 1000 points over area 96.
     EXPECT_LT(nn_clustered, 0.25 * nn_uniform);
   }
-  EXPECT_THROW(deploy_clustered(d, 10, {0, 0.1, ClusterShape::disc}, 1), std::invalid_argument);
-  EXPECT_THROW(deploy_clustered(d, 10, {3, -1, ClusterShape::disc}, 1), std::invalid_argument);
-  EXPECT_THROW(deploy_uniform(d, 0, 1), std::invalid_argument);
+  EXPECT_THROW(deploy_clustered(d, 10, {0, 0.1, ClusterShape::disc}, 1), laguerre::core::InternalError);
+  EXPECT_THROW(deploy_clustered(d, 10, {3, -1, ClusterShape::disc}, 1), laguerre::core::InternalError);
+  EXPECT_THROW(deploy_uniform(d, 0, 1), laguerre::core::InternalError);
 }

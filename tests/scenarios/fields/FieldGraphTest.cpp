@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/scenarios/fields/Deployment.hpp"
 #include "laguerre/scenarios/fields/FieldGraph.hpp"
@@ -170,7 +171,7 @@ TEST(FieldGraph, RadiusForMeanDegree) {
   const double mean = 2.0 * static_cast<double>(unit_disk_edges(p, r).size()) / static_cast<double>(p.size());
   EXPECT_GT(mean, 9.0);  // boundary effects lower it by about 4 R / side ≈ 6% here
   EXPECT_LT(mean, 10.3);
-  EXPECT_THROW(radius_for_mean_degree(d, 0, 10), std::invalid_argument);
+  EXPECT_THROW(radius_for_mean_degree(d, 0, 10), laguerre::core::InternalError);
 }
 
 TEST(FieldGraph, NamesRoundTrip) {
@@ -180,6 +181,6 @@ TEST(FieldGraph, NamesRoundTrip) {
   for (auto r : {RepairPolicy::fail, RepairPolicy::largest_block, RepairPolicy::three_connected_core,
                  RepairPolicy::triangulate_faces})
     EXPECT_EQ(parse_repair_policy(to_string(r)), r);
-  EXPECT_THROW(parse_field_graph_type("voronoi"), std::invalid_argument);
-  EXPECT_THROW(parse_repair_policy("ignore"), std::invalid_argument);
+  EXPECT_THROW(parse_field_graph_type("voronoi"), laguerre::core::InputError);
+  EXPECT_THROW(parse_repair_policy("ignore"), laguerre::core::InputError);
 }

@@ -1,4 +1,5 @@
 // How uniform maps become discs: puncturing at the largest-degree vertex, or the largest face outside.
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/scenarios/generators/UniformThreeConnected.hpp"
 #include "laguerre/scenarios/generators/UniformTriangulation.hpp"
@@ -29,7 +30,7 @@ TEST(OuterRule, PunctureLeavesATriangulatedDiscBoundedByTheHubsLink) {
     core::prepare_for_packing(in, &kind);
     EXPECT_EQ(kind, core::GraphKind::triangulated_disc);
   }
-  EXPECT_THROW(puncture_at_max_degree(uniform_triangulation(3, 1)), std::invalid_argument);
+  EXPECT_THROW(puncture_at_max_degree(uniform_triangulation(3, 1)), laguerre::core::InternalError);
 }
 
 TEST(OuterRule, LargestFaceGoesOutside) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "MapCensus.hpp"
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/scenarios/generators/UniformThreeConnected.hpp"
 
@@ -30,11 +31,11 @@ void expect_three_connected_map(const PlanarGraph& g) {
 }  // namespace
 
 TEST(UniformThreeConnected, RejectsInvalidSizes) {
-  for (std::size_t n : {0, 1, 2, 3}) EXPECT_THROW(scenarios::uniform_three_connected(n, 1), std::invalid_argument);
-  EXPECT_THROW(scenarios::uniform_three_connected(10, 1, 6), std::invalid_argument);   // f < (n + 4)/2
-  EXPECT_THROW(scenarios::uniform_three_connected(10, 1, 17), std::invalid_argument);  // f > 2n - 4
+  for (std::size_t n : {0, 1, 2, 3}) EXPECT_THROW(scenarios::uniform_three_connected(n, 1), laguerre::core::InternalError);
+  EXPECT_THROW(scenarios::uniform_three_connected(10, 1, 6), laguerre::core::InternalError);   // f < (n + 4)/2
+  EXPECT_THROW(scenarios::uniform_three_connected(10, 1, 17), laguerre::core::InternalError);  // f > 2n - 4
   for (std::size_t m : {0, 5, 7})
-    EXPECT_THROW(scenarios::uniform_three_connected_map_by_edges(m, 1), std::invalid_argument);
+    EXPECT_THROW(scenarios::uniform_three_connected_map_by_edges(m, 1), laguerre::core::InternalError);
 }
 
 TEST(UniformThreeConnected, ByVerticesIsThreeConnectedWithTheRightCounts) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "MapCensus.hpp"
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/scenarios/generators/UniformTriangulation.hpp"
 
@@ -44,7 +45,7 @@ TEST(UniformTriangulation, TutteCountsMatchTheLiterature) {
 }
 
 TEST(UniformTriangulation, RejectsTooFewVertices) {
-  for (std::size_t n : {0, 1, 2}) EXPECT_THROW(scenarios::uniform_triangulation(n, 1), std::invalid_argument);
+  for (std::size_t n : {0, 1, 2}) EXPECT_THROW(scenarios::uniform_triangulation(n, 1), laguerre::core::InternalError);
 }
 
 TEST(UniformTriangulation, IsASimpleThreeConnectedTriangulation) {

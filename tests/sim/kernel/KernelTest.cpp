@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/sim/Kernel.hpp"
 #include "laguerre/sim/Random.hpp"
 
@@ -178,12 +179,12 @@ TEST(KernelTest, SchedulingInThePastOrWithABadDelayThrows) {
   const HandlerId h = k.add_handler<&Recorder::on_event>("rec", r);
   k.schedule_at(100, h, 0);
   k.run();
-  EXPECT_THROW(k.schedule_at(99, h, 0), std::invalid_argument);
-  EXPECT_THROW(k.schedule_after(-1, h, 0), std::invalid_argument);
-  EXPECT_THROW(k.schedule_after(time_max, h, 0), std::invalid_argument);
-  EXPECT_THROW(k.schedule_cancellable_at(5, h, 0), std::invalid_argument);
+  EXPECT_THROW(k.schedule_at(99, h, 0), laguerre::core::InternalError);
+  EXPECT_THROW(k.schedule_after(-1, h, 0), laguerre::core::InternalError);
+  EXPECT_THROW(k.schedule_after(time_max, h, 0), laguerre::core::InternalError);
+  EXPECT_THROW(k.schedule_cancellable_at(5, h, 0), laguerre::core::InternalError);
   EXPECT_NO_THROW(k.schedule_after(0, h, 0));
-  EXPECT_THROW(k.add_handler("null", nullptr, nullptr), std::invalid_argument);
+  EXPECT_THROW(k.add_handler("null", nullptr, nullptr), laguerre::core::InternalError);
   EXPECT_EQ(k.handler_name(h), "rec");
 }
 

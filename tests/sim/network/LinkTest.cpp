@@ -5,6 +5,7 @@
 #include <cstring>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/sim/Simulator.hpp"
 
 namespace laguerre::sim {
@@ -134,13 +135,13 @@ TEST(LinkTest, DistanceLatencyIsAffineInTheDistance) {
 }
 
 TEST(LinkTest, ModelsRejectBadParameters) {
-  EXPECT_THROW(LatencyModel::constant(-1), std::invalid_argument);
-  EXPECT_THROW(LatencyModel::uniform(5, 4), std::invalid_argument);
-  EXPECT_THROW(LatencyModel::distance(0, -1.0), std::invalid_argument);
-  EXPECT_THROW(LatencyModel::distance(0, std::nan("")), std::invalid_argument);
-  EXPECT_THROW((LinkModel{LatencyModel::constant(1), 1.5, 0}.validate()), std::invalid_argument);
-  EXPECT_THROW((LinkModel{LatencyModel::constant(1), 0, -0.1}.validate()), std::invalid_argument);
-  EXPECT_THROW((LinkModel{LatencyModel::constant(1), std::nan(""), 0}.validate()), std::invalid_argument);
+  EXPECT_THROW(LatencyModel::constant(-1), laguerre::core::InternalError);
+  EXPECT_THROW(LatencyModel::uniform(5, 4), laguerre::core::InternalError);
+  EXPECT_THROW(LatencyModel::distance(0, -1.0), laguerre::core::InternalError);
+  EXPECT_THROW(LatencyModel::distance(0, std::nan("")), laguerre::core::InternalError);
+  EXPECT_THROW((LinkModel{LatencyModel::constant(1), 1.5, 0}.validate()), laguerre::core::InternalError);
+  EXPECT_THROW((LinkModel{LatencyModel::constant(1), 0, -0.1}.validate()), laguerre::core::InternalError);
+  EXPECT_THROW((LinkModel{LatencyModel::constant(1), std::nan(""), 0}.validate()), laguerre::core::InternalError);
   const LatencyModel d = LatencyModel::distance(10, 2.0, 7);
   EXPECT_EQ(d.min_latency(3.0), 16);
   EXPECT_EQ(d.max_latency(3.0), 23);
@@ -151,7 +152,7 @@ TEST(LinkTest, DistanceLatencyWithoutPositionsIsRejected) {
   const Edge edges[] = {{0, 1}};
   Network net(2, edges);
   net.set_link_model(LinkModel{LatencyModel::distance(0, 1.0), 0, 0});
-  EXPECT_THROW(Simulator(std::move(net), SimConfig{}, b), std::invalid_argument);
+  EXPECT_THROW(Simulator(std::move(net), SimConfig{}, b), laguerre::core::InternalError);
 }
 
 TEST(LinkTest, DecisionsArePureFunctionsOfTheMessageStream) {

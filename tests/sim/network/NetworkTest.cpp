@@ -3,6 +3,7 @@
 #include <limits>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/sim/Network.hpp"
 
 namespace laguerre::sim {
@@ -29,20 +30,20 @@ TEST(NetworkTest, AdjacencyIsSortedDeduplicatedAndSymmetric) {
 
 TEST(NetworkTest, RejectsBadEdgesIdsPositionsAndCrashes) {
   const Edge loop[] = {{1, 1}};
-  EXPECT_THROW(Network(3, loop), std::invalid_argument);
+  EXPECT_THROW(Network(3, loop), laguerre::core::InternalError);
   const Edge outside[] = {{0, 3}};
-  EXPECT_THROW(Network(3, outside), std::invalid_argument);
+  EXPECT_THROW(Network(3, outside), laguerre::core::InternalError);
   const Edge edges[] = {{0, 1}, {1, 2}};
   Network net(3, edges);
-  EXPECT_THROW(net.set_ids({1, 2}), std::invalid_argument);
-  EXPECT_THROW(net.set_ids({5, 6, 5}), std::invalid_argument);
-  EXPECT_THROW(net.set_positions({{0, 0}}), std::invalid_argument);
+  EXPECT_THROW(net.set_ids({1, 2}), laguerre::core::InternalError);
+  EXPECT_THROW(net.set_ids({5, 6, 5}), laguerre::core::InternalError);
+  EXPECT_THROW(net.set_positions({{0, 0}}), laguerre::core::InternalError);
   EXPECT_THROW(net.set_positions({{0, 0}, {1, std::numeric_limits<double>::infinity()}, {2, 2}}),
-               std::invalid_argument);
-  EXPECT_THROW(net.add_crash(3, 0), std::invalid_argument);
-  EXPECT_THROW(net.add_crash(0, -1), std::invalid_argument);
-  EXPECT_THROW(net.add_crash(0, 10, 10), std::invalid_argument);
-  EXPECT_THROW(net.set_link_model(0, 2, LinkModel{}), std::invalid_argument);
+               laguerre::core::InternalError);
+  EXPECT_THROW(net.add_crash(3, 0), laguerre::core::InternalError);
+  EXPECT_THROW(net.add_crash(0, -1), laguerre::core::InternalError);
+  EXPECT_THROW(net.add_crash(0, 10, 10), laguerre::core::InternalError);
+  EXPECT_THROW(net.set_link_model(0, 2, LinkModel{}), laguerre::core::InternalError);
 }
 
 TEST(NetworkTest, IdsMapBothWays) {

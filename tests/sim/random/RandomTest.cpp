@@ -5,6 +5,7 @@
 #include <set>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/sim/Random.hpp"
 
 namespace laguerre::sim {
@@ -127,7 +128,7 @@ TEST(RandomTest, BelowIsUnbiasedForSmallAndHugeBounds) {
     EXPECT_LT(chi2, 13.8);  // 2 degrees of freedom, p = 0.001
   }
   EXPECT_EQ(rng.below(1), 0u);
-  EXPECT_THROW(rng.below(0), std::invalid_argument);
+  EXPECT_THROW(rng.below(0), laguerre::core::InternalError);
 }
 
 TEST(RandomTest, UniformIntCoversItsInclusiveRange) {
@@ -153,7 +154,7 @@ TEST(RandomTest, UniformIntCoversItsInclusiveRange) {
     positive |= full > 0;
   }
   EXPECT_TRUE(negative && positive) << "both halves of the range are reached";
-  EXPECT_THROW(rng.uniform_int(2, 1), std::invalid_argument);
+  EXPECT_THROW(rng.uniform_int(2, 1), laguerre::core::InternalError);
 }
 
 TEST(RandomTest, ExponentialHasTheRightMeanAndIsFinite) {

@@ -3,6 +3,7 @@
 #include <memory>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/protocols/Runtime.hpp"
 #include "laguerre/sim/SimHost.hpp"
 
@@ -103,13 +104,13 @@ TEST(SimHostTest, IsDeterministicAndSeedSensitive) {
 TEST(SimHostTest, RejectsUnknownAndNonNeighbourDestinations) {
   SimHost host(ring(5), SimConfig{}, flood_factory());
   const std::byte b{};
-  EXPECT_THROW(host.runtime(0).send(999, std::span(&b, 1)), std::invalid_argument);
-  EXPECT_THROW(host.runtime(0).send(100 + 7 * 2, std::span(&b, 1)), std::invalid_argument);
+  EXPECT_THROW(host.runtime(0).send(999, std::span(&b, 1)), laguerre::core::InternalError);
+  EXPECT_THROW(host.runtime(0).send(100 + 7 * 2, std::span(&b, 1)), laguerre::core::InternalError);
   EXPECT_NO_THROW(host.runtime(0).send(100 + 7 * 1, std::span(&b, 1)));
   EXPECT_EQ(host.bad_destinations(), 2u);
   EXPECT_THROW(SimHost(ring(3), SimConfig{},
                        [](protocols::Runtime&, NodeIndex) { return std::unique_ptr<protocols::Node>(); }),
-               std::invalid_argument);
+               laguerre::core::InternalError);
 }
 
 TEST(SimHostTest, RandomStreamIsKeyedByNodeId) {

@@ -3,6 +3,7 @@
 // numbers, seeds, pair counts, crash and latency specifications).
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <string>
 
 #include "CliRunner.hpp"
@@ -77,4 +78,23 @@ TEST_F(CliBadInput, CrashSpecifications) {
 TEST_F(CliBadInput, UniformLatencyNeedsLoBelowHi) {
   expect_bad("simulate " + graph + " --latency uniform:5ms:1ms", {"--latency", "LO <= HI"});
   EXPECT_EQ(run("simulate " + graph + " --latency uniform:1ms:1ms --pairs 3").status, 0);
+}
+
+TEST_F(CliBadInput, LossAndDuplicationAreProbabilities) {  // exited 1 ("error: ...") before issue 15
+  expect_bad("simulate " + graph + " --loss 2", {"--loss", "not in range"});
+  expect_bad("simulate " + graph + " --loss -0.1", {"--loss"});
+  expect_bad("simulate " + graph + " --dup -1", {"--dup", "not in range"});
+  expect_bad("simulate " + graph + " --dup 1.5", {"--dup"});
+  EXPECT_EQ(run("simulate " + graph + " --loss 0 --dup 0 --pairs 3").status, 0);
+}
+
+TEST_F(CliBadInput, EmbeddingWithAnInvalidRotationSystemIsNamed) {
+  // PlanarGraph::from_rotation reports bad rotations as core::InputError; the embedding reader names
+  // the file (exit 2, not an internal error).
+  const std::string file = path("asymmetric.json");
+  std::ofstream(file) << R"({"format": "laguerre-embedding",
+                             "vertices": [{"id": 0, "x": 0, "y": 0, "r": 1, "neighbours": [1]},
+                                           {"id": 1, "x": 2, "y": 0, "r": 1, "neighbours": []}],
+                             "outer_face": [0, 1]})";
+  expect_bad("route " + file, {"asymmetric.json", "rotation system is invalid"});
 }

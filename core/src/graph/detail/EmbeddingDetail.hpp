@@ -21,7 +21,7 @@ inline std::string edge_name(std::uint64_t a, std::uint64_t b) { return std::to_
 void check_connected(std::size_t n, const IndexEdges& edges, const std::vector<std::uint64_t>& ids,
                      const std::string& source);
 
-/// PlanarGraph::from_rotation, its std::invalid_argument turned into a GraphInputError.
+/// PlanarGraph::from_rotation, its InputError turned into a GraphInputError.
 PlanarGraph build_graph(std::vector<std::vector<Vertex>> rotation, std::vector<std::uint64_t> ids,
                         const std::string& source, std::size_t graph_index, Dart outer = none);
 

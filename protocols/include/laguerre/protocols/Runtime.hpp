@@ -77,7 +77,7 @@ public:
   /// Current time of the host's clock, in nanoseconds.
   virtual Time now() const = 0;
   /// Sends `bytes` to neighbour `to` (copied before returning). Sending to a non-neighbour is a
-  /// programmer error the host may reject by throwing std::invalid_argument.
+  /// programmer error the host may reject by throwing core::InternalError (LAGUERRE_PRECONDITION).
   virtual void send(NodeId to, std::span<const std::byte> bytes) = 0;
   /// Sends `bytes` to every neighbour (copied before returning).
   virtual void broadcast(std::span<const std::byte> bytes) = 0;

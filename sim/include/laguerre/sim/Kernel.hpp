@@ -91,14 +91,14 @@ public:
   Time now() const { return now_; }
 
   /// Schedules `handler(target, payload)` at absolute time `at` ≥ now().
-  /// Throws std::invalid_argument if `at` lies in the past.
+  /// Throws core::InternalError (a broken precondition) if `at` lies in the past.
   void schedule_at(Time at, HandlerId handler, std::uint32_t target, std::uint64_t payload = 0) {
     if (at < now_) throw_past(at);
     queue_.push(Event{at, next_seq_++, payload, target, handler, 0});
   }
 
   /// Schedules `handler(target, payload)` after `delay` ≥ 0 nanoseconds.
-  /// Throws std::invalid_argument for a negative delay or one that overflows the clock.
+  /// Throws core::InternalError (a broken precondition) for a negative delay or one that overflows the clock.
   void schedule_after(Duration delay, HandlerId handler, std::uint32_t target,
                       std::uint64_t payload = 0) {
     if (delay < 0 || delay > time_max - now_) throw_delay(delay);

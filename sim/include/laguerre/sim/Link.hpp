@@ -35,7 +35,7 @@ struct LatencyModel {
   /// [0, jitter]: base + round(ns_per_unit · distance) + jitter.
   static LatencyModel distance(Duration base, double ns_per_unit, Duration jitter = 0);
 
-  /// Throws std::invalid_argument (a full sentence) for negative or non-finite parameters.
+  /// Throws core::InternalError (a broken precondition) (a full sentence) for negative or non-finite parameters.
   void validate() const;
   /// The smallest latency this law can produce for endpoints at distance `d`.
   Duration min_latency(double d) const;
@@ -51,7 +51,7 @@ struct LinkModel {
   double loss = 0;           ///< probability that a copy is lost, in [0, 1]
   double duplication = 0;    ///< probability that a message is sent twice, in [0, 1]
 
-  /// Throws std::invalid_argument (a full sentence) for probabilities outside [0, 1] or a bad latency.
+  /// Throws core::InternalError (a broken precondition) (a full sentence) for probabilities outside [0, 1] or a bad latency.
   void validate() const;
 };
 

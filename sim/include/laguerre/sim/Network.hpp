@@ -37,7 +37,7 @@ struct Crash {
 class Network {
 public:
   /// A network of `node_count` nodes joined by `edges` (undirected; duplicates and both orientations
-  /// are merged). Node ids default to the indices. Throws std::invalid_argument for a self-loop or an
+  /// are merged). Node ids default to the indices. Throws core::InternalError (a broken precondition) for a self-loop or an
   /// endpoint out of range, and std::length_error past 2^32 − 1 nodes or directed links.
   Network(std::size_t node_count, std::span<const Edge> edges);
 
@@ -59,14 +59,14 @@ public:
   NodeIndex link_target(LinkIndex l) const { return targets_[l]; }
 
   /// Sets the user ids (e.g. core::PlanarGraph ids) the runtime and random streams see.
-  /// Throws std::invalid_argument if the count is wrong or an id repeats.
+  /// Throws core::InternalError (a broken precondition) if the count is wrong or an id repeats.
   void set_ids(std::vector<std::uint64_t> ids);
   /// The user id of `v`.
   std::uint64_t id(NodeIndex v) const { return ids_.empty() ? v : ids_[v]; }
   /// The index of the node with user id `id`, if any.
   std::optional<NodeIndex> index_of(std::uint64_t id) const;
 
-  /// Sets every node's position. Throws std::invalid_argument on a count mismatch or a non-finite
+  /// Sets every node's position. Throws core::InternalError (a broken precondition) on a count mismatch or a non-finite
   /// coordinate.
   void set_positions(std::vector<Position> positions);
   /// Whether positions were given.
@@ -78,19 +78,19 @@ public:
 
   /// Sets the model of every directed link (validated).
   void set_link_model(const LinkModel& model);
-  /// Sets the model of the directed link u → v only (validated). Throws std::invalid_argument if
+  /// Sets the model of the directed link u → v only (validated). Throws core::InternalError (a broken precondition) if
   /// there is no such link.
   void set_link_model(NodeIndex u, NodeIndex v, const LinkModel& model);
   /// The model of directed link `l`.
   const LinkModel& link_model(LinkIndex l) const { return models_[model_of_link_[l]]; }
 
   /// Schedules a crash of `node` at `at`, and its recovery at `recover_at` if given. Throws
-  /// std::invalid_argument for an unknown node, a negative time, or a recovery not after the crash.
+  /// core::InternalError (a broken precondition) for an unknown node, a negative time, or a recovery not after the crash.
   void add_crash(NodeIndex node, Time at, std::optional<Time> recover_at = std::nullopt);
   /// The failure schedule, in insertion order.
   std::span<const Crash> crashes() const { return crashes_; }
 
-  /// Throws std::invalid_argument if a distance-based latency is used without positions.
+  /// Throws core::InternalError (a broken precondition) if a distance-based latency is used without positions.
   void validate() const;
 
 private:

@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/random/Random.hpp"
 
 namespace laguerre::sim {
@@ -99,7 +100,7 @@ public:
 
   /// A uniform integer in [0, n), exactly unbiased (Lemire's method with rejection); n must be > 0.
   std::uint64_t below(std::uint64_t n) {
-    if (n == 0) throw std::invalid_argument("RandomStream::below needs a positive bound, got 0.");
+    LAGUERRE_PRECONDITION(n > 0, "RandomStream::below needs a positive bound, got 0.");
     __extension__ using U128 = unsigned __int128;
     U128 m = static_cast<U128>(next_u64()) * n;
     auto low = static_cast<std::uint64_t>(m);
@@ -117,7 +118,7 @@ public:
 
   /// A uniform integer in [lo, hi] (inclusive, exactly unbiased); requires lo ≤ hi.
   std::int64_t uniform_int(std::int64_t lo, std::int64_t hi) {
-    if (lo > hi) throw std::invalid_argument("RandomStream::uniform_int needs lo <= hi.");
+    LAGUERRE_PRECONDITION(lo <= hi, "RandomStream::uniform_int needs lo <= hi.");
     const std::uint64_t span = static_cast<std::uint64_t>(hi) - static_cast<std::uint64_t>(lo);
     const std::uint64_t offset = span == ~std::uint64_t{0} ? next_u64() : below(span + 1);
     return static_cast<std::int64_t>(static_cast<std::uint64_t>(lo) + offset);

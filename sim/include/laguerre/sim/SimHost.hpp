@@ -30,7 +30,7 @@ public:
   using PhaseOf = std::function<Phase(std::span<const std::byte>)>;
 
   /// A host of `network` whose nodes `factory` builds (all of them, in index order, right away).
-  /// Without `phase_of`, every message counts under phase 0. Throws std::invalid_argument if the
+  /// Without `phase_of`, every message counts under phase 0. Throws core::InternalError (a broken precondition) if the
   /// factory returns a null node.
   SimHost(Network network, SimConfig config, const NodeFactory& factory, PhaseOf phase_of = {});
   SimHost(const SimHost&) = delete;

@@ -61,7 +61,7 @@ struct SimConfig {
 class Simulator {
 public:
   /// A simulator of `network` whose nodes are served by `handler` (which must outlive it).
-  /// Throws std::invalid_argument if the network is inconsistent (Network::validate).
+  /// Throws core::InternalError (a broken precondition) if the network is inconsistent (Network::validate).
   Simulator(Network network, SimConfig config, NodeHandler& handler);
   Simulator(const Simulator&) = delete;
   Simulator& operator=(const Simulator&) = delete;
@@ -75,11 +75,11 @@ public:
   /// Current simulated time.
   Time now() const { return kernel_.now(); }
   /// Sends `bytes` from `from` to its neighbour `to`, tagged with `phase`. Throws
-  /// std::invalid_argument if `to` is not a neighbour of `from`.
+  /// core::InternalError (a broken precondition) if `to` is not a neighbour of `from`.
   void send(NodeIndex from, NodeIndex to, std::span<const std::byte> bytes, Phase phase = 0);
   /// Sends `bytes` from `from` to each of its neighbours (one copy of the bytes is stored).
   void broadcast(NodeIndex from, std::span<const std::byte> bytes, Phase phase = 0);
-  /// Schedules NodeHandler::on_timer(v, timer) after `after` ≥ 0 ns. Throws std::invalid_argument
+  /// Schedules NodeHandler::on_timer(v, timer) after `after` ≥ 0 ns. Throws core::InternalError (a broken precondition)
   /// for a negative delay.
   TimerHandle schedule_timer(NodeIndex v, Duration after, std::uint64_t timer);
   /// Cancels a pending timer; false if it already fired, was cancelled, or is unknown.

@@ -15,7 +15,7 @@ namespace laguerre::core {
 
 /// Triangles of a Delaunay triangulation of `points`, as index triples in counter-clockwise order.
 ///
-/// The points must be pairwise distinct (std::invalid_argument naming two equal indices otherwise);
+/// Precondition: the points are finite and pairwise distinct (InternalError naming two equal indices otherwise);
 /// fewer than 3 points or all points collinear give no triangle. For points in general position the
 /// triangulation is unique; when four or more points are cocircular, CGAL's choice (symbolic
 /// perturbation) is returned. Triangles are sorted by their index triples, each triple starting at its

@@ -36,7 +36,7 @@ public:
   PlanarGraph() = default;
 
   /// Builds a graph from `rotation[v]` = neighbours of v in counter-clockwise order.
-  /// Throws std::invalid_argument with a full sentence if the rotation is not symmetric, has loops or
+  /// Throws InputError with a full sentence if the rotation is not symmetric, has loops or
   /// repeated neighbours, is disconnected, or does not define a planar embedding (Euler's formula).
   /// `ids` (defaults to 0..n-1) are the user's vertex ids; `outer` selects the outer face by one of its
   /// darts (defaults to `default_outer_dart()`).

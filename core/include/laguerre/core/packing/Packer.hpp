@@ -43,7 +43,7 @@ struct PackOptions {
   Sweep sweep = Sweep::jacobi;                   ///< update order
   UpdateRule update = UpdateRule::uniform_neighbour;  ///< per-vertex update
   RootRule root = RootRule::deepest;             ///< layout root
-  int steps_per_check = 1;                       ///< N: sweeps between two layouts and checks
+  int steps_per_check = 1;                       ///< N ≥ 1 (precondition): sweeps between two layouts and checks
   int max_iterations = 100000;                   ///< cap on sweeps
   double angle_epsilon = 1e-9;                   ///< for StopRule::angle (radians)
   double tangency_tolerance = 0.01;              ///< for StopRule::exact (fraction of smaller radius)

@@ -108,12 +108,12 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> regular_triangulation_diago
     std::span<const Circle> ccw_polygon, std::span<const std::uint64_t> priorities);
 
 /// Diagonals of G(φ) (Def. 5.2.3) inside each non-triangle inner face of g, as vertex pairs (u, w)
-/// with u < w, grouped by face in face order. Throws std::invalid_argument if such a face is not
-/// strictly convex.
+/// with u < w, grouped by face in face order. Precondition: every such face is strictly convex
+/// in `phi` (InternalError otherwise; check_glpd reports face_not_convex as an outcome).
 std::vector<std::pair<Vertex, Vertex>> phi_triangulation_diagonals(const PlanarGraph& g, const CircleEmbedding& phi);
 
 /// G(φ): g with the diagonals of `phi_triangulation_diagonals`, same vertices, ids and outer face.
-/// Throws std::invalid_argument if a non-triangle inner face is not strictly convex.
+/// Precondition: every non-triangle inner face is strictly convex in `phi` (InternalError otherwise).
 PlanarGraph phi_triangulation(const PlanarGraph& g, const CircleEmbedding& phi);
 
 /// The local cell of v (power cell among v and its g-neighbours) clipped to the square

@@ -16,7 +16,8 @@ namespace laguerre::core {
 /// use one router per thread.
 class Router {
 public:
-  /// Binds the router to `g` and `phi`. Throws std::invalid_argument if phi.size() != g.num_vertices().
+  /// Binds the router to `g` and `phi`. Preconditions (InternalError otherwise): phi.size() ==
+  /// g.num_vertices() and every circle finite.
   Router(const PlanarGraph& g, const CircleEmbedding& phi);
 
   /// Routes one packet; see route() for the meaning of the arguments and of the result.
@@ -25,8 +26,8 @@ public:
   void route(Scheme s, Vertex source, Vertex target, std::size_t ttl, Route& out);
 
   /// One forwarding decision of a memoryless scheme (greedy_power, greedy_euclid, compass): the next
-  /// hop from `at` towards `target`, or `none`. Throws std::invalid_argument for gfg, whose decisions
-  /// depend on state carried in the packet.
+  /// hop from `at` towards `target`, or `none`. Preconditions: `at` and `target` are vertices of
+  /// the graph, and `s` is not gfg, whose decisions depend on state carried in the packet.
   Vertex next_hop(Scheme s, Vertex at, Vertex target) const;
 
   /// The graph routed over.

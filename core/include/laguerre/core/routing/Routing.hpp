@@ -72,7 +72,8 @@ std::size_t default_ttl(const PlanarGraph& g, Scheme s);
 /// `ttl` is the maximal number of hops (0 = default_ttl(g, s)). A packet with source == target is
 /// delivered with zero hops. For gfg the rotation of `g` must be the counter-clockwise order of the
 /// centres (a plane straight-line drawing); otherwise the result says `loop` or `dead_end` rather than
-/// misbehaving. Throws std::invalid_argument if `phi` has the wrong size or a vertex is out of range.
+/// misbehaving. Preconditions (InternalError otherwise): `phi` has one finite circle per vertex, and
+/// `source` and `target` are vertices of `g`.
 Route route(const PlanarGraph& g, const CircleEmbedding& phi, Scheme s, Vertex source, Vertex target,
             std::size_t ttl = 0);
 

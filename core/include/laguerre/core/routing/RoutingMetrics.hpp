@@ -54,8 +54,8 @@ std::vector<std::pair<Vertex, Vertex>> select_pairs(std::size_t n, const PairSel
 double nearest_rank_percentile(std::vector<double>& values, unsigned percent);
 
 /// Routes every selected pair with scheme `s` and aggregates the results. Hop distances come from one
-/// breadth-first search per distinct source. Deterministic. Throws std::invalid_argument if `phi` has
-/// the wrong size.
+/// breadth-first search per distinct source. Deterministic. Preconditions (InternalError otherwise):
+/// phi.size() == g.num_vertices() and every circle finite.
 RoutingStats evaluate_routing(const PlanarGraph& g, const CircleEmbedding& phi, Scheme s,
                               const PairSelection& pairs = {});
 

@@ -20,7 +20,7 @@
 namespace laguerre::scenarios {
 
 /// n points uniformly distributed in the domain, by rejection from its bounding box: a draw is kept
-/// iff it lies strictly inside. Throws std::invalid_argument if n is 0 or if the acceptance rate is
+/// iff it lies strictly inside. Precondition: n > 0. Throws core::InputError if the acceptance rate is
 /// hopeless (fewer than n accepted after 1000 n + 10^6 draws: the domain is a sliver of its box).
 std::vector<core::Point2> deploy_uniform(const core::Domain& domain, std::size_t n, std::uint64_t seed);
 
@@ -40,9 +40,9 @@ struct ClusterOptions {
 /// n points of a Thomas / Matérn cluster process conditioned on n points inside the domain:
 /// `clusters` parents are drawn uniformly in the domain (as deploy_uniform), then each point picks a
 /// parent uniformly at random and an offset of the given shape; a point outside the domain (or on
-/// its boundary) is redrawn, parent included. Parents are not part of the result. Throws
-/// std::invalid_argument for n = 0, clusters = 0, spread ≤ 0 or not finite, or if fewer than n points
-/// are accepted after 1000 n + 10^6 draws.
+/// its boundary) is redrawn, parent included. Parents are not part of the result. Preconditions: n > 0,
+/// clusters > 0, spread > 0 and finite. Throws core::InputError if fewer than n points are accepted
+/// after 1000 n + 10^6 draws.
 std::vector<core::Point2> deploy_clustered(const core::Domain& domain, std::size_t n, const ClusterOptions& options,
                                            std::uint64_t seed);
 

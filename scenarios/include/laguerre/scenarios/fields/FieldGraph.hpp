@@ -65,7 +65,7 @@ enum class FieldGraphType {
   local_delaunay           ///< LDel^(k) of Li, Calinescu, Wan and Wang on UDG(R)
 };
 
-/// Parses "delaunay", "unit-disk", "gabriel", "rng" or "local-delaunay"; throws std::invalid_argument
+/// Parses "delaunay", "unit-disk", "gabriel", "rng" or "local-delaunay"; throws core::InputError
 /// listing them.
 FieldGraphType parse_field_graph_type(std::string_view name);
 /// The name parse_field_graph_type accepts.
@@ -74,7 +74,7 @@ std::string_view to_string(FieldGraphType type);
 /// What to do when the graph is neither a triangulated disc nor 3-connected (see the file comment).
 enum class RepairPolicy { fail, largest_block, three_connected_core, triangulate_faces };
 
-/// Parses "fail", "largest-block", "three-connected-core" or "triangulate-faces"; throws std::invalid_argument listing them.
+/// Parses "fail", "largest-block", "three-connected-core" or "triangulate-faces"; throws core::InputError listing them.
 RepairPolicy parse_repair_policy(std::string_view name);
 /// The name parse_repair_policy accepts.
 std::string_view to_string(RepairPolicy policy);
@@ -131,15 +131,16 @@ private:
 };
 
 /// The radius R at which n uniform points in the domain have mean unit-disk degree `degree`, ignoring
-/// boundary effects: n π R² / area = degree. Throws std::invalid_argument unless n > 0 and degree > 0.
+/// boundary effects: n π R² / area = degree. Precondition: n > 0, degree > 0 and finite.
 double radius_for_mean_degree(const core::Domain& domain, std::size_t n, double degree);
 
-/// The edges of the construction `options` asks for (no report, no repair). Throws
-/// std::invalid_argument on bad parameters (radius, hops) or points outside the domain (delaunay).
+/// The edges of the construction `options` asks for (no report, no repair). Preconditions: those of
+/// the construction (ProximityGraphs.hpp: radius > 0 and finite, hops ≥ 1, points strictly inside the
+/// domain for delaunay).
 EdgeList field_edges(const core::Domain& domain, std::span<const core::Point2> points, const FieldGraphOptions& options);
 
 /// Builds the construction, reports on it and applies the repair policy. Throws FieldGraphError (see
-/// the file comment), std::invalid_argument on bad parameters.
+/// the file comment). Preconditions: those of field_edges.
 FieldGraph build_field_graph(const core::Domain& domain, std::span<const core::Point2> points,
                              const FieldGraphOptions& options);
 

@@ -47,8 +47,8 @@ using EdgeList = std::vector<std::pair<core::Vertex, core::Vertex>>;
 /// Edges of the Delaunay triangulation (all of it, the convex hull included).
 EdgeList delaunay_edges(std::span<const core::Point2> points);
 
-/// Edges of the Delaunay triangulation restricted to the domain (see the file comment). Throws
-/// std::invalid_argument if a point is not strictly inside the domain.
+/// Edges of the Delaunay triangulation restricted to the domain (see the file comment).
+/// Precondition: every point is strictly inside the domain.
 EdgeList restricted_delaunay_edges(const core::Domain& domain, std::span<const core::Point2> points);
 
 /// Edges of the unit-disk graph UDG(R), R > 0 finite.

@@ -23,7 +23,7 @@ struct ThreeConnectedStats {
 /// graph with a distinguished dart, up to orientation-preserving isomorphism) with n vertices has the
 /// same probability, whatever its number of edges. With `faces` = f > 0: every rooted 3-connected map
 /// with n vertices and f faces (so n + f − 2 edges) has the same probability; f must satisfy
-/// n ≤ 2f − 4 and f ≤ 2n − 4 (Steinitz), else std::invalid_argument. By Whitney a 3-connected planar
+/// n ≤ 2f − 4 and f ≤ 2n − 4 (Steinitz) (precondition). By Whitney a 3-connected planar
 /// graph G with m edges has exactly two embeddings (mirror images), hence 4m/|Aut G| rooted maps, while
 /// it has n!/|Aut G| vertex labellings: so with f (hence m) fixed, the graph is exactly uniform among
 /// vertex-labelled 3-connected planar graphs with n vertices and m edges once the ids are permuted at
@@ -57,7 +57,7 @@ struct ThreeConnectedStats {
 /// std::runtime_error is thrown.
 ///
 /// Vertex ids 0..n−1. Deterministic for a given (n, seed, faces) on every platform (std::mt19937_64 and
-/// IEEE double arithmetic through our own mappings). Throws std::invalid_argument if n < 4 or n ≥ 2^28.
+/// IEEE double arithmetic through our own mappings). Precondition: 4 ≤ n < 2^28.
 core::PlanarGraph uniform_three_connected(std::size_t n, std::uint64_t seed, std::size_t faces = 0,
                                           ThreeConnectedStats* stats = nullptr);
 
@@ -69,8 +69,8 @@ core::PlanarGraph uniform_three_connected(std::size_t n, std::uint64_t seed, std
 /// edges − 4 nodes (Łukasiewicz word and cycle lemma), its closure into a dissection of the hexagon, one
 /// of the six hexagon vertices chosen uniformly as the black end of the root edge of Q, and rejection
 /// of non-admissible dissections. The numbers of vertices v and faces f vary (v + f = edges + 2, and by
-/// duality v and f have the same law, so E[v] = (edges + 2)/2). Throws std::invalid_argument if
-/// edges < 6, edges = 7 (no 3-connected planar map has 7 edges) or edges ≥ 2^29.
+/// duality v and f have the same law, so E[v] = (edges + 2)/2). Precondition:
+/// 6 ≤ edges < 2^29 and edges ≠ 7 (no 3-connected planar map has 7 edges).
 core::PlanarGraph uniform_three_connected_map_by_edges(std::size_t edges, std::uint64_t seed,
                                                        ThreeConnectedStats* stats = nullptr);
 

@@ -32,7 +32,7 @@ namespace laguerre::scenarios {
 ///
 /// Vertex ids are 0..n−1: the tree's nodes in decoding order, then the two new vertices (n−2 and n−1,
 /// both on the outer face). Deterministic for a given (n, seed) on every platform (std::mt19937_64
-/// through our own integer mapping). Throws std::invalid_argument if n < 3 or n ≥ 2^30.
+/// through our own integer mapping). Precondition: 3 ≤ n < 2^30.
 core::PlanarGraph uniform_triangulation(std::size_t n, std::uint64_t seed);
 
 }  // namespace laguerre::scenarios
@@ -46,7 +46,7 @@ namespace laguerre::scenarios {
 enum class OuterRule { root_face, puncture, largest_face };
 
 /// `g` minus its vertex of largest degree, with that vertex's link as the outer face. Ids are kept.
-/// Throws std::invalid_argument if the result would have fewer than 3 vertices.
+/// Precondition: g has at least 4 vertices (the result at least 3).
 core::PlanarGraph puncture_at_max_degree(const core::PlanarGraph& g);
 
 /// `g` with its largest face (smallest canonical dart on ties) as the outer face.
