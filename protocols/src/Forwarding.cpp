@@ -1,4 +1,5 @@
 #include "laguerre/protocols/Forwarding.hpp"
+#include "laguerre/core/Error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -47,22 +48,22 @@ ForwardingNode::ForwardingNode(Runtime& runtime, PacketSink& sink, NodeId id, st
       circles_(std::move(neighbour_circles)), position_(position), positions_(std::move(neighbour_positions)) {
   const std::string who = "Forwarding node " + std::to_string(id_);
   if (circles_.size() != neighbours_.size())
-    throw std::invalid_argument(who + " has " + std::to_string(neighbours_.size()) + " neighbours but " +
+    throw core::InternalError(who + " has " + std::to_string(neighbours_.size()) + " neighbours but " +
                                 std::to_string(circles_.size()) + " neighbour circles.");
   if (positions_.size() != neighbours_.size())
-    throw std::invalid_argument(who + " has " + std::to_string(neighbours_.size()) + " neighbours but " +
+    throw core::InternalError(who + " has " + std::to_string(neighbours_.size()) + " neighbours but " +
                                 std::to_string(positions_.size()) + " neighbour positions.");
   std::vector<NodeId> sorted = neighbours_;
   std::sort(sorted.begin(), sorted.end());
   if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-    throw std::invalid_argument(who + " lists a neighbour twice.");
-  if (std::binary_search(sorted.begin(), sorted.end(), id_)) throw std::invalid_argument(who + " lists itself as a neighbour.");
-  if (!finite_circle(own_)) throw std::invalid_argument(who + " has a circle that is not finite.");
+    throw core::InternalError(who + " lists a neighbour twice.");
+  if (std::binary_search(sorted.begin(), sorted.end(), id_)) throw core::InternalError(who + " lists itself as a neighbour.");
+  if (!finite_circle(own_)) throw core::InternalError(who + " has a circle that is not finite.");
   for (const core::Circle& c : circles_)
-    if (!finite_circle(c)) throw std::invalid_argument(who + " knows a neighbour circle that is not finite.");
-  if (!finite_point(position_)) throw std::invalid_argument(who + " has a position that is not finite.");
+    if (!finite_circle(c)) throw core::InternalError(who + " knows a neighbour circle that is not finite.");
+  if (!finite_point(position_)) throw core::InternalError(who + " has a position that is not finite.");
   for (const Point2& p : positions_)
-    if (!finite_point(p)) throw std::invalid_argument(who + " knows a neighbour position that is not finite.");
+    if (!finite_point(p)) throw core::InternalError(who + " knows a neighbour position that is not finite.");
 }
 
 core::NeighbourView ForwardingNode::view() const { return {own_, position_, circles_, positions_, neighbours_}; }
@@ -80,11 +81,11 @@ std::size_t ForwardingNode::index_of(NodeId n) const {
 
 void ForwardingNode::originate(const DataPacket& p) {
   if (p.scheme == core::Scheme::greedy_power) {
-    if (!finite_circle(p.target_circle)) throw std::invalid_argument("The target circle of a packet must be finite.");
+    if (!finite_circle(p.target_circle)) throw core::InternalError("The target circle of a packet must be finite.");
     handle(DataMsg{p.packet, id_, p.target, p.target_circle.x, p.target_circle.y, p.target_circle.r, p.ttl, 0});
     return;
   }
-  if (!finite_point(p.target_position)) throw std::invalid_argument("The target position of a packet must be finite.");
+  if (!finite_point(p.target_position)) throw core::InternalError("The target position of a packet must be finite.");
   RouteMsg m;
   m.packet = p.packet;
   m.source = id_;

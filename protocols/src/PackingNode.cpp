@@ -1,4 +1,5 @@
 #include "laguerre/protocols/PackingNode.hpp"
+#include "laguerre/core/Error.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -80,14 +81,14 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
   const std::string who = "Node " + std::to_string(know_.id);
   sorted_ids_ = detail::sorted_neighbours(know_.id, know_.neighbours);
   if (know_.boundary && know_.outer_gap >= deg_)
-    throw std::invalid_argument(who + " is on the boundary but its outer-face wedge is not one of its wedges.");
+    throw core::InternalError(who + " is on the boundary but its outer-face wedge is not one of its wedges.");
   if (!know_.boundary && know_.outer_gap != LocalKnowledge::no_gap)
-    throw std::invalid_argument(who + " is interior but has an outer-face wedge.");
-  if (params.steps_per_check < 1) throw std::invalid_argument("steps_per_check must be at least 1.");
-  if (params.max_iterations < 0) throw std::invalid_argument("max_iterations must not be negative.");
+    throw core::InternalError(who + " is interior but has an outer-face wedge.");
+  if (params.steps_per_check < 1) throw core::InternalError("steps_per_check must be at least 1.");
+  if (params.max_iterations < 0) throw core::InternalError("max_iterations must not be negative.");
   validate(params);
   if (!know_.faces.empty() && know_.faces.size() != deg_)
-    throw std::invalid_argument(who + " lists faces for some but not all of its wedges.");
+    throw core::InternalError(who + " lists faces for some but not all of its wedges.");
 
   // The star of this node's vertex in K: a face vertex right after neighbour i for each polygon wedge.
   detail::AgentSpec own;
@@ -104,13 +105,13 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
     const std::vector<NodeId>& walk = know_.faces[i];
     const std::size_t next = i + 1 == deg_ ? 0 : i + 1;
     if (walk.size() < 4 || walk[0] != know_.id || walk[1] != know_.neighbours[i] || walk.back() != know_.neighbours[next])
-      throw std::invalid_argument(who + "'s face walk for wedge " + std::to_string(i) +
+      throw core::InternalError(who + "'s face walk for wedge " + std::to_string(i) +
                                   " does not run from it through its neighbours around that wedge.");
     for (NodeId u : walk)
       if (u > max_face_node_id)
-        throw std::invalid_argument(who + " is on a polygon face with node id " + std::to_string(u) +
+        throw core::InputError(who + " is on a polygon face with node id " + std::to_string(u) +
                                     ", above the largest id the 3-connected mode supports (2^31 − 1).");
-    if (know_.boundary && i == know_.outer_gap) throw std::invalid_argument(who + " lists a face for its outer wedge.");
+    if (know_.boundary && i == know_.outer_gap) throw core::InternalError(who + " lists a face for its outer wedge.");
     Wedge w;
     w.walk = walk;
     const auto host = std::min_element(walk.begin(), walk.end());

@@ -8,6 +8,7 @@
 // exactly in the order of the inner node's calls, and flushes owed acks only after the inner node's
 // callback returned (a frame leaving in the meantime carries the ack).
 #include "laguerre/protocols/Reliable.hpp"
+#include "laguerre/core/Error.hpp"
 
 #include <algorithm>
 #include <deque>
@@ -22,17 +23,17 @@ namespace detail {
 
 std::vector<std::pair<NodeId, std::uint32_t>> sorted_neighbours(NodeId self, const std::vector<NodeId>& neighbours) {
   const std::string who = "Node " + std::to_string(self);
-  if (neighbours.empty()) throw std::invalid_argument(who + " has no neighbours.");
-  if (neighbours.size() >= 0xffffffffu) throw std::invalid_argument(who + " has too many neighbours.");
+  if (neighbours.empty()) throw core::InternalError(who + " has no neighbours.");
+  if (neighbours.size() >= 0xffffffffu) throw core::InternalError(who + " has too many neighbours.");
   std::vector<std::pair<NodeId, std::uint32_t>> sorted;
   for (std::size_t i = 0; i < neighbours.size(); ++i) {
-    if (neighbours[i] == self) throw std::invalid_argument(who + " lists itself as a neighbour.");
+    if (neighbours[i] == self) throw core::InternalError(who + " lists itself as a neighbour.");
     sorted.emplace_back(neighbours[i], static_cast<std::uint32_t>(i));
   }
   std::sort(sorted.begin(), sorted.end());
   for (std::size_t i = 1; i < sorted.size(); ++i)
     if (sorted[i].first == sorted[i - 1].first)
-      throw std::invalid_argument(who + " lists neighbour " + std::to_string(sorted[i].first) + " twice.");
+      throw core::InternalError(who + " lists neighbour " + std::to_string(sorted[i].first) + " twice.");
   return sorted;
 }
 
@@ -45,10 +46,10 @@ std::size_t neighbour_index(const std::vector<std::pair<NodeId, std::uint32_t>>&
 
 void validate(const ReliableParams& params) {
   if (params.retransmit_after < 0 || params.ack_delay < 0 || params.probe_after < 0)
-    throw std::invalid_argument("retransmit_after, ack_delay and probe_after must not be negative.");
+    throw core::InternalError("retransmit_after, ack_delay and probe_after must not be negative.");
   if (params.backoff_cap < 1 || params.max_retransmissions < 1)
-    throw std::invalid_argument("backoff_cap and max_retransmissions must be at least 1.");
-  if (params.rto_min < 0) throw std::invalid_argument("rto_min must not be negative.");
+    throw core::InternalError("backoff_cap and max_retransmissions must be at least 1.");
+  if (params.rto_min < 0) throw core::InternalError("rto_min must not be negative.");
 }
 
 ReliableCounters& ReliableCounters::operator+=(const ReliableCounters& o) {
@@ -117,7 +118,7 @@ ReliableNode::ReliableNode(Runtime& runtime, std::vector<NodeId> neighbours, Rel
     : rt_(runtime), params_(params), neighbours_(std::move(neighbours)) {
   sorted_ids_ = detail::sorted_neighbours(rt_.self(), neighbours_);
   validate(params);
-  if (params.retransmit_after == 0) throw std::invalid_argument("retransmit_after must be positive.");
+  if (params.retransmit_after == 0) throw core::InternalError("retransmit_after must be positive.");
   if (params_.probe_after == 0) params_.probe_after = 32 * params_.retransmit_after;
   if (params_.rto_min == 0) params_.rto_min = std::max<Duration>(1, params_.retransmit_after / 4);
   links_.assign(neighbours_.size(), Link{});
@@ -127,7 +128,7 @@ ReliableNode::ReliableNode(Runtime& runtime, std::vector<NodeId> neighbours, Rel
     l.received.next = params_.initial_seq;
   }
   inner_ = make_inner(*this);
-  if (!inner_) throw std::invalid_argument("ReliableNode: the factory returned no inner node.");
+  if (!inner_) throw core::InternalError("ReliableNode: the factory returned no inner node.");
 }
 
 ReliableNode::~ReliableNode() = default;
@@ -141,7 +142,7 @@ Duration ReliableNode::rto(std::size_t i) const { return links_.at(i).rto; }
 void ReliableNode::send(NodeId to, std::span<const std::byte> bytes) {
   const std::size_t i = index_of(to);
   if (i == neighbours_.size())
-    throw std::invalid_argument("Node " + std::to_string(self()) + " sent to non-neighbour " + std::to_string(to) + ".");
+    throw core::InternalError("Node " + std::to_string(self()) + " sent to non-neighbour " + std::to_string(to) + ".");
   send_frame(i, bytes);
 }
 
@@ -150,7 +151,7 @@ void ReliableNode::broadcast(std::span<const std::byte> bytes) {
 }
 
 TimerHandle ReliableNode::schedule(Duration after, TimerId timer) {
-  if ((timer & timer_kind) != 0) throw std::invalid_argument("ReliableNode: inner timer ids must stay below 2^56.");
+  if ((timer & timer_kind) != 0) throw core::InternalError("ReliableNode: inner timer ids must stay below 2^56.");
   return rt_.schedule(after, timer);
 }
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 
+#include "laguerre/core/Error.hpp"
 #include "../SyncCompare.hpp"
 #include "../NullRuntime.hpp"
 #include "Outcomes.hpp"
@@ -148,10 +149,10 @@ TEST(Forwarding, RejectsBadInputAndForeignMessages) {
   laguerre::protocols::testing::NullRuntime rt;
   Recorder sink;
   const core::Circle c{0, 0, 0.1}, d{0.3, 0, 0.1};
-  EXPECT_THROW(ForwardingNode(rt, sink, 1, {2, 3}, c, {d}), std::invalid_argument);
-  EXPECT_THROW(ForwardingNode(rt, sink, 1, {2, 2}, c, {d, d}), std::invalid_argument);
-  EXPECT_THROW(ForwardingNode(rt, sink, 1, {1}, c, {d}), std::invalid_argument);
-  EXPECT_THROW(ForwardingNode(rt, sink, 1, {2}, c, {{NAN, 0, 1}}), std::invalid_argument);
+  EXPECT_THROW(ForwardingNode(rt, sink, 1, {2, 3}, c, {d}), laguerre::core::InternalError);
+  EXPECT_THROW(ForwardingNode(rt, sink, 1, {2, 2}, c, {d, d}), laguerre::core::InternalError);
+  EXPECT_THROW(ForwardingNode(rt, sink, 1, {1}, c, {d}), laguerre::core::InternalError);
+  EXPECT_THROW(ForwardingNode(rt, sink, 1, {2}, c, {{NAN, 0, 1}}), laguerre::core::InternalError);
   ForwardingNode f(rt, sink, 1, {2}, c, {d});
   f.on_message(9, encode(DataMsg{1, 5, 6, 0, 0, 0, 4, 1}));  // not a neighbour
   f.on_message(2, encode(ReportMsg{0, true}));                // not data

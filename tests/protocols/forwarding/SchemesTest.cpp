@@ -12,6 +12,7 @@
 #include <random>
 #include <string>
 
+#include "laguerre/core/Error.hpp"
 #include "../NullRuntime.hpp"
 #include "../SyncHost.hpp"
 #include "Outcomes.hpp"
@@ -222,11 +223,11 @@ TEST(ForwardingSchemes, RejectsBadPositions) {
   NullRuntime rt;
   Recorder sink;
   const core::Circle c{0, 0, 0.1}, d{0.3, 0, 0.1};
-  EXPECT_THROW(ForwardingNode(rt, sink, 1, {2}, c, {d}, {0, 0}, {}), std::invalid_argument);
-  EXPECT_THROW(ForwardingNode(rt, sink, 1, {2}, c, {d}, {NAN, 0}, {{1, 0}}), std::invalid_argument);
-  EXPECT_THROW(ForwardingNode(rt, sink, 1, {2}, c, {d}, {0, 0}, {{0, INFINITY}}), std::invalid_argument);
+  EXPECT_THROW(ForwardingNode(rt, sink, 1, {2}, c, {d}, {0, 0}, {}), laguerre::core::InternalError);
+  EXPECT_THROW(ForwardingNode(rt, sink, 1, {2}, c, {d}, {NAN, 0}, {{1, 0}}), laguerre::core::InternalError);
+  EXPECT_THROW(ForwardingNode(rt, sink, 1, {2}, c, {d}, {0, 0}, {{0, INFINITY}}), laguerre::core::InternalError);
   ForwardingNode f(rt, sink, 1, {2}, c, {d}, {0, 0}, {{1, 0}});
-  EXPECT_THROW(f.originate({1, 2, d, 4, core::Scheme::gfg, {NAN, 0}}), std::invalid_argument);
+  EXPECT_THROW(f.originate({1, 2, d, 4, core::Scheme::gfg, {NAN, 0}}), laguerre::core::InternalError);
   f.originate({2, 2, d, 4, core::Scheme::greedy_euclid, {-1, 0}});  // the neighbour is farther
   EXPECT_EQ(sink.ends[2].outcome, PacketOutcome::dead_end);
   f.originate({3, 1, d, 4, core::Scheme::compass, {5, 5}});  // to itself

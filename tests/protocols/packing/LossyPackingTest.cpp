@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "laguerre/core/Error.hpp"
 #include "../LossyCompare.hpp"
 #include "../TestGraphs.hpp"
 
@@ -33,13 +34,13 @@ TEST(LossyPacking, RejectsBadParameters) {
   const core::PlanarGraph g = delaunay(10, 3);
   PackingParams p = lossy_params();
   p.max_retransmissions = 0;
-  EXPECT_THROW(DequeHost(g, p), std::invalid_argument);
+  EXPECT_THROW(DequeHost(g, p), laguerre::core::InternalError);
   p = lossy_params();
   p.retransmit_after = -1;
-  EXPECT_THROW(DequeHost(g, p), std::invalid_argument);
+  EXPECT_THROW(DequeHost(g, p), laguerre::core::InternalError);
   p = lossy_params();
   p.backoff_cap = 0;
-  EXPECT_THROW(DequeHost(g, p), std::invalid_argument);
+  EXPECT_THROW(DequeHost(g, p), laguerre::core::InternalError);
 }
 
 TEST(LossyPacking, LosslessLinksNeedNoRetransmissionAndSeeNoDuplicates) {

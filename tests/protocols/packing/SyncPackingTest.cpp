@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "laguerre/core/Error.hpp"
 #include "../NullRuntime.hpp"
 #include "../SyncCompare.hpp"
 #include "../TestGraphs.hpp"
@@ -36,14 +37,14 @@ TEST(LocalKnowledge, MatchesTheGraph) {
 
 TEST(PackingNode, RejectsInconsistentKnowledge) {
   laguerre::protocols::testing::NullRuntime rt;
-  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {}, false, LocalKnowledge::no_gap, {}, {}}, {}), std::invalid_argument);
-  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 1}, false, LocalKnowledge::no_gap, {}, {}}, {}), std::invalid_argument);
-  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3, 2}, false, LocalKnowledge::no_gap, {}, {}}, {}), std::invalid_argument);
-  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, true, 5, {}, {}}, {}), std::invalid_argument);
-  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, false, 0, {}, {}}, {}), std::invalid_argument);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {}, false, LocalKnowledge::no_gap, {}, {}}, {}), laguerre::core::InternalError);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 1}, false, LocalKnowledge::no_gap, {}, {}}, {}), laguerre::core::InternalError);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3, 2}, false, LocalKnowledge::no_gap, {}, {}}, {}), laguerre::core::InternalError);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, true, 5, {}, {}}, {}), laguerre::core::InternalError);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, false, 0, {}, {}}, {}), laguerre::core::InternalError);
   PackingParams bad;
   bad.steps_per_check = 0;
-  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, false, LocalKnowledge::no_gap, {}, {}}, bad), std::invalid_argument);
+  EXPECT_THROW(PackingNode(rt, LocalKnowledge{1, {2, 3}, false, LocalKnowledge::no_gap, {}, {}}, bad), laguerre::core::InternalError);
 }
 
 TEST(PackingNode, MalformedAndForeignMessagesAreCountedNotTrusted) {

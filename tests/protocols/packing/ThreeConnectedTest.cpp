@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "laguerre/core/Error.hpp"
 #include "../NullRuntime.hpp"
 #include "../SyncCompare.hpp"
 #include "../TestGraphs.hpp"
@@ -121,10 +122,10 @@ TEST(ThreeConnected, RejectsInconsistentFaces) {
     return LocalKnowledge{1, {2, 3, 4}, false, LocalKnowledge::no_gap, {}, std::move(faces)};
   };
   EXPECT_NO_THROW(PackingNode(rt, knowledge({{1, 2, 7, 3}, {}, {}}), {}));
-  EXPECT_THROW(PackingNode(rt, knowledge({{1, 2, 7, 3}}), {}), std::invalid_argument);         // not per wedge
-  EXPECT_THROW(PackingNode(rt, knowledge({{1, 3, 7, 2}, {}, {}}), {}), std::invalid_argument); // wrong wedge
-  EXPECT_THROW(PackingNode(rt, knowledge({{1, 2, 3}, {}, {}}), {}), std::invalid_argument);    // a triangle
-  EXPECT_THROW(PackingNode(rt, knowledge({{1, 2, NodeId{1} << 40, 3}, {}, {}}), {}), std::invalid_argument);
+  EXPECT_THROW(PackingNode(rt, knowledge({{1, 2, 7, 3}}), {}), laguerre::core::InternalError);         // not per wedge
+  EXPECT_THROW(PackingNode(rt, knowledge({{1, 3, 7, 2}, {}, {}}), {}), laguerre::core::InternalError); // wrong wedge
+  EXPECT_THROW(PackingNode(rt, knowledge({{1, 2, 3}, {}, {}}), {}), laguerre::core::InternalError);    // a triangle
+  EXPECT_THROW(PackingNode(rt, knowledge({{1, 2, NodeId{1} << 40, 3}, {}, {}}), {}), laguerre::core::InputError);
 }
 
 TEST(ThreeConnected, ForgedEnvelopesAreCountedNotTrusted) {

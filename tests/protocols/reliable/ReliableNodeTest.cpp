@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "../LossyHost.hpp"
 #include "../NullRuntime.hpp"
 #include "../TestGraphs.hpp"
@@ -140,16 +141,16 @@ TEST(ReliableNode, RejectsBadNeighboursParametersAndTimerIds) {
     return [nb](Runtime& r) { return std::make_unique<CounterNode>(r, nb); };
   };
   const ReliableParams ok = lossy_link_params(1000);
-  EXPECT_THROW(ReliableNode(rt, {}, ok, counter_of({})), std::invalid_argument);
-  EXPECT_THROW(ReliableNode(rt, {2, 1}, ok, counter_of({2, 1})), std::invalid_argument);
-  EXPECT_THROW(ReliableNode(rt, {2, 2}, ok, counter_of({2, 2})), std::invalid_argument);
+  EXPECT_THROW(ReliableNode(rt, {}, ok, counter_of({})), laguerre::core::InternalError);
+  EXPECT_THROW(ReliableNode(rt, {2, 1}, ok, counter_of({2, 1})), laguerre::core::InternalError);
+  EXPECT_THROW(ReliableNode(rt, {2, 2}, ok, counter_of({2, 2})), laguerre::core::InternalError);
   ReliableParams p = ok;
   p.retransmit_after = 0;
-  EXPECT_THROW(ReliableNode(rt, {2}, p, counter_of({2})), std::invalid_argument);
+  EXPECT_THROW(ReliableNode(rt, {2}, p, counter_of({2})), laguerre::core::InternalError);
   p = ok;
   p.max_retransmissions = 0;
-  EXPECT_THROW(ReliableNode(rt, {2}, p, counter_of({2})), std::invalid_argument);
-  EXPECT_THROW(ReliableNode(rt, {2}, ok, [](Runtime&) { return std::unique_ptr<Node>(); }), std::invalid_argument);
+  EXPECT_THROW(ReliableNode(rt, {2}, p, counter_of({2})), laguerre::core::InternalError);
+  EXPECT_THROW(ReliableNode(rt, {2}, ok, [](Runtime&) { return std::unique_ptr<Node>(); }), laguerre::core::InternalError);
 
   // The runtime served to the inner node: neighbours only, inner timer ids below 2^56.
   Runtime* inner_rt = nullptr;
@@ -160,8 +161,8 @@ TEST(ReliableNode, RejectsBadNeighboursParametersAndTimerIds) {
   ASSERT_NE(inner_rt, nullptr);
   EXPECT_EQ(inner_rt->self(), 1u);
   const std::vector<std::byte> m{std::byte{2}, std::byte{0x7e}, std::byte{0}, std::byte{0}};
-  EXPECT_THROW(inner_rt->send(4, m), std::invalid_argument);
-  EXPECT_THROW(inner_rt->schedule(1, TimerId{1} << 56), std::invalid_argument);
+  EXPECT_THROW(inner_rt->send(4, m), laguerre::core::InternalError);
+  EXPECT_THROW(inner_rt->schedule(1, TimerId{1} << 56), laguerre::core::InternalError);
   inner_rt->broadcast(m);
   EXPECT_EQ(n.counters().frames, 2u);
   EXPECT_EQ(n.counters().sent, 2u);

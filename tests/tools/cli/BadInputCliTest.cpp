@@ -98,3 +98,9 @@ TEST_F(CliBadInput, EmbeddingWithAnInvalidRotationSystemIsNamed) {
                              "outer_face": [0, 1]})";
   expect_bad("route " + file, {"asymmetric.json", "rotation system is invalid"});
 }
+
+// A 3-connected graph whose polygon-face node ids do not fit the face-vertex encoding (2^31 − 1): the
+// ids come from the user's file, so it is bad input (exit 2), not an internal error (it exited 1).
+TEST_F(CliBadInput, FaceNodeIdsAboveTheProtocolLimitAreBadInput) {
+  expect_bad("simulate " LAGUERRE_SOURCE_DIR "/tests/data/graphs/three-connected-60-big-ids.txt", {"4294967296", "2^31"});
+}

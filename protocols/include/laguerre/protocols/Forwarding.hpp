@@ -121,13 +121,13 @@ class ForwardingNode final : public Node {
 public:
   /// A node with id `id`, neighbours `neighbours` (counter-clockwise, see the file comment) and
   /// circles `own` and `neighbour_circles` (same order as `neighbours`); positions are the circles'
-  /// centres. `runtime` and `sink` must outlive it. Throws std::invalid_argument if the sizes differ,
+  /// centres. `runtime` and `sink` must outlive it. Throws core::InternalError (a broken precondition) if the sizes differ,
   /// a neighbour repeats or is the node itself, or a circle is not finite with r ≥ 0.
   ForwardingNode(Runtime& runtime, PacketSink& sink, NodeId id, std::vector<NodeId> neighbours, core::Circle own,
                  std::vector<core::Circle> neighbour_circles);
 
   /// As above with explicit positions for the geometric schemes (`neighbour_positions` in the order of
-  /// `neighbours`). Throws std::invalid_argument also if a position is not finite or the sizes differ.
+  /// `neighbours`). Throws core::InternalError (a broken precondition) also if a position is not finite or the sizes differ.
   ForwardingNode(Runtime& runtime, PacketSink& sink, NodeId id, std::vector<NodeId> neighbours, core::Circle own,
                  std::vector<core::Circle> neighbour_circles, core::Point2 position,
                  std::vector<core::Point2> neighbour_positions);
@@ -141,7 +141,7 @@ public:
   void on_timer(TimerId) override { ++counters_.rejected; }
 
   /// Injects a packet at this node (its source), as if it had just arrived with 0 hops. Throws
-  /// std::invalid_argument if the target circle (greedy power) or position (other schemes) is not
+  /// core::InternalError (a broken precondition) if the target circle (greedy power) or position (other schemes) is not
   /// finite.
   void originate(const DataPacket& p);
 

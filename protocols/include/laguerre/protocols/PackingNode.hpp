@@ -121,10 +121,11 @@ class AgentHost;
 /// ReliableNode (Reliable.hpp) that the node owns and through which its protocol talks to the host.
 class PackingNode final : public Node {
 public:
-  /// A node with its static knowledge; `runtime` must outlive it. Throws std::invalid_argument if the
+  /// A node with its static knowledge; `runtime` must outlive it. Throws core::InternalError (a broken precondition) if the
   /// knowledge is inconsistent (no neighbours, repeated neighbours, itself as neighbour, a boundary
   /// node without an outer wedge or an interior node with one, face walks that do not match the
-  /// neighbours, ids too large for face vertices) or the parameters are out of range.
+  /// neighbours) or the parameters are out of range; core::InputError if a polygon-face node id is above
+  /// 2^31 − 1 (ids come from the user's graph file).
   PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingParams params);
   /// Destroys the node and its hosted vertices.
   ~PackingNode() override;

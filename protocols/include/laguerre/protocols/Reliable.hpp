@@ -42,7 +42,7 @@ struct ReliableParams {
   std::uint32_t initial_seq = 0;  ///< first sequence number of every link
 };
 
-/// Throws std::invalid_argument if a parameter is out of range (retransmit_after, ack_delay,
+/// Throws core::InternalError (a broken precondition) if a parameter is out of range (retransmit_after, ack_delay,
 /// probe_after or rto_min negative; backoff_cap or max_retransmissions below 1).
 void validate(const ReliableParams& params);
 
@@ -80,7 +80,7 @@ public:
 
   /// The layer on `runtime` (which must outlive it) for a node whose neighbours are `neighbours`
   /// (distinct, not the node itself), wrapping the node `make_inner` builds. Throws
-  /// std::invalid_argument on bad neighbours or parameters out of range, or a null inner node.
+  /// core::InternalError (a broken precondition) on bad neighbours or parameters out of range, or a null inner node.
   /// Inner timer ids must stay below 2^56 (the layer's own use the top byte).
   ReliableNode(Runtime& runtime, std::vector<NodeId> neighbours, ReliableParams params, const InnerFactory& make_inner);
   ~ReliableNode() override;
