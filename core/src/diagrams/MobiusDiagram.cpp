@@ -440,20 +440,6 @@ void MobiusDiagram::Impl::build_cells(const std::vector<std::pair<std::size_t, s
     for (int c = 0; c < 4; ++c) fnodes.push_back({ss[c], corners[c], V + fnodes.size()});
   }
   std::sort(fnodes.begin(), fnodes.end(), [](const FrameNode& a, const FrameNode& b) { return a.s < b.s; });
-  // Frame nodes at the same point (an edge ending exactly at a corner, as the bisector y = x of a
-  // symmetric input does, or two edges meeting on the frame) are one node: no frame piece joins them,
-  // so as separate nodes they would cut the cells' boundaries open.
-  std::vector<std::size_t> same(V + fnodes.size());
-  for (std::size_t k = 0; k < same.size(); ++k) same[k] = k;
-  auto find = [&](std::size_t node) {
-    while (node != MobiusEdge::npos && same[node] != node) node = same[node];
-    return node;
-  };
-  for (std::size_t k = 0; k < fnodes.size(); ++k) {
-    const FrameNode &a = fnodes[k], &b = fnodes[(k + 1) % fnodes.size()];
-    if (a.p.x == b.p.x && a.p.y == b.p.y && find(a.node) != find(b.node)) same[find(b.node)] = find(a.node);
-  }
-  for (std::size_t e = 0; e < edges.size(); ++e) edge_from[e] = find(edge_from[e]), edge_to[e] = find(edge_to[e]);
 
   // Half-edges: (site, from node, to node, piece).
   struct Half {
@@ -474,7 +460,7 @@ void MobiusDiagram::Impl::build_cells(const std::vector<std::pair<std::size_t, s
     const CurvePiece piece = segment(a.p, b.p);
     const SiteIndex owner = locate(piece.midpoint());
     if (owner == no_site) continue;
-    halves.push_back({owner, find(a.node), find(b.node), {piece, no_site, MobiusEdge::npos}});
+    halves.push_back({owner, a.node, b.node, {piece, no_site, MobiusEdge::npos}});
   }
   // Chain the half-edges of each site into loops.
   const std::size_t N = V + fnodes.size() + 1;
