@@ -131,8 +131,12 @@ AffineDiagram<Site>::AffineDiagram(std::vector<Site> sites, const Box& box) : im
   }
   if (m.rt.dimension() == 2)
     for (auto f = m.rt.finite_faces_begin(); f != m.rt.finite_faces_end(); ++f) {
-      const K::Point_2 c = T::centre(m.rt, f);
-      Point2 x{c.x(), c.y()};
+      Point2 x{std::nan(""), std::nan("")};
+      try {  // CGAL asserts a nonzero determinant when its assertions are on (not NDEBUG)
+        const K::Point_2 c = T::centre(m.rt, f);
+        x = {c.x(), c.y()};
+      } catch (const CGAL::Failure_exception&) {
+      }
       if (!std::isfinite(x.x) || !std::isfinite(x.y)) x = exact_centre<RT>(f);
       m.vertices.push_back({x, {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
     }
