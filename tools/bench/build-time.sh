@@ -28,11 +28,13 @@ export CCACHE_DIR="$work/ccache"
 cd "$work/laguerre"
 echo "fresh clone of $(git rev-parse --short HEAD) in $work; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 
+step=0
 timed() {  # timed LABEL COMMAND…: runs it, keeps its timing lines, prints the wall time
   local label="$1"; shift
+  local log="$work/step-$((++step)).log"
   local started=$SECONDS
-  "$@" > "$work/$label.log" 2>&1 || { echo "$label failed; log: $work/$label.log" >&2; tail -30 "$work/$label.log" >&2; exit 1; }
-  grep -E '^(bootstrap|test\.sh):' "$work/$label.log" | sed 's/^/  /'
+  "$@" > "$log" 2>&1 || { echo "$label failed; log: $log" >&2; tail -30 "$log" >&2; exit 1; }
+  grep -E '^(bootstrap|test\.sh):' "$log" | sed 's/^/  /'
   printf '%-34s %5d s  (load %s)\n' "$label" "$((SECONDS - started))" "$(cut -d' ' -f1-3 /proc/loadavg)"
 }
 timed "tools/run-example.sh" tools/run-example.sh
