@@ -16,10 +16,6 @@
 
 namespace laguerre::scenarios {
 
-std::uint64_t splitmix64(std::uint64_t x) { return core::splitmix64(x); }
-
-std::uint64_t fnv1a64(std::string_view text) { return core::fnv1a64(text); }
-
 std::uint64_t derive_run_seed(std::uint64_t scenario_seed, std::size_t point, std::size_t repetition) {
   return splitmix64(splitmix64(splitmix64(scenario_seed) ^ static_cast<std::uint64_t>(point)) ^
                     static_cast<std::uint64_t>(repetition));

@@ -10,6 +10,7 @@
 #include "RunPictures.hpp"
 #include "ScenarioCli.hpp"
 #include "laguerre/scenarios/Results.hpp"
+#include "laguerre/scenarios/Topology.hpp"
 
 namespace laguerre::tools {
 
@@ -90,6 +91,7 @@ Action add_run_command(CLI::App& app) {
   const auto c = add_command<RunArgs>(app, run_help);
   add_scenario_run_options(*c.cmd, c.args->run, "scenario", false, "Result folder (default out/<scenario name>)",
                            "Override a key for every sweep point, e.g. --set topology.n=40 --set repetitions=1 (repeatable)");
+  c.cmd->footer("\nTopology generators (topology.generator, with their keys):\n" + scenarios::generators_help());
   return [args = c.args] { return run_run(*args); };
 }
 

@@ -177,3 +177,13 @@ TEST_F(ScenarioCli, EveryExampleRunsSmall) {
     }
   }
 }
+
+// `run --help` lists the topology generators with their keys, from the registry's own table
+// (scenarios::generators_help), so the help cannot drift from what the loader accepts.
+TEST_F(ScenarioCli, RunHelpListsTheGeneratorsAndTheirKeys) {
+  const Result r = run_laguerre("run --help");
+  ASSERT_EQ(r.status, 0) << r.out;
+  for (const char* needle : {"Topology generators", "\ndelaunay: ", "\nuniform-three-connected: ", "\nfield: ",
+                             "  repair (choice fail|"})
+    EXPECT_NE(r.out.find(needle), std::string::npos) << needle << "\n" << r.out;
+}

@@ -25,16 +25,15 @@
 
 #include "laguerre/core/geometry/Circle.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
+#include "laguerre/core/random/Random.hpp"
 #include "laguerre/scenarios/Scenario.hpp"
 #include "laguerre/scenarios/Topology.hpp"
 
 namespace laguerre::scenarios {
 
-/// SplitMix64's output function applied to x + 0x9E3779B97F4A7C15 (see the file comment).
-std::uint64_t splitmix64(std::uint64_t x);
-
-/// 64-bit FNV-1a hash of `text`.
-std::uint64_t fnv1a64(std::string_view text);
+/// The seed mixers of the file comment: core's SplitMix64 step and 64-bit FNV-1a (core/random/Random.hpp).
+using core::fnv1a64;
+using core::splitmix64;
 
 /// The run seed of (scenario seed, point, repetition) (see the file comment).
 std::uint64_t derive_run_seed(std::uint64_t scenario_seed, std::size_t point, std::size_t repetition);
