@@ -33,9 +33,11 @@ sim::Duration max_latency(const sim::Network& net, const sim::LinkModel& link) {
   return m;
 }
 
+}  // namespace
+
 // Traffic is counted under the message type; a frame of the reliability layer under the type of the
 // message it carries (retransmissions included), a probe (empty frame) and an ack under their own.
-sim::Phase phase_of(std::span<const std::byte> bytes) {
+sim::Phase traffic_phase(std::span<const std::byte> bytes) {
   const std::size_t frame_header = protocols::encoded_size(protocols::MessageType::frame);
   if (bytes.size() > frame_header + 1 && bytes[1] == static_cast<std::byte>(protocols::MessageType::frame))
     return static_cast<sim::Phase>(bytes[frame_header + 1]);
@@ -51,13 +53,15 @@ protocols::PackingParams packing_params(const ProtocolSetup& setup) {
   return params;
 }
 
+namespace {
 std::string crash_text(const CrashSpec& c) {
   return std::to_string(c.node) + "@" + format_duration(c.at) + (c.recover_at ? "-" + format_duration(*c.recover_at) : "");
 }
 
-// Hop distances (breadth-first search) from every source that appears in `pairs`; other rows empty.
-std::vector<std::vector<std::uint32_t>> bfs_from_sources(const core::PlanarGraph& g,
-                                                          const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs) {
+}  // namespace
+
+std::vector<std::vector<std::uint32_t>> hop_distances_from_sources(
+    const core::PlanarGraph& g, const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs) {
   const std::size_t n = g.num_vertices();
   constexpr std::uint32_t unreached = 0xffffffffu;
   std::vector<std::vector<std::uint32_t>> dist(n);
@@ -77,6 +81,7 @@ std::vector<std::vector<std::uint32_t>> bfs_from_sources(const core::PlanarGraph
   return dist;
 }
 
+namespace {
 class Collector : public protocols::PacketSink {
 public:
   void on_packet_end(const protocols::PacketReport& r) override { reports.push_back(r); }
@@ -119,7 +124,7 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
       [&](protocols::Runtime& rt, sim::NodeIndex v) -> std::unique_ptr<protocols::Node> {
         return std::make_unique<protocols::PackingNode>(rt, protocols::local_knowledge(g, v), params);
       },
-      phase_of);
+      traffic_phase);
   const sim::RunReport report = host.run();
 
   out.circles.resize(n);
@@ -220,14 +225,64 @@ protocols::ForwardingNode& forwarding_node(protocols::Node& node) {
   return static_cast<protocols::ForwardingNode&>(layer ? layer->inner() : node);
 }
 
+std::vector<core::Point2> forwarding_positions(const core::CircleEmbedding& circles,
+                                               const std::vector<core::Point2>& positions) {
+  if (!positions.empty()) return positions;
+  std::vector<core::Point2> pos(circles.size());
+  for (std::size_t v = 0; v < circles.size(); ++v) pos[v] = core::centre(circles[v]);
+  return pos;
+}
+
+protocols::DataPacket forwarding_packet(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
+                                        const std::vector<core::Point2>& positions, core::Scheme scheme,
+                                        const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs, std::size_t i) {
+  // core::route's default hop limit, so that the hop-by-hop outcomes are core's.
+  const auto ttl = static_cast<std::uint32_t>(std::min<std::size_t>(core::default_ttl(g, scheme), 0xffffffffu));
+  const core::Vertex t = pairs[i].second;
+  return {i, g.id(t), circles[t], ttl, scheme, positions[t]};
+}
+
+ForwardingResult summarize_forwarding(core::Scheme scheme, const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs,
+                                      const std::vector<std::vector<std::uint32_t>>& hop_distance,
+                                      const std::vector<protocols::PacketReport>& reports) {
+  ForwardingResult res;
+  res.scheme = scheme;
+  res.packets = pairs.size();
+  std::vector<double> stretch;
+  double hops = 0;
+  for (const auto& r : reports) {
+    switch (r.outcome) {
+      case protocols::PacketOutcome::delivered: {
+        ++res.delivered;
+        hops += r.hops;
+        const auto [s, t] = pairs[r.packet];
+        const std::uint32_t d = hop_distance[s][t];
+        if (d > 0) stretch.push_back(static_cast<double>(r.hops) / static_cast<double>(d));
+        break;
+      }
+      case protocols::PacketOutcome::dead_end: ++res.dead_ends; break;
+      case protocols::PacketOutcome::loop: ++res.loops; break;
+      case protocols::PacketOutcome::ttl_exceeded: ++res.ttl_exceeded; break;
+    }
+  }
+  res.hops_mean = res.delivered ? hops / static_cast<double>(res.delivered) : 0.0;
+  if (!stretch.empty()) {
+    double sum = 0;
+    for (double x : stretch) sum += x;
+    res.stretch_mean = sum / static_cast<double>(stretch.size());
+    res.stretch_max = *std::max_element(stretch.begin(), stretch.end());
+    res.stretch_p95 = core::nearest_rank_percentile(stretch, 95);
+  }
+  return res;
+}
+
 std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
                                              const std::vector<core::Point2>& positions, const sim::LinkModel& link,
                                              std::uint64_t seed, const std::vector<core::Scheme>& schemes,
                                              const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs) {
   const std::size_t n = g.num_vertices();
-  std::vector<core::Point2> pos(n);
-  for (core::Vertex v = 0; v < n; ++v) pos[v] = positions.empty() ? core::centre(circles[v]) : positions[v];
-  const std::vector<std::vector<std::uint32_t>> hop_distance = bfs_from_sources(g, pairs);
+  const std::vector<core::Point2> pos = forwarding_positions(circles, positions);
+  const std::vector<std::vector<std::uint32_t>> hop_distance = hop_distances_from_sources(g, pairs);
   // On lossy links every node runs the reliability layer under its forwarding node: each hop is
   // delivered exactly once, so the packets take core::route's paths. No probes: an idle forwarder has
   // nothing to watch, and the queue drains once every packet has arrived and been acknowledged.
@@ -241,51 +296,22 @@ std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const c
   config.seed = seed;
   std::vector<ForwardingResult> results;
   for (const core::Scheme scheme : schemes) {
-    ForwardingResult res;
-    res.scheme = scheme;
-    res.packets = pairs.size();
     Collector sink;
     sim::SimHost fwd(
         make_network(g, positions, link), config,
         [&](protocols::Runtime& rt, sim::NodeIndex v) {
           return make_forwarding_node(rt, sink, g, v, circles, pos, reliable);
         },
-        phase_of);
-    // core::route's default hop limit, so that the hop-by-hop outcomes are core's.
-    const auto ttl = static_cast<std::uint32_t>(std::min<std::size_t>(core::default_ttl(g, scheme), 0xffffffffu));
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-      const auto [s, t] = pairs[i];
-      forwarding_node(fwd.node(s)).originate({i, g.id(t), circles[t], ttl, scheme, pos[t]});
-    }
+        traffic_phase);
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+      forwarding_node(fwd.node(pairs[i].first)).originate(forwarding_packet(g, circles, pos, scheme, pairs, i));
     const sim::RunReport fwd_report = fwd.run();
+    std::uint64_t retransmissions = 0;
     for (sim::NodeIndex v = 0; lossy && v < n; ++v)
-      res.retransmissions += static_cast<const protocols::ReliableNode&>(fwd.node(v)).counters().retransmissions;
+      retransmissions += static_cast<const protocols::ReliableNode&>(fwd.node(v)).counters().retransmissions;
+    ForwardingResult res = summarize_forwarding(scheme, pairs, hop_distance, sink.reports);
+    res.retransmissions = retransmissions;
     res.simulated_seconds = sim::to_seconds(fwd_report.simulated_time);
-    std::vector<double> stretch;
-    double hops = 0;
-    for (const auto& r : sink.reports) {
-      switch (r.outcome) {
-        case protocols::PacketOutcome::delivered: {
-          ++res.delivered;
-          hops += r.hops;
-          const auto [s, t] = pairs[r.packet];
-          const std::uint32_t d = hop_distance[s][t];
-          if (d > 0) stretch.push_back(static_cast<double>(r.hops) / static_cast<double>(d));
-          break;
-        }
-        case protocols::PacketOutcome::dead_end: ++res.dead_ends; break;
-        case protocols::PacketOutcome::loop: ++res.loops; break;
-        case protocols::PacketOutcome::ttl_exceeded: ++res.ttl_exceeded; break;
-      }
-    }
-    res.hops_mean = res.delivered ? hops / static_cast<double>(res.delivered) : 0.0;
-    if (!stretch.empty()) {
-      double sum = 0;
-      for (double x : stretch) sum += x;
-      res.stretch_mean = sum / static_cast<double>(stretch.size());
-      res.stretch_max = *std::max_element(stretch.begin(), stretch.end());
-      res.stretch_p95 = core::nearest_rank_percentile(stretch, 95);
-    }
     results.push_back(res);
   }
   return results;

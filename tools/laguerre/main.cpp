@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   Action table = add_thesis_table_command(app);
   Action generate = add_generate_command(app);
   Action simulate = add_simulate_command(app);
+  Action live = add_live_command(app);
   Action run = add_run_command(app);
   Action compare = add_compare_command(app);
   Action diagram = add_diagram_command(app);
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("thesis-table")) return table();
     if (app.got_subcommand("generate")) return generate();
     if (app.got_subcommand("simulate")) return simulate();
+    if (app.got_subcommand("live")) return live();
     if (app.got_subcommand("run")) return run();
     if (app.got_subcommand("compare")) return compare();
     if (app.got_subcommand("diagram")) return diagram();

@@ -11,6 +11,7 @@
 #include <memory>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -97,6 +98,13 @@ struct ProtocolOutcome {
 sim::Network make_network(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
                           const sim::LinkModel& link);
 
+/// The phase a message's traffic is counted under: its codec message type (byte 1); a reliability
+/// frame under the type of the message it carries, a probe (empty frame) or an ack under their own.
+sim::Phase traffic_phase(std::span<const std::byte> bytes);
+
+/// The packing nodes' parameters for `setup` (the reliability layer still off).
+protocols::PackingParams packing_params(const ProtocolSetup& setup);
+
 /// Runs the protocol on `g` (prepared for packing). Throws core::InputError if an outage names an
 /// unknown node (source "crash ID@TIME") or a distance latency is used without positions.
 ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
@@ -135,6 +143,27 @@ struct ForwardingResult {
   double simulated_seconds = 0;   ///< simulated time of the forwarding run
   std::uint64_t retransmissions = 0;  ///< frames the reliability layer sent again (lossy links; else 0)
 };
+
+/// Where the geometric schemes place the nodes: `positions` if not empty, else the circles' centres.
+std::vector<core::Point2> forwarding_positions(const core::CircleEmbedding& circles,
+                                               const std::vector<core::Point2>& positions);
+
+/// Packet number `i` (its id) of `pairs`, towards pairs[i].second with `circles` and `positions`
+/// (forwarding_positions), under `scheme` with core::route's hop limit (core::default_ttl).
+protocols::DataPacket forwarding_packet(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
+                                        const std::vector<core::Point2>& positions, core::Scheme scheme,
+                                        const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs, std::size_t i);
+
+/// Hop distances (breadth-first search) from every source that appears in `pairs` (row s for source
+/// s; the other rows empty).
+std::vector<std::vector<std::uint32_t>> hop_distances_from_sources(
+    const core::PlanarGraph& g, const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs);
+
+/// One scheme's result from the end reports of its packets (ids = indices into `pairs`, any order),
+/// with hop stretch against `hop_distance` (hop_distances_from_sources); timing fields left 0.
+ForwardingResult summarize_forwarding(core::Scheme scheme, const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs,
+                                      const std::vector<std::vector<std::uint32_t>>& hop_distance,
+                                      const std::vector<protocols::PacketReport>& reports);
 
 /// Forwards one packet per pair in `pairs` hop by hop, one simulation per scheme, over the links of
 /// `link` and the simulator seeded with `seed`; on lossy or duplicating links every forwarding node
