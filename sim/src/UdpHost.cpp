@@ -157,8 +157,9 @@ public:
     getsockopt(fd, SOL_SOCKET, SO_SNDBUF, &owner_.counters_.send_buffer, &len);
     socket_.bind(udp::endpoint(asio::ip::address_v4::loopback(), config_.port), ec);
     if (ec == asio::error::address_in_use)
-      throw core::InputError("127.0.0.1:" + std::to_string(config_.port), 0,
-                             "a free UDP port, but it is in use (choose another --base-port)");
+      throw core::InputError("--base-port", 0,
+                             "127.0.0.1:" + std::to_string(config_.port) +
+                                 " is in use; choose another base port (0: ports the kernel picks)");
     if (ec) throw std::runtime_error("cannot bind UDP 127.0.0.1:" + std::to_string(config_.port) + ": " + ec.message());
     socket_.non_blocking(true);
   }

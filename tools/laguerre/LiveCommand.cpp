@@ -160,7 +160,7 @@ Action add_live_command(CLI::App& app) {
   c.cmd->add_option("--scheme", c.args->scheme, "Forwarding scheme: greedy-power, greedy-euclid, compass, gfg or all")
       ->capture_default_str();
   c.cmd->add_option("--retransmit-after", c.args->retransmit_after,
-                    "First retransmission period of the reliability layer (default 9ms)");
+                    "First retransmission period of the reliability layer (default 3ms)");
   c.cmd->add_flag("--fixed-rto", c.args->fixed_rto, "Keep the retransmission timeout fixed (no round-trip estimation)");
   c.cmd->add_option("--socket-buffer", c.args->socket_buffer, "SO_RCVBUF and SO_SNDBUF to request, in bytes")
       ->check(CLI::Range(4096, 1 << 30))->capture_default_str();

@@ -25,7 +25,7 @@ struct LiveSetup {
   int socket_buffer = 4 << 20;            ///< SO_RCVBUF / SO_SNDBUF requested
   std::size_t max_datagram = sim::max_udp_payload;  ///< largest datagram, header included
   /// One-way latency the reliability layer's periods are fitted to (protocols::enable_lossy_links).
-  sim::Duration assumed_latency = 3'000'000;
+  sim::Duration assumed_latency = 1'000'000;
   std::optional<std::size_t> fail_worker;  ///< failure injection (sim::LiveConfig::fail_worker)
 };
 
