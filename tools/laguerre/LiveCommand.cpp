@@ -120,12 +120,13 @@ int run_live(const LiveArgs& a) {
                             {"workers", workers}}}};
   const int status = print_protocol_summary(
       {loaded, setup, a.mode, out.packing, out.forwarding, schemes, a.verify ? &verify : nullptr, line, extra}, a.json);
+  std::string ports;
+  for (const sim::WorkerReport& w : out.workers) ports += (ports.empty() ? "" : ", ") + std::to_string(w.port);
   if (!a.json)
-    std::printf("live         %zu process(es) on 127.0.0.1 (ports %u..%u), socket buffers %d/%d bytes; %llu induced "
+    std::printf("live         %zu process(es) on 127.0.0.1 (ports %s), socket buffers %d/%d bytes; %llu induced "
                 "losses; dropped: %llu by the kernel, %llu malformed, %llu unknown destination, %llu not a neighbour, "
                 "%llu stale\n",
-                out.workers.size(), static_cast<unsigned>(out.workers.front().port),
-                static_cast<unsigned>(out.workers.back().port), c.receive_buffer, c.send_buffer,
+                out.workers.size(), ports.c_str(), c.receive_buffer, c.send_buffer,
                 static_cast<unsigned long long>(c.induced_losses), static_cast<unsigned long long>(c.kernel_drops),
                 static_cast<unsigned long long>(c.malformed), static_cast<unsigned long long>(c.unknown_destination),
                 static_cast<unsigned long long>(c.not_a_neighbour), static_cast<unsigned long long>(c.stale_phase));
