@@ -111,9 +111,9 @@ public:
                           "UdpHost needs one process index per vertex.");
     if (!(config_.loss >= 0 && config_.loss <= 1))
       throw core::InputError("--loss", 0, "a probability in [0, 1], found " + std::to_string(config_.loss));
-    if (config_.max_datagram > max_udp_payload || config_.max_datagram <= udp_header_size)
+    if (config_.max_datagram > max_udp_payload || config_.max_datagram <= udp_header_size + udp_record_header)
       throw core::InputError("live host", 0,
-                             "a datagram size in (" + std::to_string(udp_header_size) + ", " +
+                             "a datagram size in (" + std::to_string(udp_header_size + udp_record_header) + ", " +
                                  std::to_string(max_udp_payload) + "], found " + std::to_string(config_.max_datagram));
     const std::size_t n = g.num_vertices();
     by_id_.reserve(n);
@@ -169,6 +169,7 @@ public:
   void set_ports(std::vector<std::uint16_t> ports) {
     peers_.clear();
     for (const std::uint16_t p : ports) peers_.emplace_back(asio::ip::address_v4::loopback(), p);
+    batches_.assign(peers_.size(), {});
   }
 
   void start_phase(std::uint8_t phase, const NodeFactory& factory) {
@@ -199,7 +200,9 @@ public:
     });
   }
 
-  bool idle() const { return queue_.empty() && live_timers_.empty() && outgoing_.empty() && held_.empty(); }
+  bool idle() const {
+    return queue_.empty() && live_timers_.empty() && outgoing_.empty() && held_.empty() && dirty_.empty();
+  }
 
   std::uint64_t kernel_drops() {
     std::uint32_t info[SK_MEMINFO_VARS] = {};
@@ -259,12 +262,12 @@ private:
     TrafficCounters& t = owner_.traffic_.at(static_cast<std::uint32_t>(v), phase_of(bytes));
     ++t.messages_sent;
     t.bytes_sent += bytes.size();
-    if (bytes.size() + udp_header_size > config_.max_datagram)
+    if (udp_header_size + udp_record_header + bytes.size() > config_.max_datagram)
       throw core::InputError("node " + std::to_string(g_.id(v)), 0,
                              "messages that fit a datagram of " + std::to_string(config_.max_datagram) +
                                  " bytes, but one has " + std::to_string(bytes.size()) +
-                                 " bytes (+" + std::to_string(udp_header_size) +
-                                 " of header): the graph is too large for a UDP datagram (degree " +
+                                 " bytes (+" + std::to_string(udp_header_size + udp_record_header) +
+                                 " of headers): the graph is too large for a UDP datagram (degree " +
                                  std::to_string(g_.degree(v)) + ")");
     if (config_.loss > 0 && loss.bernoulli(config_.loss)) {
       ++owner_.counters_.induced_losses;
@@ -277,20 +280,41 @@ private:
       queue_.push_back({w, g_.id(v), std::vector<std::byte>(bytes.begin(), bytes.end())});
       return;
     }
-    std::vector<std::byte> d(udp_header_size + bytes.size());
-    d[0] = std::byte{magic};
-    d[1] = std::byte{header_version};
-    d[2] = std::byte{phase_};
-    d[3] = std::byte{0};
-    put_le(&d[4], config_.run_tag, 4);
-    put_le(&d[8], to, 8);
-    put_le(&d[16], g_.id(v), 8);
-    std::memcpy(d.data() + udp_header_size, bytes.data(), bytes.size());
+    // Into the batch for w's process, flushed when full and after the current callback.
     const std::size_t process = process_of_[w];
     LAGUERRE_PRECONDITION(process < peers_.size(), "UdpHost: the ports of the other processes are not set.");
+    std::vector<std::byte>& b = batches_[process];
+    if (!b.empty() && b.size() + udp_record_header + bytes.size() > config_.max_datagram) flush(process);
+    if (b.empty()) {
+      b.resize(udp_header_size);
+      b[0] = std::byte{magic};
+      b[1] = std::byte{header_version};
+      b[2] = std::byte{phase_};
+      b[3] = std::byte{0};
+      put_le(&b[4], config_.run_tag, 4);
+      dirty_.push_back(process);
+    }
+    const std::size_t at = b.size();
+    b.resize(at + udp_record_header + bytes.size());
+    put_le(&b[at], to, 8);
+    put_le(&b[at + 8], g_.id(v), 8);
+    put_le(&b[at + 16], bytes.size(), 4);
+    std::memcpy(b.data() + at + udp_record_header, bytes.data(), bytes.size());
+  }
+
+  // Sends process's batch as one datagram (or queues it while the kernel has no room).
+  void flush(std::size_t process) {
+    std::vector<std::byte> d;
+    d.swap(batches_[process]);
+    if (d.empty()) return;
     if (outgoing_.empty() && try_send(process, d)) return;
     outgoing_.push_back({process, std::move(d)});
     if (outgoing_.size() == 1) wait_writable();
+  }
+
+  void flush_all() {
+    for (const std::size_t p : dirty_) flush(p);
+    dirty_.clear();
   }
 
   bool try_send(std::size_t process, const std::vector<std::byte>& d) {
@@ -353,20 +377,31 @@ private:
     drain();
   }
 
-  // A datagram of the current phase: checked, then queued for its node.
+  // A datagram of the current phase: its records checked, then queued for their nodes.
   void accept(const std::vector<std::byte>& d) {
-    const protocols::NodeId dst = get_le(&d[8], 8), src = get_le(&d[16], 8);
-    const auto it = std::lower_bound(by_id_.begin(), by_id_.end(), std::make_pair(dst, core::Vertex{0}));
-    if (it == by_id_.end() || it->first != dst || slot_[it->second] < 0) {
-      ++owner_.counters_.unknown_destination;
-      return;
+    std::size_t at = udp_header_size;
+    while (at < d.size()) {
+      if (d.size() - at < udp_record_header || d.size() - at - udp_record_header < get_le(&d[at + 16], 4)) {
+        ++owner_.counters_.malformed;  // a truncated record: the rest of the datagram is not trusted
+        return;
+      }
+      const protocols::NodeId dst = get_le(&d[at], 8), src = get_le(&d[at + 8], 8);
+      const std::size_t begin = at + udp_record_header, end = begin + get_le(&d[at + 16], 4);
+      at = end;
+      const auto it = std::lower_bound(by_id_.begin(), by_id_.end(), std::make_pair(dst, core::Vertex{0}));
+      if (it == by_id_.end() || it->first != dst || slot_[it->second] < 0) {
+        ++owner_.counters_.unknown_destination;
+        continue;
+      }
+      const LocalNode& ln = locals_[static_cast<std::size_t>(slot_[it->second])];
+      if (!std::binary_search(ln.sorted.begin(), ln.sorted.end(), src)) {
+        ++owner_.counters_.not_a_neighbour;
+        continue;
+      }
+      queue_.push_back({it->second, src,
+                        std::vector<std::byte>(d.begin() + static_cast<std::ptrdiff_t>(begin),
+                                               d.begin() + static_cast<std::ptrdiff_t>(end))});
     }
-    const LocalNode& ln = locals_[static_cast<std::size_t>(slot_[it->second])];
-    if (!std::binary_search(ln.sorted.begin(), ln.sorted.end(), src)) {
-      ++owner_.counters_.not_a_neighbour;
-      return;
-    }
-    queue_.push_back({it->second, src, std::vector<std::byte>(d.begin() + udp_header_size, d.end())});
   }
 
 public:
@@ -377,6 +412,7 @@ public:
       queue_.pop_front();
       nodes_[static_cast<std::size_t>(slot_[q.to])]->on_message(q.from, q.bytes);
     }
+    flush_all();
     after_batch();
   }
 
@@ -436,6 +472,8 @@ private:
   std::unordered_set<protocols::TimerHandle> live_timers_;
   protocols::TimerHandle next_handle_ = 1;
   std::deque<std::pair<std::size_t, std::vector<std::byte>>> outgoing_;
+  std::vector<std::vector<std::byte>> batches_;  // per process: the datagram being filled
+  std::vector<std::size_t> dirty_;               // processes whose batch is not empty
   std::vector<std::vector<std::byte>> held_;
   std::vector<std::byte> buffer_ = std::vector<std::byte>(65536);
   std::uint8_t phase_ = 0;

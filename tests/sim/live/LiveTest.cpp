@@ -170,7 +170,7 @@ TEST(LiveRun, TheDeadlineStopsEveryWorker) {
 TEST(LiveRun, AMessageLargerThanTheDatagramIsABadInputError) {
   const Graph gr = load("delaunay-60.txt");
   scenarios::LiveSetup live = live_setup(2);
-  live.max_datagram = sim::udp_header_size + 8;  // smaller than any packing message
+  live.max_datagram = sim::udp_header_size + sim::udp_record_header + 4;  // smaller than any packing message
   EXPECT_THROW(
       {
         try {
@@ -207,13 +207,18 @@ TEST(UdpHost, MalformedDatagramsAreCountedAndNeverDelivered) {
   host.start_phase(0, [&](protocols::Runtime&, core::Vertex) { return std::make_unique<Recorder>(received); });
   host.start_receiving();
 
-  const auto datagram = [&](std::uint64_t dst, std::uint64_t src, std::uint8_t magic, std::uint32_t tag) {
-    std::vector<std::byte> d(sim::udp_header_size + 4, std::byte{0});
+  // One datagram with one record of 4 bytes (`cut` bytes fewer at the end: a truncated record).
+  const auto datagram = [&](std::uint64_t dst, std::uint64_t src, std::uint8_t magic, std::uint32_t tag,
+                            std::size_t cut = 0) {
+    std::vector<std::byte> d(sim::udp_header_size + sim::udp_record_header + 4, std::byte{0});
     d[0] = std::byte{magic};
     d[1] = std::byte{1};
+    const std::size_t r = sim::udp_header_size;
     for (int i = 0; i < 4; ++i) d[4 + i] = static_cast<std::byte>(tag >> (8 * i));
-    for (int i = 0; i < 8; ++i) d[8 + i] = static_cast<std::byte>(dst >> (8 * i));
-    for (int i = 0; i < 8; ++i) d[16 + i] = static_cast<std::byte>(src >> (8 * i));
+    for (int i = 0; i < 8; ++i) d[r + i] = static_cast<std::byte>(dst >> (8 * i));
+    for (int i = 0; i < 8; ++i) d[r + 8 + i] = static_cast<std::byte>(src >> (8 * i));
+    d[r + 16] = std::byte{4};
+    d.resize(d.size() - cut);
     return d;
   };
   const core::Vertex v = 0;
@@ -233,13 +238,15 @@ TEST(UdpHost, MalformedDatagramsAreCountedAndNeverDelivered) {
   host.send_raw(0, datagram(gr.g.id(v), gr.g.id(w), 0x4c, 0xdeadbeef));       // another run's tag
   host.send_raw(0, datagram(gr.g.id(static_cast<core::Vertex>(n - 1)), gr.g.id(w), 0x4c, config.run_tag));  // not hosted here
   host.send_raw(0, datagram(gr.g.id(v), gr.g.id(far), 0x4c, config.run_tag));  // not a neighbour
+  host.send_raw(0, datagram(gr.g.id(v), gr.g.id(w), 0x4c, config.run_tag, 1));  // truncated record
+  host.send_raw(0, datagram(gr.g.id(v), gr.g.id(w), 0x4c, config.run_tag, 8));  // truncated record header
   host.send_raw(0, datagram(gr.g.id(v), gr.g.id(w), 0x4c, config.run_tag));    // fine
   for (int i = 0; i < 200 && received.empty(); ++i) io.run_for(std::chrono::milliseconds(5));
   io.run_for(std::chrono::milliseconds(20));
-  EXPECT_EQ(host.counters().malformed, 3u);
+  EXPECT_EQ(host.counters().malformed, 5u);
   EXPECT_EQ(host.counters().unknown_destination, 1u);
   EXPECT_EQ(host.counters().not_a_neighbour, 1u);
-  EXPECT_EQ(host.counters().datagrams_received, 3u);  // the well-formed ones
+  EXPECT_EQ(host.counters().datagrams_received, 5u);  // those with a well-formed header
   ASSERT_EQ(received.size(), 1u);
   EXPECT_EQ(received[0], gr.g.id(w));
   EXPECT_EQ(host.kernel_drops(), 0u);

@@ -5,8 +5,9 @@
 ///
 /// Mapping of the Runtime contract (protocols/Runtime.hpp):
 ///  - send/broadcast: the bytes are copied; a message to a node of the same process goes to an
-///    in-memory FIFO, one to another process into one datagram `header ‖ bytes` sent to that process's
-///    port. Nothing is delivered during a callback: the FIFO is drained after it returns.
+///    in-memory FIFO, one to another process into the datagram being filled for that process's port,
+///    sent when full and after the current callback. Nothing is delivered during a callback: the FIFO
+///    is drained after it returns.
 ///  - schedule/cancel: a timer heap served by one steady_timer (the steady clock); `now` is the
 ///    steady clock in nanoseconds since `UdpHostConfig::epoch`.
 ///  - random_u64: node v's stream RandomStream::of(seed, StreamKind::node, id), as in the simulator.
@@ -14,12 +15,14 @@
 ///    directed link's stream RandomStream::of(seed, StreamKind::link, sender id, receiver id), for
 ///    local and remote neighbours alike.
 ///
-/// Datagram header (24 bytes, little-endian): u8 magic 0x4c, u8 version 1, u8 phase, u8 reserved 0,
-/// u32 run tag, u64 destination node id, u64 source node id. A datagram whose header does not match
-/// (size, magic, version, tag, reserved byte) is counted `malformed`; one for a node this process does
-/// not host `unknown_destination`; one whose source is no neighbour of its destination
-/// `not_a_neighbour`; one of an earlier phase `stale_phase`; all are dropped, never delivered. A
-/// datagram of a later phase is held until that phase starts. Kernel drops (receive buffer overflow)
+/// Datagram (little-endian): an 8-byte header, u8 magic 0x4c, u8 version 1, u8 phase, u8 reserved 0,
+/// u32 run tag; then one or more records, each u64 destination node id, u64 source node id, u32
+/// length, and that many bytes of message. A datagram whose header does not match (size, magic,
+/// version, tag, reserved byte) is counted `malformed`, and so is a truncated record (the rest of its
+/// datagram is dropped); a record for a node this process does not host counts `unknown_destination`,
+/// one whose source is no neighbour of its destination `not_a_neighbour`, a datagram of an earlier
+/// phase `stale_phase`; none of them reaches a node. A datagram of a later phase is held until that
+/// phase starts. Kernel drops (receive buffer overflow)
 /// are read from the socket (SO_MEMINFO) on demand.
 
 #include <cstddef>
@@ -43,7 +46,9 @@ class io_context;
 namespace laguerre::sim {
 
 /// Size of the datagram header (see the file comment).
-inline constexpr std::size_t udp_header_size = 24;
+inline constexpr std::size_t udp_header_size = 8;
+/// Size of a record's header (destination, source, length) in a datagram.
+inline constexpr std::size_t udp_record_header = 20;
 /// Largest UDP payload over IPv4: a datagram (header included) never exceeds it.
 inline constexpr std::size_t max_udp_payload = 65507;
 
@@ -62,13 +67,13 @@ struct UdpHostConfig {
 struct UdpCounters {
   std::uint64_t datagrams_sent = 0;       ///< datagrams handed to the kernel
   std::uint64_t datagram_bytes_sent = 0;  ///< their bytes, headers included
-  std::uint64_t datagrams_received = 0;   ///< well-formed datagrams of this run received
+  std::uint64_t datagrams_received = 0;   ///< datagrams of this run received (header well-formed)
   std::uint64_t datagram_bytes_received = 0;  ///< their bytes
   std::uint64_t local_deliveries = 0;     ///< messages between nodes of this process (in memory)
   std::uint64_t induced_losses = 0;       ///< messages dropped at the sender (UdpHostConfig::loss)
-  std::uint64_t malformed = 0;            ///< datagrams with a bad header, dropped
-  std::uint64_t unknown_destination = 0;  ///< datagrams for a node this process does not host
-  std::uint64_t not_a_neighbour = 0;      ///< datagrams whose source is no neighbour of the destination
+  std::uint64_t malformed = 0;            ///< datagrams with a bad header or a truncated record
+  std::uint64_t unknown_destination = 0;  ///< messages for a node this process does not host
+  std::uint64_t not_a_neighbour = 0;      ///< messages whose source is no neighbour of the destination
   std::uint64_t stale_phase = 0;          ///< datagrams of an earlier phase
   std::uint64_t send_retries = 0;         ///< sends the kernel refused for a while (queued, sent later)
   std::uint64_t kernel_drops = 0;         ///< datagrams the kernel dropped at this socket (see kernel_drops())
