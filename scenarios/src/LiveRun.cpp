@@ -14,23 +14,8 @@
 namespace laguerre::scenarios {
 
 namespace {
-template <class T>
-void put(std::vector<std::byte>& out, const T& x) {
-  static_assert(std::is_trivially_copyable_v<T>);
-  const std::size_t at = out.size();
-  out.resize(at + sizeof(T));
-  std::memcpy(out.data() + at, &x, sizeof(T));
-}
-
-template <class T>
-T get(std::span<const std::byte> in, std::size_t& at) {
-  static_assert(std::is_trivially_copyable_v<T>);
-  LAGUERRE_PRECONDITION(at + sizeof(T) <= in.size(), "live result too short");
-  T x;
-  std::memcpy(&x, in.data() + at, sizeof(T));
-  at += sizeof(T);
-  return x;
-}
+using sim::append_bytes;
+using sim::read_bytes;
 
 // One packing node's result, as a worker sends it.
 struct NodeRecord {
@@ -65,7 +50,7 @@ public:
     }
     std::size_t at = 0;
     circles_.resize(g_.num_vertices());
-    for (core::Circle& c : circles_) c = get<core::Circle>(input, at);
+    for (core::Circle& c : circles_) c = read_bytes<core::Circle>(input, at);
     const std::vector<core::Point2> pos = forwarding_positions(circles_, positions_);
     const core::Scheme scheme = schemes_[phase - 1];
     reports_.clear();
@@ -90,21 +75,21 @@ public:
   std::vector<std::byte> finish_phase(std::uint8_t phase, sim::UdpHost& host) override {
     std::vector<std::byte> out;
     if (phase == 0) {
-      put(out, static_cast<std::uint32_t>(host.local_vertices().size()));
+      append_bytes(out, static_cast<std::uint32_t>(host.local_vertices().size()));
       for (const core::Vertex v : host.local_vertices()) {
         const auto& node = static_cast<const protocols::PackingNode&>(host.node(v));
         const sim::TrafficCounters t = host.traffic().node_total(static_cast<std::uint32_t>(v));
-        put(out, NodeRecord{static_cast<std::uint32_t>(v), node.placement().circle, node.local_condition(),
+        append_bytes(out, NodeRecord{static_cast<std::uint32_t>(v), node.placement().circle, node.local_condition(),
                             node.outcome(), node.steps(), node.round(), node.finished_at(), node.suspect(),
                             node.counters(), t.messages_sent, t.bytes_sent});
       }
       const auto& traffic = host.traffic();
-      put(out, static_cast<std::uint32_t>(traffic.phase_count()));
+      append_bytes(out, static_cast<std::uint32_t>(traffic.phase_count()));
       for (std::size_t p = 0; p < traffic.phase_count(); ++p) {
         sim::TrafficCounters sum;
         for (const core::Vertex v : host.local_vertices())
           sum += traffic.get(static_cast<std::uint32_t>(v), static_cast<sim::Phase>(p));
-        put(out, sum);
+        append_bytes(out, sum);
       }
       forwarding_ = true;
       return out;
@@ -113,8 +98,8 @@ public:
     if (reliable_)
       for (const core::Vertex v : host.local_vertices())
         retransmissions += static_cast<const protocols::ReliableNode&>(host.node(v)).counters().retransmissions;
-    put(out, retransmissions);
-    for (const protocols::PacketReport& r : reports_) put(out, r);
+    append_bytes(out, retransmissions);
+    for (const protocols::PacketReport& r : reports_) append_bytes(out, r);
     return out;
   }
 
@@ -141,9 +126,9 @@ void merge_packing(const std::vector<std::vector<std::byte>>& results, std::size
   out.local.resize(n);
   for (const auto& blob : results) {
     std::size_t at = 0;
-    const auto count = get<std::uint32_t>(blob, at);
+    const auto count = read_bytes<std::uint32_t>(blob, at);
     for (std::uint32_t i = 0; i < count; ++i) {
-      const auto r = get<NodeRecord>(blob, at);
+      const auto r = read_bytes<NodeRecord>(blob, at);
       out.circles[r.v] = r.circle;
       out.local[r.v] = r.local;
       out.converged_nodes += r.outcome == protocols::PackingOutcome::converged;
@@ -161,9 +146,9 @@ void merge_packing(const std::vector<std::vector<std::byte>>& results, std::size
       out.max_node_messages = std::max(out.max_node_messages, r.messages_sent);
       out.max_node_bytes = std::max(out.max_node_bytes, r.bytes_sent);
     }
-    const auto phases = get<std::uint32_t>(blob, at);
+    const auto phases = read_bytes<std::uint32_t>(blob, at);
     if (out.by_phase.size() < phases) out.by_phase.resize(phases);
-    for (std::uint32_t p = 0; p < phases; ++p) out.by_phase[p] += get<sim::TrafficCounters>(blob, at);
+    for (std::uint32_t p = 0; p < phases; ++p) out.by_phase[p] += read_bytes<sim::TrafficCounters>(blob, at);
   }
 }
 }  // namespace
@@ -206,15 +191,15 @@ LiveOutcome run_live(const core::PlanarGraph& g, const std::vector<core::Point2>
   merge_packing(cluster.run_phase({}, n), n, out);
   if (out.failed_nodes == 0 && !pairs.empty()) {
     std::vector<std::byte> circles;
-    for (const core::Circle& c : out.circles) put(circles, c);
+    for (const core::Circle& c : out.circles) append_bytes(circles, c);
     const auto hop_distance = hop_distances_from_sources(g, pairs);
     for (const core::Scheme scheme : schemes) {
       std::uint64_t retransmissions = 0;
       std::vector<protocols::PacketReport> reports;
       for (const auto& blob : cluster.run_phase(circles, pairs.size())) {
         std::size_t at = 0;
-        retransmissions += get<std::uint64_t>(blob, at);
-        while (at < blob.size()) reports.push_back(get<protocols::PacketReport>(blob, at));
+        retransmissions += read_bytes<std::uint64_t>(blob, at);
+        while (at < blob.size()) reports.push_back(read_bytes<protocols::PacketReport>(blob, at));
       }
       ForwardingResult r = summarize_forwarding(scheme, pairs, hop_distance, reports);
       r.retransmissions = retransmissions;

@@ -55,23 +55,6 @@ std::int64_t steady_ns() {
       .count();
 }
 
-template <class T>
-void put(std::vector<std::byte>& out, const T& x) {
-  static_assert(std::is_trivially_copyable_v<T>);
-  const std::size_t at = out.size();
-  out.resize(at + sizeof(T));
-  std::memcpy(out.data() + at, &x, sizeof(T));
-}
-
-template <class T>
-T get(std::span<const std::byte> in, std::size_t& at) {
-  static_assert(std::is_trivially_copyable_v<T>);
-  LAGUERRE_PRECONDITION(at + sizeof(T) <= in.size(), "live control message too short");
-  T x;
-  std::memcpy(&x, in.data() + at, sizeof(T));
-  at += sizeof(T);
-  return x;
-}
 
 // Writes all of `bytes` to `fd` (blocking or not: waits for room with poll). False if the peer is gone.
 bool write_all(int fd, std::span<const std::byte> bytes) {
@@ -96,14 +79,14 @@ bool write_all(int fd, std::span<const std::byte> bytes) {
 bool complete_frame(const std::vector<std::byte>& in) {
   if (in.size() < frame_header) return false;
   std::size_t at = 1;
-  return in.size() >= frame_header + get<std::uint32_t>(in, at);
+  return in.size() >= frame_header + read_bytes<std::uint32_t>(in, at);
 }
 
 bool send_frame(int fd, std::uint8_t type, std::span<const std::byte> body) {
   std::vector<std::byte> f;
   f.reserve(frame_header + body.size());
-  put(f, type);
-  put(f, static_cast<std::uint32_t>(body.size()));
+  append_bytes(f, type);
+  append_bytes(f, static_cast<std::uint32_t>(body.size()));
   f.insert(f.end(), body.begin(), body.end());
   return write_all(fd, f);
 }
@@ -128,7 +111,7 @@ public:
 
   [[noreturn]] void run() {
     std::vector<std::byte> body;
-    put(body, host_.port());
+    append_bytes(body, host_.port());
     reply(msg_ready, body);
     host_.set_after_events([this] { after_events(); });
     host_.start_receiving();
@@ -152,7 +135,7 @@ private:
     asio::async_read(control_, asio::buffer(header_), [this](const boost::system::error_code& ec, std::size_t) {
       if (ec) ::_exit(3);  // the launcher is gone: end quietly
       std::size_t at = 1;
-      const auto length = get<std::uint32_t>(std::span<const std::byte>(header_), at);
+      const auto length = read_bytes<std::uint32_t>(std::span<const std::byte>(header_), at);
       body_.resize(length);
       asio::async_read(control_, asio::buffer(body_), [this](const boost::system::error_code& e, std::size_t) {
         if (e) ::_exit(3);
@@ -167,12 +150,12 @@ private:
     switch (type) {
       case msg_ports: {
         std::vector<std::uint16_t> ports;
-        while (at < body.size()) ports.push_back(get<std::uint16_t>(body, at));
+        while (at < body.size()) ports.push_back(read_bytes<std::uint16_t>(body, at));
         host_.set_ports(std::move(ports));
         break;
       }
       case msg_start: {
-        phase_ = get<std::uint8_t>(body, at);
+        phase_ = read_bytes<std::uint8_t>(body, at);
         if (config_.fail_worker && *config_.fail_worker == self_) ::_exit(fail_worker_status);
         last_progress_ = ~std::uint64_t{0};
         program_.start_phase(phase_, body.subspan(1), host_);
@@ -181,13 +164,13 @@ private:
         break;
       }
       case msg_probe: {
-        const auto wave = get<std::uint64_t>(body, at);
+        const auto wave = read_bytes<std::uint64_t>(body, at);
         std::vector<std::byte> r;
-        put(r, wave);
-        put(r, static_cast<std::uint8_t>(host_.idle()));
-        put(r, host_.counters().datagrams_sent);
-        put(r, host_.counters().datagrams_received);
-        put(r, host_.kernel_drops());
+        append_bytes(r, wave);
+        append_bytes(r, static_cast<std::uint8_t>(host_.idle()));
+        append_bytes(r, host_.counters().datagrams_sent);
+        append_bytes(r, host_.counters().datagrams_received);
+        append_bytes(r, host_.kernel_drops());
         reply(msg_probe_reply, r);
         break;
       }
@@ -199,7 +182,7 @@ private:
       case msg_exit: {
         host_.kernel_drops();
         std::vector<std::byte> r;
-        put(r, host_.counters());
+        append_bytes(r, host_.counters());
         reply(msg_stats, r);
         stopping_ = true;
         io_.stop();
@@ -222,7 +205,7 @@ private:
     if (p == last_progress_) return;
     last_progress_ = p;
     std::vector<std::byte> r;
-    put(r, p);
+    append_bytes(r, p);
     reply(msg_progress, r);
   }
 
@@ -259,7 +242,7 @@ private:
     what = "unknown exception";
   }
   std::vector<std::byte> body;
-  put(body, kind);
+  append_bytes(body, kind);
   for (const char c : what) body.push_back(static_cast<std::byte>(c));
   send_frame(fd, msg_error, body);
   ::_exit(kind);
@@ -349,11 +332,11 @@ LiveCluster::LiveCluster(const core::PlanarGraph& g, LiveConfig config, LiveProg
     const Message m = wait_message(k, -1);
     if (m.type != msg_ready) fail("worker " + std::to_string(k) + " sent an unexpected message while starting");
     std::size_t at = 0;
-    workers_[k].port = get<std::uint16_t>(m.body, at);
+    workers_[k].port = read_bytes<std::uint16_t>(m.body, at);
     ++ready;
   }
   std::vector<std::byte> ports;
-  for (const Worker& w : workers_) put(ports, w.port);
+  for (const Worker& w : workers_) append_bytes(ports, w.port);
   broadcast(msg_ports, ports);
 }
 
@@ -411,7 +394,7 @@ LiveCluster::Message LiveCluster::wait_message(std::size_t& from, int max_wait_m
       std::vector<std::byte>& in = workers_[k].in;
       if (!complete_frame(in)) continue;
       std::size_t at = 1;
-      const auto length = get<std::uint32_t>(in, at);
+      const auto length = read_bytes<std::uint32_t>(in, at);
       Message m{static_cast<std::uint8_t>(in[0]), std::vector<std::byte>(in.begin() + frame_header,
                                                                           in.begin() + static_cast<std::ptrdiff_t>(frame_header + length))};
       in.erase(in.begin(), in.begin() + static_cast<std::ptrdiff_t>(frame_header + length));
@@ -465,7 +448,7 @@ LiveCluster::Message LiveCluster::wait_message(std::size_t& from, int max_wait_m
 std::vector<std::vector<std::byte>> LiveCluster::run_phase(std::span<const std::byte> input, std::uint64_t goal) {
   const std::int64_t start = steady_ns();
   std::vector<std::byte> body;
-  put(body, phase_);
+  append_bytes(body, phase_);
   body.insert(body.end(), input.begin(), input.end());
   for (Worker& w : workers_) w.progress = 0;
   broadcast(msg_start, body);
@@ -486,22 +469,22 @@ std::vector<std::vector<std::byte>> LiveCluster::run_phase(std::span<const std::
       sent = received = drops = 0;
       counts.assign(2 * workers_.size(), 0);
       std::vector<std::byte> b;
-      put(b, wave);
+      append_bytes(b, wave);
       broadcast(msg_probe, b);
     }
     std::size_t k = 0;
     const Message m = wait_message(k, -1);
     std::size_t at = 0;
     if (m.type == msg_progress) {
-      workers_[k].progress = get<std::uint64_t>(m.body, at);
+      workers_[k].progress = read_bytes<std::uint64_t>(m.body, at);
     } else if (m.type == msg_probe_reply) {
-      if (get<std::uint64_t>(m.body, at) != wave) continue;
-      all_idle = all_idle && get<std::uint8_t>(m.body, at) != 0;
-      counts[2 * k] = get<std::uint64_t>(m.body, at);
-      counts[2 * k + 1] = get<std::uint64_t>(m.body, at);
+      if (read_bytes<std::uint64_t>(m.body, at) != wave) continue;
+      all_idle = all_idle && read_bytes<std::uint8_t>(m.body, at) != 0;
+      counts[2 * k] = read_bytes<std::uint64_t>(m.body, at);
+      counts[2 * k + 1] = read_bytes<std::uint64_t>(m.body, at);
       sent += counts[2 * k];
       received += counts[2 * k + 1];
-      drops += get<std::uint64_t>(m.body, at);
+      drops += read_bytes<std::uint64_t>(m.body, at);
       if (++replies < workers_.size()) continue;
       const bool quiet = all_idle && sent == received + drops;
       if (quiet && counts == previous) break;
@@ -537,7 +520,7 @@ std::vector<WorkerReport> LiveCluster::finish() {
     const Message m = wait_message(k, -1);
     if (m.type != msg_stats) continue;
     std::size_t at = 0;
-    reports[k].counters = get<UdpCounters>(m.body, at);
+    reports[k].counters = read_bytes<UdpCounters>(m.body, at);
     workers_[k].finished = true;
     ++done;
   }

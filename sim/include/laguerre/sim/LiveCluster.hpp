@@ -18,16 +18,41 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <span>
 #include <string>
 #include <sys/types.h>
+#include <type_traits>
 #include <vector>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/PlanarGraph.hpp"
 #include "laguerre/sim/UdpHost.hpp"
 
 namespace laguerre::sim {
+
+/// Appends the bytes of `x` to `out`: how control messages and results travel between the launcher
+/// and its workers (one binary, one machine, so a memory image is the format).
+template <class T>
+void append_bytes(std::vector<std::byte>& out, const T& x) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const std::size_t at = out.size();
+  out.resize(at + sizeof(T));
+  std::memcpy(out.data() + at, &x, sizeof(T));
+}
+
+/// The T that append_bytes wrote at `at` in `in`; advances `at`. Throws core::InternalError (a broken
+/// precondition) if `in` is too short.
+template <class T>
+T read_bytes(std::span<const std::byte> in, std::size_t& at) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  LAGUERRE_PRECONDITION(at + sizeof(T) <= in.size(), "a live control message or result is too short");
+  T x;
+  std::memcpy(&x, in.data() + at, sizeof(T));
+  at += sizeof(T);
+  return x;
+}
 
 /// How a live cluster runs.
 struct LiveConfig {
