@@ -9,10 +9,13 @@
 #include "Commands.hpp"
 #include "Common.hpp"
 #include "ProtocolSummary.hpp"
+#include "ScenarioCli.hpp"
 #include "laguerre/core/packing/PackingNames.hpp"
 #include "laguerre/scenarios/LiveRun.hpp"
 #include "laguerre/scenarios/NetworkModel.hpp"
+#include "laguerre/scenarios/Runner.hpp"
 #include "laguerre/scenarios/Scenario.hpp"
+#include "laguerre/scenarios/Topology.hpp"
 
 namespace laguerre::tools {
 
@@ -28,7 +31,9 @@ constexpr CommandHelp live_help{
     "which keeps it so. Each phase ends when every worker is idle and no datagram is in flight; a worker\n"
     "that dies or a run past --timeout stops every worker.\n"
     "Exit status: 0 converged, 3 not converged or a node failed, 2 bad input (also a port in use),\n"
-    "1 a worker failed or the run timed out."};
+    "1 a worker failed or the run timed out.\n"
+    "A scenario file (.yaml) stands for the topology of its first run (first sweep point, repetition 0,\n"
+    "with its seeds); the protocol options are this command's."};
 
 struct LiveArgs {
   GraphArgs graph;
@@ -51,6 +56,33 @@ struct LiveArgs {
   bool json = false;
 };
 
+bool is_scenario_file(const std::string& path) {
+  const auto dot = path.rfind('.');
+  return dot != std::string::npos && (path.substr(dot) == ".yaml" || path.substr(dot) == ".yml");
+}
+
+// The graph of GRAPH, or of a scenario's first run (as `laguerre run` builds it).
+LoadedGraph load_graph_or_scenario(const GraphArgs& args) {
+  if (!is_scenario_file(args.path)) return load_graph(args);
+  const auto loaded = load_scenarios({args.path}, {});
+  if (!loaded) throw core::InputError(args.path, 0, "a valid scenario file (its problems are listed above)");
+  const scenarios::Scenario& scenario = loaded->front();
+  const scenarios::RunPlan plan = scenarios::plan_runs(scenario).front();
+  const scenarios::TopologySpec& spec = scenario.points.at(plan.point).config.topology;
+  scenarios::Topology topo;
+  try {
+    topo = scenarios::build_topology(spec.generator, spec.params, plan.topology_seed, plan.repetition);
+  } catch (const std::exception& e) {
+    throw core::InputError(args.path, 0, std::string("a topology that can be built: ") + e.what());
+  }
+  LoadedGraph out;
+  out.input.graph = std::move(topo.graph);
+  out.input.positions = std::move(topo.positions);
+  out.input.name = args.path + ": " + topo.name;
+  out.kind = topo.kind;
+  return out;
+}
+
 int run_live(const LiveArgs& a) {
   const std::vector<core::Scheme> schemes = parse_schemes(a.scheme, "--scheme");
   const core::PairSelection selection = parse_pairs(a.pairs, a.seed, "--pairs");
@@ -71,7 +103,7 @@ int run_live(const LiveArgs& a) {
   live.timeout_seconds = a.timeout;
   live.socket_buffer = a.socket_buffer;
 
-  const LoadedGraph loaded = load_graph(a.graph);
+  const LoadedGraph loaded = load_graph_or_scenario(a.graph);
   const core::PlanarGraph& g = loaded.input.graph;
   const auto pairs = core::select_pairs(g.num_vertices(), selection);
   const scenarios::LiveOutcome out = scenarios::run_live(g, loaded.input.positions, setup, live, schemes, pairs);
@@ -136,7 +168,7 @@ int run_live(const LiveArgs& a) {
 
 Action add_live_command(CLI::App& app) {
   const auto c = add_command<LiveArgs>(app, live_help);
-  add_graph_options(*c.cmd, c.args->graph, "graph", "Graph file (edge list, coords or planar_code)");
+  add_graph_options(*c.cmd, c.args->graph, "graph", "Graph file (edge list, coords or planar_code) or scenario file (.yaml)");
   c.cmd->add_option("--processes,-P", c.args->processes, "Worker processes (each hosts a block of nodes)")
       ->check(CLI::Range(1, 256))->capture_default_str();
   c.cmd->add_option("--base-port", c.args->base_port, "Worker k binds 127.0.0.1:BASE+k (0: free ports)")

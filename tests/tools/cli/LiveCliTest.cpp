@@ -1,6 +1,7 @@
 // `laguerre live` as a user runs it: on the bundled 3-connected network, 2 processes over UDP on
 // 127.0.0.1 give `laguerre simulate`'s result (same iterations, rounds and delivery, and --verify says
-// bit for bit); the JSON has the simulate keys plus the live section; a port in use and a bad
+// bit for bit); the JSON has the simulate keys plus the live section; the quick-start scenario's network
+// verifies on 4 processes; a port in use and a bad
 // --processes are bad input (exit status 2) with a message naming them.
 
 #include <gtest/gtest.h>
@@ -41,6 +42,14 @@ TEST(CliLive, TextSummaryHasSimulatesLinesAndTheLiveLine) {
   for (const char* line : {"protocol     converged", "reliability  ", "verify       identical to core::pack, bit for bit",
                            "forwarding   greedy_power  50/50", "live         2 process(es) on 127.0.0.1"})
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+}
+
+TEST(CliLive, TheQuickStartScenarioOnFourProcessesVerifies) {
+  const Outcome r = run("live " + std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/quickstart.yaml --processes 4 --verify --timeout 30");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("delaunay(n=60): 60 nodes"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("verify       identical to core::pack, bit for bit"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("live         4 process(es)"), std::string::npos) << r.out;
 }
 
 TEST(CliLive, APortInUseAndBadProcessCountsAreBadInput) {
