@@ -33,7 +33,10 @@ constexpr CommandHelp live_help{
     "Exit status: 0 converged, 3 not converged or a node failed, 2 bad input (also a port in use),\n"
     "1 a worker failed or the run timed out.\n"
     "A scenario file (.yaml) stands for the topology of its first run (first sweep point, repetition 0,\n"
-    "with its seeds); the protocol options are this command's."};
+    "with its seeds); the protocol options are this command's.\n"
+    "--json has the keys of `simulate --json` (simulated_seconds and events are then the packing\n"
+    "phase's wall time and the datagrams sent) and a 'live' object: per-phase wall times, datagrams,\n"
+    "and per worker its nodes, port, counters, socket buffers, peak memory and CPU time."};
 
 struct LiveArgs {
   GraphArgs graph;

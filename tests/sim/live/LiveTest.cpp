@@ -1,7 +1,8 @@
 // The live host over UDP on 127.0.0.1 (sim::UdpHost, sim::LiveCluster, scenarios::run_live): on 1, 2
 // and 4 worker processes the packing protocol's circles and iteration count are core::pack's bit for
 // bit and every node converges, with and without induced loss; forwarding delivers what the simulator
-// delivers with the same hops; malformed datagrams are counted and never reach a node; a port in use,
+// delivers with the same hops; malformed datagrams are counted and never reach a node, kernel drops
+// are read from the socket and balance the datagrams sent; a port in use,
 // a dead worker, a deadline and a datagram too small are clear errors. Every run is bounded by its
 // timeout and ends by itself.
 
@@ -264,4 +265,35 @@ TEST(UdpHost, BadConfigurationIsABadInputError) {
   EXPECT_THROW(sim::UdpHost(io, gr.g, std::vector<std::size_t>(gr.g.num_vertices(), 0), 0, config), core::InputError);
 }
 
+}  // namespace
+
+namespace {
+TEST(UdpHost, KernelDropsAreCountedAndBalanceTheDatagramsSent) {
+  const Graph gr = load("delaunay-60.txt");
+  boost::asio::io_context io;
+  sim::UdpHostConfig config;
+  config.run_tag = 7;
+  config.socket_buffer = 4096;  // a few datagrams at most: the kernel drops the rest
+  sim::UdpHost host(io, gr.g, std::vector<std::size_t>(gr.g.num_vertices(), 0), 0, config);
+  host.set_ports({host.port()});
+  std::vector<protocols::NodeId> received;
+  host.start_phase(0, [&](protocols::Runtime&, core::Vertex) { return std::make_unique<Recorder>(received); });
+  // Well-formed datagrams whose single record is for a node nobody hosts, sent before anyone reads.
+  std::vector<std::byte> d(sim::udp_header_size + sim::udp_record_header + 1000, std::byte{0});
+  d[0] = std::byte{0x4c};
+  d[1] = std::byte{1};
+  d[4] = std::byte{7};
+  for (int i = 0; i < 8; ++i) d[sim::udp_header_size + i] = std::byte{0xff};  // id 2^64 - 1
+  d[sim::udp_header_size + 16] = static_cast<std::byte>(1000 & 0xff);
+  d[sim::udp_header_size + 17] = static_cast<std::byte>(1000 >> 8);
+  constexpr std::uint64_t sent = 200;
+  for (std::uint64_t i = 0; i < sent; ++i) host.send_raw(0, d);
+  host.start_receiving();
+  io.run_for(std::chrono::milliseconds(50));
+  const std::uint64_t drops = host.kernel_drops();
+  EXPECT_GT(drops, 0u);
+  EXPECT_EQ(host.counters().datagrams_received + drops, sent);
+  EXPECT_EQ(host.counters().unknown_destination, host.counters().datagrams_received);
+  EXPECT_TRUE(received.empty());
+}
 }  // namespace
