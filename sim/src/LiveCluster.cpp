@@ -24,6 +24,7 @@
 #include <cstring>
 #include <random>
 #include <stdexcept>
+#include <thread>
 #include <type_traits>
 
 #include "laguerre/core/Error.hpp"
@@ -490,10 +491,7 @@ std::vector<std::vector<std::byte>> LiveCluster::run_phase(std::span<const std::
       if (quiet && counts == previous) break;
       previous = quiet ? counts : std::vector<std::uint64_t>{};
       probing = false;
-      if (!quiet) {
-        std::size_t ignored = 0;
-        wait_message(ignored, 1);  // let the workers run a little before the next wave
-      }
+      if (!quiet) std::this_thread::sleep_for(std::chrono::milliseconds(1));  // let the workers run a little
     }
   }
   broadcast(msg_finish, {});
