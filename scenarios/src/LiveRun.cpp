@@ -179,6 +179,7 @@ LiveOutcome run_live(const core::PlanarGraph& g, const std::vector<core::Point2>
   config.base_port = live.base_port;
   config.timeout_seconds = live.timeout_seconds;
   config.fail_worker = live.fail_worker;
+  config.lossless = !out.lossy;
   config.host.seed = setup.seed;
   config.host.loss = setup.link.loss;
   config.host.socket_buffer = live.socket_buffer;

@@ -454,16 +454,20 @@ std::vector<std::vector<std::byte>> LiveCluster::run_phase(std::span<const std::
   for (Worker& w : workers_) w.progress = 0;
   broadcast(msg_start, body);
   std::uint64_t wave = 0;
-  bool probing = false;
+  bool probing = false, goal_reached = false;
   std::size_t replies = 0;
   bool all_idle = true;
   std::uint64_t sent = 0, received = 0, drops = 0;
   std::vector<std::uint64_t> counts, previous;  // per worker: sent, received of the last two waves
+  // Before the goal, a wave every 100 ms still looks for kernel drops (fatal without reliability).
+  constexpr std::int64_t check_every = 100'000'000;
+  std::int64_t next_check = start + check_every;
   for (;;) {
     std::uint64_t total = 0;
     for (const Worker& w : workers_) total += w.progress;
-    if (!probing && total >= goal) {
+    if (!probing && (total >= goal || steady_ns() >= next_check)) {
       probing = true;
+      goal_reached = total >= goal;
       ++wave;
       replies = 0;
       all_idle = true;
@@ -474,7 +478,8 @@ std::vector<std::vector<std::byte>> LiveCluster::run_phase(std::span<const std::
       broadcast(msg_probe, b);
     }
     std::size_t k = 0;
-    const Message m = wait_message(k, -1);
+    const int wait_ms = probing ? -1 : static_cast<int>(std::max<std::int64_t>(1, (next_check - steady_ns()) / 1'000'000));
+    const Message m = wait_message(k, wait_ms);
     std::size_t at = 0;
     if (m.type == msg_progress) {
       workers_[k].progress = read_bytes<std::uint64_t>(m.body, at);
@@ -487,10 +492,20 @@ std::vector<std::vector<std::byte>> LiveCluster::run_phase(std::span<const std::
       received += counts[2 * k + 1];
       drops += read_bytes<std::uint64_t>(m.body, at);
       if (++replies < workers_.size()) continue;
+      probing = false;
+      if (drops > 0 && config_.lossless)
+        fail("the kernel dropped " + std::to_string(drops) +
+             " datagram(s) (a receive buffer was full) and the nodes run without the reliability layer, so "
+             "the run cannot finish: rerun with a larger socket buffer or the reliability layer on "
+             "(laguerre live --socket-buffer, --reliable)");
+      if (!goal_reached) {
+        next_check = steady_ns() + check_every;
+        previous.clear();
+        continue;
+      }
       const bool quiet = all_idle && sent == received + drops;
       if (quiet && counts == previous) break;
       previous = quiet ? counts : std::vector<std::uint64_t>{};
-      probing = false;
       if (!quiet) std::this_thread::sleep_for(std::chrono::milliseconds(1));  // let the workers run a little
     }
   }

@@ -168,6 +168,24 @@ TEST(LiveRun, TheDeadlineStopsEveryWorker) {
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
 }
 
+TEST(LiveRun, KernelDropsWithoutTheReliabilityLayerEndTheRunAtOnce) {
+  // Receive buffers of a few KiB: batched datagrams overflow them (a datagram larger than the buffer
+  // is always dropped). Without the reliability layer the run must then stop with a clear error long
+  // before its deadline; if the kernel happened to drop nothing, the result is still exact.
+  const Graph gr = load("three-connected-60.txt");
+  scenarios::LiveSetup live = live_setup(4);
+  live.socket_buffer = 1024;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    const scenarios::LiveOutcome out = scenarios::run_live(gr.g, gr.positions, {}, live, {}, {});
+    EXPECT_EQ(out.total.kernel_drops, 0u);
+    expect_core_pack(gr, {}, out);
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("the kernel dropped"), std::string::npos) << e.what();
+  }
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+}
+
 TEST(LiveRun, AMessageLargerThanTheDatagramIsABadInputError) {
   const Graph gr = load("delaunay-60.txt");
   scenarios::LiveSetup live = live_setup(2);

@@ -14,7 +14,8 @@
 /// no datagram is in flight, so a phase's traffic never reaches the next phase's nodes.
 ///
 /// Failures: a worker that exits or is killed, reports an error, or a run past the deadline ends every
-/// worker (the launcher kills what does not stop within a second) and throws; nothing hangs.
+/// worker (the launcher kills what does not stop within a second) and throws; nothing hangs. While a
+/// phase runs, the launcher also reads the kernel drop counts every 100 ms (LiveConfig::lossless).
 
 #include <cstddef>
 #include <cstdint>
@@ -60,6 +61,9 @@ struct LiveConfig {
   std::uint16_t base_port = 0;      ///< worker k binds base_port + k; 0: ports the kernel picks
   UdpHostConfig host;               ///< seed, loss, buffers, datagram size (port, tag, epoch: set per worker)
   double timeout_seconds = 60;      ///< the whole run, from the fork to the last result
+  /// The nodes tolerate no loss (no reliability layer): a kernel drop ends the run at once, with an
+  /// error, instead of at the deadline.
+  bool lossless = false;
   /// Failure injection (tests): this worker exits with status 70 when the first phase starts.
   std::optional<std::size_t> fail_worker;
 };
