@@ -512,7 +512,7 @@ Topology build_topology(std::string_view generator, const TopologyParams& params
   const GeneratorInfo* info = find_generator(generator);
   if (!info) throw TopologyError("unknown topology generator '" + std::string(generator) + "'");
   if (!info->available) throw TopologyError(info->unavailable_reason);
-  if (!info->build) throw TopologyError("generator '" + std::string(generator) + "' is registered but has no builder");
+  LAGUERRE_PRECONDITION(info->build, "generator '" + std::string(generator) + "' is registered without a builder");
   try {
     return info->build(params, seed, repetition);
   } catch (const TopologyError&) {

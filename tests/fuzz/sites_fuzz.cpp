@@ -21,9 +21,9 @@ namespace {
 namespace core = laguerre::core;
 
 constexpr std::size_t max_sites = 200;
-// Values beyond this magnitude, or nonzero below its inverse, are skipped: the diagrams' validity checks
-// fail on such ranges (open finding sites-1 in tests/fuzz/open/README.md, and the known probes 1e160,
-// 1e300, 1e-300 assigned to the diagrams work). Remove when that is fixed.
+// Values beyond this magnitude, or nonzero below its inverse, are skipped: over wider ranges the
+// Voronoi and power diagrams' rounded cell polygons can fail is_valid's orientation check (open finding
+// sites-3 in tests/fuzz/open/README.md). Remove when that is fixed.
 constexpr double max_magnitude = 1e6;
 
 // The numbers of the file, row by row; empty if a field is not a finite number or rows differ in length.
