@@ -32,7 +32,8 @@
 # GOPack's rule), each with --accelerate newton and plain. Every run's final circles are checked by this script with
 # GOPack's visual error, NaN radii/centres counted: GOPack's "visErr 0" on NaN radii is reported as "NaN", not success.
 # Columns: passes (GOPack riffle passes, laguerre Newton steps or Jacobi sweeps), compute seconds (riffles / pack),
-# wall seconds and peak RSS of the whole process (/usr/bin/time), final errors, and GOPack ÷ laguerre ratios.
+# wall and CPU seconds and peak RSS of the whole process (/usr/bin/time), final errors, and GOPack ÷ laguerre ratios
+# of CPU seconds.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 gopack="$root/../shared/anchors/gopack"
@@ -53,7 +54,7 @@ while (($#)); do
     --max-passes) maxpasses=$2; shift ;;
     --out) out=$2; shift ;;
     --laguerre) laguerre=$2; shift ;;
-    -h|--help) sed -n '2,35p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,36p' "$0"; exit 0 ;;
     *) echo "gopack.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -177,17 +178,18 @@ def convert(doc_path, p_path, edges_path, star):
     print(len(ids), len(outer))
 
 def summary(doc_path, time_path):
-    """One laguerre run: status iterations pack_seconds max_tangency visual_error nonfinite wall peak_mb."""
-    wall, peak = open(time_path).read().split()[-2:]
+    """One laguerre run: status iterations pack_seconds max_tangency visual_error nonfinite wall peak_mb cpu."""
+    wall, peak, user, system = open(time_path).read().split()[-4:]
+    cpu = "%.2f" % (float(user) + float(system))
     try:
         doc = load(doc_path)
     except Exception:
-        print("failed - - - - - %s %.0f" % (wall, int(peak) / 1024))
+        print("killed(timeout) - - - - - %s %.0f %s" % (wall, int(peak) / 1024, cpu))
         return
     p = doc["packing"]
     ve, bad = visual_error(doc)
-    print("%s %d %.3f %.3g %.3g %d %s %.0f" % (p["status"], p["iterations"], p["seconds"], p["max_tangency_error"],
-                                                ve, bad, wall, int(peak) / 1024))
+    print("%s %d %.3f %.3g %.3g %d %s %.0f %s" % (p["status"], p["iterations"], p["seconds"], p["max_tangency_error"],
+                                                   ve, bad, wall, int(peak) / 1024, cpu))
 
 if __name__ == "__main__":
     {"convert": lambda a: convert(a[0], a[1], a[2], a[3] == "1"), "summary": lambda a: summary(*a)}[sys.argv[1]](sys.argv[2:])
@@ -212,18 +214,21 @@ nans = sum(isnan(gop.localradii(:))) + sum(isnan(real(gop.localcenters(:)))) + s
 printf('GOPACK %d %.3f %.6g %d %s\n', pass, cum, err, nans, why);
 OCT
   local log="$work/$label.gopack.log"
-  (cd "$gopack/code" && /usr/bin/time -f "%e %M" -o "$work/$label.gopack.time" \
+  (cd "$gopack/code" && /usr/bin/time -f "%e %M %U %S" -o "$work/$label.gopack.time" \
      timeout $((2 * gtimeout + 60)) octave --no-gui --norc -q --eval "source('$m')" >"$log" 2>"$log.err") || true
   local res
   res=$(grep -o 'GOPACK .*' "$log" | tail -1 | cut -d' ' -f2-)
   [[ -n $res ]] || res="$(grep -c 'pass ' "$log.err" || true) - - - killed"
-  echo "$res $(tail -1 "$work/$label.gopack.time" 2>/dev/null || echo '- 0')"
+  local t
+  t=$(tail -1 "$work/$label.gopack.time" 2>/dev/null || echo '- 0 0 0')
+  read -r w k u s <<<"$t"
+  echo "$res $w $k $(python3 -c "print('%.1f' % ($u + $s))")"
 }
 
 laguerre_run() {  # label edges stop accel -> prints the summary line
   local label=$1 edges=$2 stop=$3 accel=$4
   local stem="$work/$label.$stop.$accel"
-  /usr/bin/time -f "%e %M" -o "$stem.time" timeout "$ltimeout" "$laguerre" pack "$edges" --stop "$stop" \
+  /usr/bin/time -f "%e %M %U %S" -o "$stem.time" timeout "$ltimeout" "$laguerre" pack "$edges" --stop "$stop" \
     --accelerate "$accel" --max-iterations 100000000 --no-picture --json >"$stem.json" 2>"$stem.err" || true
   python3 "$py" summary "$stem.json" "$stem.time"
 }
@@ -255,21 +260,21 @@ echo "GOPack vs laguerre, one run, $(date -u +%FT%TZ); laguerre $(git -C "$root"
 echo "machine: $(nproc) cores; load before: $(uptime | sed 's/.*load average: //')"
 echo "work files: $work"
 printf '%-15s %7s %4s | %-30s | %-34s | %-34s | %-34s | %-34s | %9s %9s\n' input n bdry \
-  "GOPack: passes s wall MB err" "lag LPD newton: it s wall MB" "lag LPD plain: it s wall MB" \
-  "lag exact newton: it s wall MB err" "lag exact plain: it s wall MB err" "x(newton)" "x(plain)"
+  "GOPack: passes s wall cpu MB err" "lag LPD newton: it s wall cpu MB err" "lag LPD plain: it s wall cpu MB err" \
+  "lag exact newton: it s wall cpu MB err" "lag exact plain: it s wall cpu MB err" "x(newton)" "x(plain)"
 fmt_l() {  # summary line -> "status it s wall MB [err]"
-  local st it s tang ve bad wall mb
-  read -r st it s tang ve bad wall mb <<<"$1"
+  local st it s tang ve bad wall mb cpu
+  read -r st it s tang ve bad wall mb cpu <<<"$1"
   local tag=""
   [[ $st == converged ]] || tag="$st "
   ((bad > 0)) 2>/dev/null && tag="${tag}NaN "
-  printf '%s%s %s %s %s %s' "$tag" "$it" "$s" "$wall" "$mb" "$ve"
+  printf '%s%s %s %s %s %s %s' "$tag" "$it" "$s" "$wall" "$cpu" "$mb" "$ve"
 }
 for entry in "${inputs[@]}"; do
   IFS='|' read -r label p edges note <<<"$entry"
   n=$(grep -c '^[0-9]' "$p" || true)
   bdry=$(grep -m1 '^# outer:' "$edges" | wc -w); bdry=$((bdry - 2))
-  read -r g_pass g_sec g_err g_nan g_why g_wall g_kb <<<"$(gopack_run "$label" "$p")"
+  read -r g_pass g_sec g_err g_nan g_why g_wall g_kb g_cpu <<<"$(gopack_run "$label" "$p")"
   if [[ $g_why == killed ]]; then g_stat="killed(timeout)";
   elif [[ $g_nan != 0 && $g_nan != - ]]; then g_stat="NaN($g_nan, reports $g_err)";
   elif [[ $g_why == rule ]]; then g_stat="ok";
@@ -278,14 +283,14 @@ for entry in "${inputs[@]}"; do
   lp=$(laguerre_run "$label" "$edges" lpd plain)
   en=$(laguerre_run "$label" "$edges" exact newton)
   ep=$(laguerre_run "$label" "$edges" exact plain)
-  ratio() {  # GOPack wall / laguerre wall, when GOPack met its rule
-    local wall st
-    st=$(cut -d' ' -f1 <<<"$1"); wall=$(cut -d' ' -f7 <<<"$1")
-    if [[ $g_stat == ok && $st == converged ]]; then python3 -c "print('%.0f' % ($g_wall / max($wall, 0.01)))";
-    elif [[ $st == converged ]]; then python3 -c "print('>%.0f' % ($g_wall / max($wall, 0.01)))"; else echo "-"; fi
+  ratio() {  # GOPack CPU seconds / laguerre CPU seconds (whole processes), when GOPack met its rule
+    local cpu st
+    st=$(cut -d' ' -f1 <<<"$1"); cpu=$(cut -d' ' -f9 <<<"$1")
+    if [[ $g_stat == ok && $st == converged ]]; then python3 -c "print('%.0f' % ($g_cpu / max($cpu, 0.01)))";
+    elif [[ $st == converged ]]; then python3 -c "print('>%.0f' % ($g_cpu / max($cpu, 0.01)))"; else echo "-"; fi
   }
   printf '%-15s %7s %4s | %-30s | %-34s | %-34s | %-34s | %-34s | %9s %9s\n' "$label" "$n" "$bdry" \
-    "$g_stat $g_pass $g_sec $g_wall $((g_kb / 1024)) $g_err" "$(fmt_l "$ln")" "$(fmt_l "$lp")" "$(fmt_l "$en")" \
+    "$g_stat $g_pass $g_sec $g_wall $g_cpu $((g_kb / 1024)) $g_err" "$(fmt_l "$ln")" "$(fmt_l "$lp")" "$(fmt_l "$en")" \
     "$(fmt_l "$ep")" "$(ratio "$en")" "$(ratio "$ep")"
   echo "  ($note)"
 done
@@ -298,8 +303,9 @@ done
 echo "load after: $(uptime | sed 's/.*load average: //')"
 cat <<'EOF'
 Columns: GOPack status (ok = max visual error <= 1%; timeout = no pass started after --gopack-timeout; stall = pass cap;
-NaN = non-finite radii or centres, whatever visErr it reports), passes, riffle seconds, process wall seconds, peak MB,
-final max visual error. laguerre: status (blank = converged), iterations (Newton steps or Jacobi sweeps), pack seconds,
-process wall seconds, peak MB, final max visual error (GOPack's rule, computed by this script on laguerre's circles).
-x(newton), x(plain) = GOPack wall / laguerre `--stop exact` wall ("> " when GOPack did not meet its rule).
+NaN = non-finite radii or centres, whatever visErr it reports), passes, riffle seconds, process wall seconds, process
+CPU seconds, peak MB, final max visual error. laguerre: status (blank = converged), iterations (Newton steps or Jacobi sweeps), pack seconds,
+process wall seconds, process CPU seconds (user + system), peak MB, final max visual error (GOPack's rule, computed by
+this script on laguerre's circles). x(newton), x(plain) = GOPack CPU seconds / laguerre `--stop exact` CPU seconds, whole
+processes (CPU rather than wall: less sensitive to the machine's load); "> " when GOPack did not meet its rule.
 EOF
