@@ -104,6 +104,8 @@ int run_pack(const PackArgs& a) {
   doc["version"] = 1;
   doc["name"] = loaded.input.name;
   doc["kind"] = std::string(core::to_string(loaded.kind));
+  doc["outer_rule"] = a.graph.outer;
+  doc["removed_vertices"] = loaded.removed;
   doc["packing"] = {{"status", std::string(core::to_string(r.status))},
                     {"stop_rule", std::string(core::to_string(r.rule))},
                     {"iterations", r.iterations},
@@ -149,6 +151,7 @@ int run_pack(const PackArgs& a) {
   std::ostream& os = a.json_stdout ? std::cerr : std::cout;
   os << "graph        " << loaded.input.name << ": " << g.num_vertices() << " vertices, " << g.num_edges()
      << " edges, " << core::to_string(loaded.kind) << ", boundary of " << g.boundary_cycle().size() << '\n'
+     << removed_line(loaded.removed)
      << "status       " << core::to_string(r.status) << " (stop rule " << core::to_string(r.rule) << ") after "
      << r.iterations << " iterations, " << seconds << " s (" << cpu_seconds << " s CPU)\n";
   if (r.status == core::PackStatus::iteration_cap)
@@ -175,6 +178,7 @@ int run_pack(const PackArgs& a) {
 Action add_pack_command(CLI::App& app) {
   const auto c = add_command<PackArgs>(app, pack_help);
   add_graph_options(*c.cmd, c.args->graph, "graph", "Graph file (edge list, coords or planar_code)");
+  add_outer_option(*c.cmd, c.args->graph);
   add_choice(*c.cmd, "--stop", c.args->stop, core::stop_rule_names,
              "Stopping rule: lpd (LPD/GLPD everywhere), exact, angle, cap");
   add_choice(*c.cmd, "--sweep", c.args->sweep, core::sweep_names, "Update order: jacobi or gauss-seidel");

@@ -130,6 +130,8 @@ int run_simulate(const SimulateArgs& a) {
                           {"nodes", n},
                           {"edges", g.num_edges()},
                           {"kind", std::string(core::to_string(loaded.kind))},
+                          {"outer_rule", a.graph.outer},
+                          {"removed_vertices", loaded.removed},
                           {"converged_nodes", converged},
                           {"local_condition_holds", holds},
                           {"iterations", steps},
@@ -198,6 +200,7 @@ int run_simulate(const SimulateArgs& a) {
   } else {
     std::printf("graph        %s: %zu nodes, %zu edges, %s\n", loaded.input.name.c_str(), n, g.num_edges(),
                 std::string(core::to_string(loaded.kind)).c_str());
+    std::fputs(removed_line(loaded.removed).c_str(), stdout);
     std::printf("protocol     %s after %u %s in %u rounds (N = %d); %zu/%zu nodes report %s\n",
                 converged == n ? "converged" : "did not converge", steps,
                 setup.asynchronous ? "iteration-equivalents (asynchronous)" : "iterations", rounds, a.steps, holds, n,
@@ -256,6 +259,7 @@ int run_simulate(const SimulateArgs& a) {
 Action add_simulate_command(CLI::App& app) {
   const auto c = add_command<SimulateArgs>(app, simulate_help);
   add_graph_options(*c.cmd, c.args->graph, "graph", "Graph file (edge list, coords or planar_code)");
+  add_outer_option(*c.cmd, c.args->graph);
   const std::string sync_name(core::name_of(scenarios::protocol_mode_names, scenarios::ProtocolMode::sync));
   const std::string async_name(core::name_of(scenarios::protocol_mode_names, scenarios::ProtocolMode::async));
   c.cmd->add_option("--mode", c.args->mode, "Protocol mode: sync (bit for bit with core::pack) or async (chaotic updates)")
