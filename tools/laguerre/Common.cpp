@@ -16,6 +16,21 @@ void add_graph_options(CLI::App& cmd, GraphArgs& args, const std::string& name, 
   cmd.add_option("--index", args.index, "Which graph of a multi-graph file (from 1)")->capture_default_str();
 }
 
+void add_outer_option(CLI::App& cmd, GraphArgs& args) {
+  add_choice(cmd, "--outer", args.outer, core::outer_rule_names,
+             "Outer face of a triangulated sphere (every face a triangle): face keeps one (the file's '# outer:', else "
+             "the default face); puncture removes the vertex of largest degree (smallest id on ties), its neighbours "
+             "become the boundary, and it is reported as removed (not packed, not routed). Other graphs: unchanged");
+}
+
+std::string removed_line(const std::vector<std::uint64_t>& removed) {
+  if (removed.empty()) return {};
+  std::string line = "removed      " + std::to_string(removed.size()) + " vertex";
+  for (std::uint64_t id : removed) line += " " + std::to_string(id);
+  return line + " (--outer puncture: its neighbours are the boundary; it is not in the embedding, gets no circle, "
+                "sends and receives no packet)\n";
+}
+
 std::vector<core::GraphInput> read_graph_file(const std::string& path, const std::string& format) {
   (void)core::open_input_file(path, "graph file");  // the one message for a missing file or a folder
   return core::read_graphs(path, core::parse_graph_format(format));
@@ -27,8 +42,10 @@ LoadedGraph load_graph(const GraphArgs& args) {
     throw core::InputError("--index", 0,
                            "graph index " + std::to_string(args.index) + " is out of range: " + args.path + " holds " +
                                std::to_string(graphs.size()) + " graph(s).");
-  LoadedGraph out{std::move(graphs[args.index - 1]), {}};
-  out.input.graph = core::prepare_for_packing(out.input, &out.kind);
+  LoadedGraph out{std::move(graphs[args.index - 1]), {}, {}};
+  core::PreparedInput prepared = core::prepare_input(out.input, core::parse_name(core::outer_rule_names, args.outer, "--outer"));
+  out.kind = prepared.kind;
+  out.removed = std::move(prepared.removed);
   return out;
 }
 

@@ -45,23 +45,31 @@ struct GraphArgs {
   std::string path;                 ///< the graph file
   std::string format = "automatic";  ///< --format
   std::size_t index = 1;            ///< --index (from 1)
+  std::string outer = "face";       ///< --outer (core::outer_rule_names), where add_outer_option offers it
 };
 
 /// Registers GraphArgs on `cmd`: the positional `name` (described by `what`), --format and --index.
 void add_graph_options(CLI::App& cmd, GraphArgs& args, const std::string& name, const std::string& what);
 
+/// Registers --outer (core::OuterRule by core::outer_rule_names) on `cmd`, stored in args.outer.
+void add_outer_option(CLI::App& cmd, GraphArgs& args);
+
 /// A graph read from a file and prepared for packing (kind decided, outer face chosen).
 struct LoadedGraph {
-  core::GraphInput input;  ///< graph, positions, name
-  core::GraphKind kind{};  ///< triangulated disc or 3-connected
+  core::GraphInput input;               ///< graph, positions, name
+  core::GraphKind kind{};               ///< triangulated disc or 3-connected
+  std::vector<std::uint64_t> removed;   ///< ids of the file's vertices --outer puncture removed (not in input)
 };
 
 /// Every graph of `path` in `format`, the file opened as core::open_input_file does (core::InputError
 /// for a missing file or a folder).
 std::vector<core::GraphInput> read_graph_file(const std::string& path, const std::string& format = "automatic");
 
+/// The summary line of the vertices --outer puncture removed ("removed      vertex 17 (...)\n"), or "" if none.
+std::string removed_line(const std::vector<std::uint64_t>& removed);
+
 /// Reads graph number `index` (from 1) of `path` in `format` (as read_graph_file) and prepares it for
-/// packing.
+/// packing under the outer rule `args.outer` (core::prepare_input).
 LoadedGraph load_graph(const GraphArgs& args);
 
 /// --scheme (named `option` in messages): one scheme by name (dashes or underscores), or "all".

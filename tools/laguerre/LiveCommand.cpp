@@ -154,7 +154,7 @@ int run_live(const LiveArgs& a) {
                             {"datagram_bytes", c.datagram_bytes_sent},
                             {"workers", workers}}}};
   const int status = print_protocol_summary(
-      {loaded, setup, a.mode, out.packing, out.forwarding, schemes, a.verify ? &verify : nullptr, line, extra}, a.json);
+      {loaded, setup, a.mode, a.graph.outer, out.packing, out.forwarding, schemes, a.verify ? &verify : nullptr, line, extra}, a.json);
   std::string ports;
   for (const sim::WorkerReport& w : out.workers) ports += (ports.empty() ? "" : ", ") + std::to_string(w.port);
   if (!a.json)
@@ -172,6 +172,7 @@ int run_live(const LiveArgs& a) {
 Action add_live_command(CLI::App& app) {
   const auto c = add_command<LiveArgs>(app, live_help);
   add_graph_options(*c.cmd, c.args->graph, "graph", "Graph file (edge list, coords or planar_code) or scenario file (.yaml)");
+  add_outer_option(*c.cmd, c.args->graph);
   c.cmd->add_option("--processes,-P", c.args->processes, "Worker processes (each hosts a block of nodes)")
       ->check(CLI::Range(1, 256))->capture_default_str();
   c.cmd->add_option("--base-port", c.args->base_port, "Worker k binds 127.0.0.1:BASE+k (0: free ports)")

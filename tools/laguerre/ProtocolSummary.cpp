@@ -61,6 +61,8 @@ int print_protocol_summary(const ProtocolSummary& s, bool json) {
                           {"nodes", n},
                           {"edges", g.num_edges()},
                           {"kind", std::string(core::to_string(loaded.kind))},
+                          {"outer_rule", s.outer},
+                          {"removed_vertices", loaded.removed},
                           {"converged_nodes", converged},
                           {"local_condition_holds", holds},
                           {"iterations", steps},
@@ -130,6 +132,7 @@ int print_protocol_summary(const ProtocolSummary& s, bool json) {
   } else {
     std::printf("graph        %s: %zu nodes, %zu edges, %s\n", loaded.input.name.c_str(), n, g.num_edges(),
                 std::string(core::to_string(loaded.kind)).c_str());
+    std::fputs(removed_line(loaded.removed).c_str(), stdout);
     std::printf("protocol     %s after %u %s in %u rounds (N = %d); %zu/%zu nodes report %s\n",
                 converged == n ? "converged" : "did not converge", steps,
                 setup.asynchronous ? "iteration-equivalents (asynchronous)" : "iterations", rounds, setup.steps_per_round, holds, n,

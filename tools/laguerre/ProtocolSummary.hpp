@@ -19,6 +19,7 @@ struct ProtocolSummary {
   const LoadedGraph& loaded;                                 ///< the graph
   const scenarios::ProtocolSetup& setup;                     ///< how the protocol ran
   const std::string& mode;                                   ///< --mode, as given
+  const std::string& outer;                                  ///< --outer, as given
   const scenarios::ProtocolOutcome& po;                      ///< the packing run
   const std::vector<scenarios::ForwardingResult>& results;   ///< forwarding, one per scheme
   const std::vector<core::Scheme>& schemes;                  ///< the schemes asked for

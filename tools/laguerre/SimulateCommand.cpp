@@ -90,13 +90,15 @@ int run_simulate(const SimulateArgs& a) {
   const auto pairs = po.failed_nodes > 0 ? std::vector<std::pair<core::Vertex, core::Vertex>>{} : core::select_pairs(n, selection);
   const std::vector<scenarios::ForwardingResult> results =
       scenarios::run_forwarding(g, po.circles, loaded.input.positions, setup.link, a.seed, schemes, pairs);
-  return print_protocol_summary({loaded, setup, a.mode, po, results, schemes, a.verify ? &verify : nullptr, {}, {}}, a.json);
+  return print_protocol_summary(
+      {loaded, setup, a.mode, a.graph.outer, po, results, schemes, a.verify ? &verify : nullptr, {}, {}}, a.json);
 }
 }  // namespace
 
 Action add_simulate_command(CLI::App& app) {
   const auto c = add_command<SimulateArgs>(app, simulate_help);
   add_graph_options(*c.cmd, c.args->graph, "graph", "Graph file (edge list, coords or planar_code)");
+  add_outer_option(*c.cmd, c.args->graph);
   const std::string sync_name(core::name_of(scenarios::protocol_mode_names, scenarios::ProtocolMode::sync));
   const std::string async_name(core::name_of(scenarios::protocol_mode_names, scenarios::ProtocolMode::async));
   c.cmd->add_option("--mode", c.args->mode, "Protocol mode: sync (bit for bit with core::pack) or async (chaotic updates)")
