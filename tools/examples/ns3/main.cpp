@@ -15,7 +15,6 @@
 //
 // This file is C++20 and owns the laguerre nodes; Ns3Network.cpp (C++17) builds the ns-3 world.
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -269,22 +268,5 @@ int main(int argc, char** argv) {
   app.add_flag("--verify", a.verify, "Also run core::pack and check the nodes' circles are identical");
   app.add_flag("--json", a.json, "Machine-readable output (simulate's document with an \"ns3\" object)");
   app.add_flag("--compare-simulator", a.compare, "Also run laguerre's simulator (sync mode) and check the results are identical");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int status = app.exit(e);
-    return e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success) ? status : 2;
-  }
-  try {
-    return run(a);
-  } catch (const lc::InputError& e) {
-    std::cerr << "ns3_example: " << e.what() << '\n';
-    return 2;
-  } catch (const lc::InternalError& e) {
-    std::cerr << "ns3_example: internal error (please report): " << e.what() << '\n';
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "ns3_example: error: " << e.what() << '\n';
-    return 1;
-  }
+  return lt::run_program(app, argc, argv, "ns3_example", [&] { return run(a); });
 }
