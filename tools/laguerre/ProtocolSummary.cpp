@@ -125,7 +125,7 @@ int print_protocol_summary(const ProtocolSummary& s, bool json) {
       }
       doc["outages"] = outages;
     }
-    if (!s.extra.is_null()) doc.update(s.extra);  // null (no extra) would throw
+    if (s.extra.is_object()) doc.update(s.extra);
     std::cout << doc.dump(1) << '\n';
   } else {
     std::printf("graph        %s: %zu nodes, %zu edges, %s\n", loaded.input.name.c_str(), n, g.num_edges(),
