@@ -116,9 +116,15 @@ TimerHandle NodeApplication::schedule(Duration after, TimerId timer) {
 
 bool NodeApplication::cancel(TimerHandle handle) {
   const auto it = timers_.find(handle);
-  if (it == timers_.end()) return false;
-  it->second.Cancel();
-  timers_.erase(it);
+  if (it != timers_.end()) {
+    it->second.Cancel();
+    timers_.erase(it);
+    return true;
+  }
+  // Fired but not yet handed to the node (queued behind other input): still pending for the node.
+  const auto queued = std::find_if(inbox_.begin(), inbox_.end(), [&](const Input& in) { return in.is_timer && in.handle == handle; });
+  if (queued == inbox_.end()) return false;
+  inbox_.erase(queued);
   return true;
 }
 
@@ -160,6 +166,7 @@ void NodeApplication::fire(TimerHandle handle, TimerId timer) {
   Input in;
   in.is_timer = true;
   in.timer = timer;
+  in.handle = handle;
   inbox_.push_back(std::move(in));
   dispatch();
 }

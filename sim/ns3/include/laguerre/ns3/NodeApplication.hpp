@@ -68,6 +68,7 @@ private:
     bool is_timer = false;
     NodeId from = 0;
     TimerId timer = 0;
+    TimerHandle handle = 0;  // a timer's, so that cancel can still withdraw it from the queue
     std::vector<std::byte> bytes;
   };
 
