@@ -168,8 +168,7 @@ LiveOutcome run_live(const core::PlanarGraph& g, const std::vector<core::Point2>
     protocols::enable_lossy_links(params, live.assumed_latency);
     if (setup.retransmit_after) params.retransmit_after = std::max<sim::Duration>(1, *setup.retransmit_after);
     params.adaptive_rto = setup.adaptive_rto;
-    reliable = protocols::lossy_link_params(live.assumed_latency);
-    reliable->probes = false;  // as run_forwarding: an idle forwarder has nothing to watch
+    reliable = forwarding_reliable_params(live.assumed_latency);
   }
   out.retransmit_after = params.retransmit_after;
   out.adaptive_rto = params.adaptive_rto;

@@ -81,13 +81,51 @@ std::vector<std::vector<std::uint32_t>> hop_distances_from_sources(
   return dist;
 }
 
-namespace {
-class Collector : public protocols::PacketSink {
-public:
-  void on_packet_end(const protocols::PacketReport& r) override { reports.push_back(r); }
-  std::vector<protocols::PacketReport> reports;
-};
-}  // namespace
+void collect_packing_nodes(const core::PlanarGraph& g,
+                           const std::function<const protocols::PackingNode&(core::Vertex)>& node_of,
+                           const std::vector<bool>& down, ProtocolOutcome& out) {
+  const std::size_t n = g.num_vertices();
+  out.circles.resize(n);
+  out.local.resize(n);
+  for (core::Vertex v = 0; v < n; ++v) {
+    const protocols::PackingNode& node = node_of(v);
+    out.circles[v] = node.placement().circle;
+    out.local[v] = node.local_condition();
+    out.converged_nodes += node.outcome() == protocols::PackingOutcome::converged;
+    out.holds_nodes += node.local_condition() == core::LocalCondition::holds;
+    out.iterations = std::max(out.iterations, node.steps());
+    out.rounds = std::max(out.rounds, node.round());
+    out.reliability += node.counters();
+    if (node.finished_at() >= 0) out.finished_at = std::max(out.finished_at, node.finished_at());
+    // A node down for good is no survivor; a node that came back counts as one.
+    if (!down.empty() && down[v]) {
+      ++out.crashed_nodes;
+      continue;
+    }
+    if (node.outcome() == protocols::PackingOutcome::neighbour_failed) {
+      ++out.failed_nodes;
+      ++out.suspects[node.suspect()];
+    }
+  }
+  for (OutageOutcome& o : out.outages) {
+    const protocols::PackingNode& node = node_of(o.node);
+    o.outcome = node.outcome();
+    o.final = node.is_final();
+  }
+}
+
+void collect_traffic(const sim::TrafficMetrics& traffic, ProtocolOutcome& out) {
+  const sim::TrafficCounters total = traffic.total();
+  out.messages = total.messages_sent;
+  out.bytes = total.bytes_sent;
+  for (std::size_t v = 0; v < traffic.node_count(); ++v) {
+    const auto t = traffic.node_total(static_cast<std::uint32_t>(v));
+    out.max_node_messages = std::max(out.max_node_messages, t.messages_sent);
+    out.max_node_bytes = std::max(out.max_node_bytes, t.bytes_sent);
+  }
+  out.by_phase.clear();
+  for (std::size_t p = 0; p < traffic.phase_count(); ++p) out.by_phase.push_back(traffic.phase_total(static_cast<sim::Phase>(p)));
+}
 
 ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
                                      const ProtocolSetup& setup) {
@@ -126,44 +164,10 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
       },
       traffic_phase);
   const sim::RunReport report = host.run();
-
-  out.circles.resize(n);
-  out.local.resize(n);
-  for (core::Vertex v = 0; v < n; ++v) {
-    const auto& node = static_cast<const protocols::PackingNode&>(host.node(v));
-    out.circles[v] = node.placement().circle;
-    out.local[v] = node.local_condition();
-    out.converged_nodes += node.outcome() == protocols::PackingOutcome::converged;
-    out.holds_nodes += node.local_condition() == core::LocalCondition::holds;
-    out.iterations = std::max(out.iterations, node.steps());
-    out.rounds = std::max(out.rounds, node.round());
-    out.reliability += node.counters();
-    if (node.finished_at() >= 0) out.finished_at = std::max(out.finished_at, node.finished_at());
-    // A node down for good is no survivor; a node that came back counts as one.
-    if (down[v]) {
-      ++out.crashed_nodes;
-      continue;
-    }
-    if (node.outcome() == protocols::PackingOutcome::neighbour_failed) {
-      ++out.failed_nodes;
-      ++out.suspects[node.suspect()];
-    }
-  }
-  for (OutageOutcome& o : out.outages) {
-    const auto& node = static_cast<const protocols::PackingNode&>(host.node(o.node));
-    o.outcome = node.outcome();
-    o.final = node.is_final();
-  }
-  const auto& traffic = host.simulator().traffic();
-  const sim::TrafficCounters total = traffic.total();
-  out.messages = total.messages_sent;
-  out.bytes = total.bytes_sent;
-  for (sim::NodeIndex v = 0; v < n; ++v) {
-    const auto t = traffic.node_total(v);
-    out.max_node_messages = std::max(out.max_node_messages, t.messages_sent);
-    out.max_node_bytes = std::max(out.max_node_bytes, t.bytes_sent);
-  }
-  for (std::size_t p = 0; p < traffic.phase_count(); ++p) out.by_phase.push_back(traffic.phase_total(static_cast<sim::Phase>(p)));
+  collect_packing_nodes(
+      g, [&](core::Vertex v) -> const protocols::PackingNode& { return static_cast<const protocols::PackingNode&>(host.node(v)); },
+      down, out);
+  collect_traffic(host.simulator().traffic(), out);
   out.simulated_time = report.simulated_time;
   out.wall_seconds = report.wall_seconds;
   out.events = report.events_processed;
@@ -248,9 +252,16 @@ ForwardingResult summarize_forwarding(core::Scheme scheme, const std::vector<std
   ForwardingResult res;
   res.scheme = scheme;
   res.packets = pairs.size();
+  // In packet order, not in the order the packets ended: the sums (hence the means, to the last bit)
+  // depend on the packets' outcomes only, not on the host's timing.
+  std::vector<const protocols::PacketReport*> by_packet;
+  by_packet.reserve(reports.size());
+  for (const auto& r : reports) by_packet.push_back(&r);
+  std::sort(by_packet.begin(), by_packet.end(), [](const auto* a, const auto* b) { return a->packet < b->packet; });
   std::vector<double> stretch;
   double hops = 0;
-  for (const auto& r : reports) {
+  for (const protocols::PacketReport* report : by_packet) {
+    const protocols::PacketReport& r = *report;
     switch (r.outcome) {
       case protocols::PacketOutcome::delivered: {
         ++res.delivered;
@@ -276,6 +287,12 @@ ForwardingResult summarize_forwarding(core::Scheme scheme, const std::vector<std
   return res;
 }
 
+protocols::ReliableParams forwarding_reliable_params(sim::Duration max_latency) {
+  protocols::ReliableParams reliable = protocols::lossy_link_params(max_latency);
+  reliable.probes = false;
+  return reliable;
+}
+
 std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
                                              const std::vector<core::Point2>& positions, const sim::LinkModel& link,
                                              std::uint64_t seed, const std::vector<core::Scheme>& schemes,
@@ -284,19 +301,15 @@ std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const c
   const std::vector<core::Point2> pos = forwarding_positions(circles, positions);
   const std::vector<std::vector<std::uint32_t>> hop_distance = hop_distances_from_sources(g, pairs);
   // On lossy links every node runs the reliability layer under its forwarding node: each hop is
-  // delivered exactly once, so the packets take core::route's paths. No probes: an idle forwarder has
-  // nothing to watch, and the queue drains once every packet has arrived and been acknowledged.
+  // delivered exactly once, so the packets take core::route's paths.
   const bool lossy = link.loss > 0 || link.duplication > 0;
   std::optional<protocols::ReliableParams> reliable;
-  if (lossy) {
-    reliable = protocols::lossy_link_params(max_latency(make_network(g, positions, link), link));
-    reliable->probes = false;
-  }
+  if (lossy) reliable = forwarding_reliable_params(max_latency(make_network(g, positions, link), link));
   sim::SimConfig config;
   config.seed = seed;
   std::vector<ForwardingResult> results;
   for (const core::Scheme scheme : schemes) {
-    Collector sink;
+    PacketCollector sink;
     sim::SimHost fwd(
         make_network(g, positions, link), config,
         [&](protocols::Runtime& rt, sim::NodeIndex v) {

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <filesystem>
+#include <iostream>
 
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/InputFile.hpp"
@@ -72,6 +73,28 @@ CLI::Option* add_acceleration_option(CLI::App& cmd, std::string& value) {
   return add_choice(cmd, "--accelerate", value, core::acceleration_names,
                     "Sweep acceleration: plain, superstep (Collins-Stephenson), anderson, or newton (damped Newton steps "
                     "on the angle sums instead of sweeps; an iteration is then a Newton step)");
+}
+
+int run_program(CLI::App& app, int argc, char** argv, const char* program, const std::function<int()>& action) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11's message, then the documented status: 0 for --help and --version, 2 for bad input.
+    const int status = app.exit(e);
+    return e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success) ? status : 2;
+  }
+  try {
+    return action();
+  } catch (const core::InputError& e) {  // every bad-input error (core/Error.hpp, tier 1)
+    std::cerr << program << ": " << e.what() << '\n';
+    return 2;
+  } catch (const core::InternalError& e) {  // a broken precondition or invariant: a bug (tier 2)
+    std::cerr << program << ": internal error (please report): " << e.what() << '\n';
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << program << ": error: " << e.what() << '\n';
+    return 1;
+  }
 }
 
 CLI::Validator seed_validator() {

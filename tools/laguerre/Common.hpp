@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -89,6 +90,12 @@ CLI::Option* add_choice(CLI::App& cmd, const std::string& name, std::string& val
 
 /// --accelerate (core::acceleration_names), as `pack` and `thesis-table` offer it.
 CLI::Option* add_acceleration_option(CLI::App& cmd, std::string& value);
+
+/// Parses `argv` into `app`, then runs `action`, with the documented exit statuses: CLI11's message
+/// and 2 for bad options (0 for --help and --version), "PROGRAM: message" on stderr and 2 for bad
+/// input (core::InputError), 1 for a bug (core::InternalError) or any other exception; otherwise
+/// what `action` returns.
+int run_program(CLI::App& app, int argc, char** argv, const char* program, const std::function<int()>& action);
 
 /// A validator for --seed: an integer in [0, 2^64 − 1], written in decimal without a sign (as the
 /// scenario key seed).

@@ -1,11 +1,8 @@
 // The `laguerre` command-line program: one executable, one subcommand per task.
 #include <CLI/CLI.hpp>
 
-#include <exception>
-#include <iostream>
-
 #include "Commands.hpp"
-#include "laguerre/core/Error.hpp"
+#include "Common.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"laguerre — greedy power routing over circle packings (Wormser 2008, Part IV).\n"
@@ -23,14 +20,7 @@ int main(int argc, char** argv) {
   Action compare = add_compare_command(app);
   Action diagram = add_diagram_command(app);
   Action mesh = add_mesh_command(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    // CLI11's message, then the documented status: 0 for --help and --version, 2 for bad input.
-    const int status = app.exit(e);
-    return e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success) ? status : 2;
-  }
-  try {
+  return run_program(app, argc, argv, "laguerre", [&] {
     if (app.got_subcommand("pack")) return pack();
     if (app.got_subcommand("route")) return route();
     if (app.got_subcommand("thesis-table")) return table();
@@ -41,15 +31,6 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("compare")) return compare();
     if (app.got_subcommand("diagram")) return diagram();
     if (app.got_subcommand("mesh")) return mesh();
-  } catch (const laguerre::core::InputError& e) {  // every bad-input error (core/Error.hpp, tier 1)
-    std::cerr << "laguerre: " << e.what() << '\n';
-    return 2;
-  } catch (const laguerre::core::InternalError& e) {  // a broken precondition or invariant: a bug (tier 2)
-    std::cerr << "laguerre: internal error (please report): " << e.what() << '\n';
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "laguerre: error: " << e.what() << '\n';
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

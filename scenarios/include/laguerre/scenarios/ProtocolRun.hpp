@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <map>
@@ -105,6 +106,18 @@ sim::Phase traffic_phase(std::span<const std::byte> bytes);
 /// The packing nodes' parameters for `setup` (the reliability layer still off).
 protocols::PackingParams packing_params(const ProtocolSetup& setup);
 
+/// Fills the per-node fields of `out` (circles, local, converged/holds/failed/crashed counts,
+/// suspects, iterations, rounds, reliability, finished_at, and the outcomes of `out.outages`) from
+/// the nodes of a finished run, whatever hosted them: `node_of(v)` is vertex v's node, `down[v]`
+/// whether v was down for good (empty: no node was).
+void collect_packing_nodes(const core::PlanarGraph& g,
+                           const std::function<const protocols::PackingNode&(core::Vertex)>& node_of,
+                           const std::vector<bool>& down, ProtocolOutcome& out);
+
+/// Fills the traffic fields of `out` (messages, bytes, per-node maxima, by_phase) from `traffic`
+/// (indexed by vertex and traffic_phase).
+void collect_traffic(const sim::TrafficMetrics& traffic, ProtocolOutcome& out);
+
 /// Runs the protocol on `g` (prepared for packing). Throws core::InputError if an outage names an
 /// unknown node (source "crash ID@TIME") or a distance latency is used without positions.
 ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
@@ -160,10 +173,25 @@ std::vector<std::vector<std::uint32_t>> hop_distances_from_sources(
     const core::PlanarGraph& g, const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs);
 
 /// One scheme's result from the end reports of its packets (ids = indices into `pairs`, any order),
-/// with hop stretch against `hop_distance` (hop_distances_from_sources); timing fields left 0.
+/// with hop stretch against `hop_distance` (hop_distances_from_sources); timing fields left 0. The
+/// reports are summed in packet order, so the same outcomes give the same means to the last bit,
+/// whatever order the packets ended in.
 ForwardingResult summarize_forwarding(core::Scheme scheme, const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs,
                                       const std::vector<std::vector<std::uint32_t>>& hop_distance,
                                       const std::vector<protocols::PacketReport>& reports);
+
+/// The reliability layer under forwarding nodes on lossy links of one-way latency at most
+/// `max_latency` ns: protocols::lossy_link_params without probes (an idle forwarder has nothing to
+/// watch, and the queue drains once every packet has arrived and been acknowledged).
+protocols::ReliableParams forwarding_reliable_params(sim::Duration max_latency);
+
+/// A PacketSink that keeps every report.
+class PacketCollector : public protocols::PacketSink {
+public:
+  /// Appends `r` to `reports`.
+  void on_packet_end(const protocols::PacketReport& r) override { reports.push_back(r); }
+  std::vector<protocols::PacketReport> reports;  ///< in the order the packets ended
+};
 
 /// Forwards one packet per pair in `pairs` hop by hop, one simulation per scheme, over the links of
 /// `link` and the simulator seeded with `seed`; on lossy or duplicating links every forwarding node
