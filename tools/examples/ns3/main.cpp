@@ -236,7 +236,7 @@ int run(const Args& a) {
     ok = ok && diff.empty();
   }
   const int status = lt::print_protocol_summary(
-      {loaded, setup, "sync", po, results, schemes, a.verify ? &verify : nullptr, "", {{"ns3", ns3}}}, a.json);
+      {loaded, setup, "sync", a.graph.outer, po, results, schemes, a.verify ? &verify : nullptr, "", {{"ns3", ns3}}}, a.json);
   if (!a.json)
     for (const std::string& line : lines) std::printf("%s\n", line.c_str());
   if (status != 0) return status;
@@ -250,6 +250,7 @@ int main(int argc, char** argv) {
                "(README, \"Embedding laguerre in another simulator\")."};
   Args a;
   lt::add_graph_options(app, a.graph, "graph", "Graph file (edge list, coords or planar_code)");
+  lt::add_outer_option(app, a.graph);
   app.add_option("--link", a.link, "point-to-point (one link per edge) or wifi (one ad-hoc channel)")
       ->check(CLI::IsMember({"point-to-point", "wifi"}))
       ->capture_default_str();
