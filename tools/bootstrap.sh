@@ -28,6 +28,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev  # scenario files, CLI, JSON output
   libcairo2-dev                               # pictures (SVG, PNG)
   libgtest-dev libgmock-dev libbenchmark-dev  # tests and benchmarks
+  libopenmpi-dev openmpi-bin libmetis-dev     # the parallel kernel over MPI, its partitions (sim/mpi)
 )
 missing=()
 for p in "${packages[@]}"; do
