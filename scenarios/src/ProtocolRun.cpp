@@ -2,7 +2,9 @@
 #include "laguerre/scenarios/ProtocolRun.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <memory>
+#include <type_traits>
 
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/packing/Packer.hpp"
@@ -120,36 +122,58 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
         return std::make_unique<protocols::PackingNode>(rt, protocols::local_knowledge(g, v), params);
       },
       phase_of);
-  const sim::RunReport report = host.run();
+  // The nodes' results, read where each node lives (every node here, or its MPI rank's).
+  sim::InPlaceRunner in_place;
+  sim::HostRunner& runner = setup.runner != nullptr ? *setup.runner : in_place;
+  const sim::RunReport report = runner.run(host, {});
+  struct Summary {
+    core::Circle circle;
+    core::LocalCondition local;
+    protocols::PackingOutcome outcome;
+    bool final;
+    std::uint32_t steps, round;
+    protocols::PackingCounters counters;
+    protocols::Time finished_at;
+    protocols::NodeId suspect;
+  };
+  static_assert(std::is_trivially_copyable_v<Summary>);
+  const std::vector<std::vector<std::byte>> described = runner.gather([&](sim::NodeIndex v) {
+    const auto& node = static_cast<const protocols::PackingNode&>(host.node(v));
+    const Summary s{node.placement().circle, node.local_condition(), node.outcome(), node.is_final(), node.steps(),
+                    node.round(), node.counters(), node.finished_at(), node.suspect()};
+    const auto* p = reinterpret_cast<const std::byte*>(&s);
+    return std::vector<std::byte>(p, p + sizeof s);
+  });
+  std::vector<Summary> nodes(n);
+  for (core::Vertex v = 0; v < n; ++v) std::memcpy(&nodes[v], described[v].data(), sizeof(Summary));
 
   out.circles.resize(n);
   out.local.resize(n);
   for (core::Vertex v = 0; v < n; ++v) {
-    const auto& node = static_cast<const protocols::PackingNode&>(host.node(v));
-    out.circles[v] = node.placement().circle;
-    out.local[v] = node.local_condition();
-    out.converged_nodes += node.outcome() == protocols::PackingOutcome::converged;
-    out.holds_nodes += node.local_condition() == core::LocalCondition::holds;
-    out.iterations = std::max(out.iterations, node.steps());
-    out.rounds = std::max(out.rounds, node.round());
-    out.reliability += node.counters();
-    if (node.finished_at() >= 0) out.finished_at = std::max(out.finished_at, node.finished_at());
+    const Summary& node = nodes[v];
+    out.circles[v] = node.circle;
+    out.local[v] = node.local;
+    out.converged_nodes += node.outcome == protocols::PackingOutcome::converged;
+    out.holds_nodes += node.local == core::LocalCondition::holds;
+    out.iterations = std::max(out.iterations, node.steps);
+    out.rounds = std::max(out.rounds, node.round);
+    out.reliability += node.counters;
+    if (node.finished_at >= 0) out.finished_at = std::max(out.finished_at, node.finished_at);
     // A node down for good is no survivor; a node that came back counts as one.
     if (down[v]) {
       ++out.crashed_nodes;
       continue;
     }
-    if (node.outcome() == protocols::PackingOutcome::neighbour_failed) {
+    if (node.outcome == protocols::PackingOutcome::neighbour_failed) {
       ++out.failed_nodes;
-      ++out.suspects[node.suspect()];
+      ++out.suspects[node.suspect];
     }
   }
   for (OutageOutcome& o : out.outages) {
-    const auto& node = static_cast<const protocols::PackingNode&>(host.node(o.node));
-    o.outcome = node.outcome();
-    o.final = node.is_final();
+    o.outcome = nodes[o.node].outcome;
+    o.final = nodes[o.node].final;
   }
-  const auto& traffic = host.simulator().traffic();
+  const auto& traffic = runner.traffic();
   const sim::TrafficCounters total = traffic.total();
   out.messages = total.messages_sent;
   out.bytes = total.bytes_sent;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "Commands.hpp"
+#include "Parallel.hpp"
 #include "Common.hpp"
 #include "laguerre/core/packing/PackingNames.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
@@ -80,6 +81,7 @@ scenarios::ProtocolSetup setup_of(const SimulateArgs& a) {
   if (!a.retransmit_after.empty()) setup.retransmit_after = scenarios::parse_duration(a.retransmit_after, "--retransmit-after");
   setup.adaptive_rto = !a.fixed_rto;
   setup.seed = a.seed;
+  setup.runner = host_runner();  // the MPI kernel under mpirun (same results)
   return setup;
 }
 
@@ -169,6 +171,7 @@ int run_simulate(const SimulateArgs& a) {
                           {"simulated_seconds", r.simulated_seconds}});
     doc["forwarding"] = fwd_json;
     if (a.verify) doc["verify"] = verify;
+    if (mpi_ranks() > 1) doc["mpi_ranks"] = mpi_ranks();  // the protocol ran on the parallel kernel
     if (lossy) {
       doc["reliability"] = {{"frames", rel.frames},
                             {"retransmissions", rel.retransmissions},

@@ -5,9 +5,11 @@
 #include <iostream>
 
 #include "Commands.hpp"
+#include "Parallel.hpp"
 #include "laguerre/core/Error.hpp"
 
 int main(int argc, char** argv) {
+  laguerre::tools::ParallelContext parallel(argc, argv);
   CLI::App app{"laguerre — greedy power routing over circle packings (Wormser 2008, Part IV).\n"
                "Run `laguerre COMMAND --help` for the options of a command."};
   app.require_subcommand(1);
@@ -28,6 +30,11 @@ int main(int argc, char** argv) {
     // CLI11's message, then the documented status: 0 for --help and --version, 2 for bad input.
     const int status = app.exit(e);
     return e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success) ? status : 2;
+  }
+  if (parallel.ranks() > 1 && !app.got_subcommand("simulate")) {
+    std::cerr << "laguerre: only 'simulate' runs across MPI ranks so far; run '" << app.get_subcommands().front()->get_name()
+              << "' without mpirun (or with -np 1)\n";
+    return 2;
   }
   try {
     if (app.got_subcommand("pack")) return pack();

@@ -357,8 +357,8 @@ ParallelReport ParallelRun::run(const RunLimits& limits) {
   const std::size_t nodes = sim_.network().node_count();
   std::uint64_t phases = sim_.traffic().phase_count(), all_phases = 0;
   check(MPI_Allreduce(&phases, &all_phases, 1, MPI_UINT64_T, MPI_MAX, comm_), "MPI_Allreduce");
-  report.traffic = TrafficMetrics(rank_ == 0 ? nodes : 0);
-  std::vector<std::uint64_t> table(nodes * counter_fields), sum(rank_ == 0 ? nodes * counter_fields : 0);
+  report.traffic = TrafficMetrics(nodes);
+  std::vector<std::uint64_t> table(nodes * counter_fields), sum(nodes * counter_fields);
   constexpr std::size_t chunk = std::size_t{1} << 26;
   for (std::uint64_t p = 0; p < all_phases; ++p) {
     const auto phase = static_cast<Phase>(p);
@@ -368,14 +368,10 @@ ParallelReport ParallelRun::run(const RunLimits& limits) {
     }
     for (std::size_t at = 0; at < table.size(); at += chunk) {
       const int count = static_cast<int>(std::min(chunk, table.size() - at));
-      check(MPI_Reduce(table.data() + at, rank_ == 0 ? sum.data() + at : nullptr, count, MPI_UINT64_T, MPI_SUM, 0,
-                       comm_),
-            "MPI_Reduce");
+      check(MPI_Allreduce(table.data() + at, sum.data() + at, count, MPI_UINT64_T, MPI_SUM, comm_), "MPI_Allreduce");
     }
-    if (rank_ == 0) {
-      report.traffic.at(0, phase);  // creates the phase even if node 0 never used it
-      for (NodeIndex v = 0; v < nodes; ++v) report.traffic.at(v, phase) = counters_of(sum.data() + v * counter_fields);
-    }
+    report.traffic.at(0, phase);  // creates the phase even if node 0 never used it
+    for (NodeIndex v = 0; v < nodes; ++v) report.traffic.at(v, phase) = counters_of(sum.data() + v * counter_fields);
   }
   report.run.wall_seconds = seconds_since(start);
   report.run.events_per_second =
@@ -396,18 +392,16 @@ std::vector<std::vector<std::byte>> ParallelRun::gather_nodes(
   const auto n = static_cast<std::size_t>(size_);
   const int count = to_int_count(mine.size(), "node descriptions of one rank");
   std::vector<int> counts(n), displs(n);
-  check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_), "MPI_Gather");
+  check(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_), "MPI_Allgather");
   std::size_t total = 0;
   for (std::size_t r = 0; r < n; ++r) {
     displs[r] = to_int_count(total, "node descriptions");
     total += static_cast<std::size_t>(counts[r]);
   }
-  std::vector<std::byte> all(rank_ == 0 ? total : 0);
-  check(MPI_Gatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, 0, comm_),
-        "MPI_Gatherv");
-  std::vector<std::vector<std::byte>> result;
-  if (rank_ != 0) return result;
-  result.resize(owner_.size());
+  std::vector<std::byte> all(total);
+  check(MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, comm_),
+        "MPI_Allgatherv");
+  std::vector<std::vector<std::byte>> result(owner_.size());
   const std::byte* p = all.data();
   const std::byte* end = p + all.size();
   while (p < end) {
@@ -417,6 +411,22 @@ std::vector<std::vector<std::byte>> ParallelRun::gather_nodes(
     p += size;
   }
   return result;
+}
+
+}  // namespace laguerre::sim::mpi
+
+namespace laguerre::sim::mpi {
+
+MpiHostRunner::MpiHostRunner(MPI_Comm comm) : comm_(comm) { check(MPI_Comm_rank(comm_, &rank_), "MPI_Comm_rank"); }
+
+MpiHostRunner::~MpiHostRunner() = default;
+
+RunReport MpiHostRunner::run(SimHost& host, const RunLimits& limits) {
+  int size = 1;
+  check(MPI_Comm_size(comm_, &size), "MPI_Comm_size");
+  run_ = std::make_unique<ParallelRun>(host.simulator(), metis_partition(host.simulator().network(), size), comm_);
+  report_ = run_->run(limits);
+  return report_.run;
 }
 
 }  // namespace laguerre::sim::mpi

@@ -6,6 +6,7 @@
 // window exchange, timed over 200 rounds) and the coupling factor λ = L·E/(τ·P) with
 // E = events per simulated second and P = events per wall second of one rank.
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -108,7 +109,7 @@ int main(int argc, char** argv) {
   const double L = static_cast<double>(r.lookahead) * 1e-9;
   const double E = static_cast<double>(r.run.events_processed) / (static_cast<double>(r.run.simulated_time) * 1e-9);
   const double P = static_cast<double>(r.run.events_processed) / static_cast<double>(ranks) / event_s;
-  const double lambda = L * E / (tau * P);
+  const double lambda = r.lookahead == time_max ? INFINITY : L * E / (tau * P);  // nothing cut: no coupling
   std::printf("mode=parallel ranks=%d nodes=%zu events=%llu wall_s=%.3f events_per_s=%.0f windows=%llu "
               "copies_per_window=%.1f bytes_per_window=%.0f event_s=%.3f sync_s=%.3f partition_s=%.3f "
               "peak_mb_per_rank=%s lookahead_ns=%lld cut_links=%llu tau_us=%.1f lambda=%.1f trace=%016llx\n",

@@ -27,6 +27,7 @@
 #include "laguerre/protocols/Reliable.hpp"
 #include "laguerre/protocols/Runtime.hpp"
 #include "laguerre/scenarios/NetworkModel.hpp"
+#include "laguerre/sim/HostRunner.hpp"
 #include "laguerre/sim/Link.hpp"
 #include "laguerre/sim/Metrics.hpp"
 #include "laguerre/sim/Network.hpp"
@@ -44,6 +45,7 @@ struct ProtocolSetup {
   std::optional<sim::Duration> retransmit_after;  ///< explicit reliability period (else 3 × longest latency)
   bool adaptive_rto = true;                     ///< false: the timeout stays at the period (no RTT estimation)
   std::uint64_t seed = 1;                       ///< root of the simulator's random streams
+  sim::HostRunner* runner = nullptr;            ///< how the simulation runs (nullptr: in this process)
   /// Whether the reliability layer runs: loss, duplication, outages or an explicit period.
   bool lossy() const {
     return link.loss > 0 || link.duplication > 0 || !crashes.empty() || retransmit_after.has_value();

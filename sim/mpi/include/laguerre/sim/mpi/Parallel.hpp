@@ -52,7 +52,7 @@ std::vector<int> metis_partition(const Network& network, int parts);
 /// there is none). Requires owner.size() == node_count().
 Duration cut_lookahead(const Network& network, std::span<const int> owner);
 
-/// What a parallel run measured, and its merged results (these on rank 0 only).
+/// What a parallel run measured (per-rank figures on rank 0), and its merged results.
 struct ParallelReport {
   RunReport run;                  ///< as Simulator::run's: events summed, end time, wall time
   int ranks = 1;                  ///< MPI ranks
@@ -67,10 +67,10 @@ struct ParallelReport {
   std::vector<double> event_seconds;          ///< wall time inside Simulator::run
   std::vector<double> sync_seconds;           ///< wall time in the exchanges and reductions
   std::vector<std::uint64_t> peak_memory_bytes;  ///< peak resident set size
-  // Merged results, rank 0 only:
-  Trace trace;                    ///< the delivered copies in the sequential order (the config's mode)
-  TrafficMetrics traffic;         ///< every node's counters
-  std::uint64_t timers_dropped = 0;  ///< summed over ranks
+  // Merged results:
+  Trace trace;                    ///< rank 0: the delivered copies in the sequential order (the config's mode)
+  TrafficMetrics traffic;         ///< every rank: every node's counters
+  std::uint64_t timers_dropped = 0;  ///< every rank: summed over ranks
 };
 
 /// Drives one rank's part of a partitioned run. Every rank of `comm` constructs one, with the same
@@ -87,13 +87,13 @@ public:
   ParallelRun& operator=(const ParallelRun&) = delete;
 
   /// Runs windows until no event is left anywhere or the next one lies after limits.until; returns
-  /// the report (merged results on rank 0). An exception in a handler on one rank is rethrown there
+  /// the report. An exception in a handler on one rank is rethrown there
   /// and reported as core::InternalError on the others, after the window (no rank hangs). Throws
   /// core::InternalError (a broken precondition) for a finite max_events or after request_stop.
   ParallelReport run(const RunLimits& limits = {});
 
-  /// Gathers per-node bytes on rank 0: result[v] = describe(v) evaluated on v's owner (empty on
-  /// other ranks). For comparing protocol results node by node.
+  /// Gathers per-node bytes on every rank: result[v] = describe(v) evaluated on v's owner. For
+  /// reading protocol results node by node.
   std::vector<std::vector<std::byte>> gather_nodes(
       const std::function<std::vector<std::byte>(NodeIndex)>& describe) const;
 
@@ -124,6 +124,35 @@ private:
   double sync_seconds_ = 0;
   double event_seconds_ = 0;
   std::uint64_t events_ = 0;
+};
+
+}  // namespace laguerre::sim::mpi
+
+#include <memory>
+
+#include "laguerre/sim/HostRunner.hpp"
+
+namespace laguerre::sim::mpi {
+
+/// The parallel HostRunner: each run partitions the host's network with METIS over `comm`, runs
+/// it with a ParallelRun, and keeps the merged traffic; rank 0 is the root.
+class MpiHostRunner final : public HostRunner {
+public:
+  /// A runner over `comm` (every rank must make the same calls).
+  explicit MpiHostRunner(MPI_Comm comm = MPI_COMM_WORLD);
+  ~MpiHostRunner() override;
+  RunReport run(SimHost& host, const RunLimits& limits) override;
+  const TrafficMetrics& traffic() const override { return report_.traffic; }
+  std::vector<std::vector<std::byte>> gather(const Describe& describe) override { return run_->gather_nodes(describe); }
+  bool is_root() const override { return rank_ == 0; }
+  /// The last run's report (merged results on rank 0).
+  const ParallelReport& report() const { return report_; }
+
+private:
+  MPI_Comm comm_;
+  int rank_ = 0;
+  std::unique_ptr<ParallelRun> run_;
+  ParallelReport report_;
 };
 
 }  // namespace laguerre::sim::mpi
