@@ -11,6 +11,8 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
@@ -198,6 +200,52 @@ TEST(ParallelPhold, AnEventBudgetIsRefused) {
   Simulator part(torus(4, phold_links()), SimConfig{.seed = 1}, model);
   ParallelRun run(part, split(part.network(), Split::metis));
   EXPECT_THROW(run.run({.max_events = 10}), core::InternalError);
+}
+
+/// PHOLD whose node 5 throws at its 3rd message (or asks the run to stop, with `stop`).
+struct Faulty final : NodeHandler {
+  Phold inner;
+  bool stop;
+  int seen = 0;
+  Faulty(std::size_t n, bool s) : inner(n), stop(s) {}
+  void on_start(Simulator& sim, NodeIndex v) override { inner.on_start(sim, v); }
+  void on_timer(Simulator&, NodeIndex, std::uint64_t) override {}
+  void on_message(Simulator& sim, NodeIndex v, NodeIndex from, Phase phase, std::span<const std::byte> b) override {
+    if (v == 5 && ++seen == 3) {
+      if (stop) {
+        sim.request_stop();
+      } else {
+        throw std::runtime_error("node 5 failed");
+      }
+    }
+    inner.on_message(sim, v, from, phase, b);
+  }
+};
+
+TEST(ParallelPhold, AFailingHandlerStopsEveryRankWithoutAHang) {
+  for (const bool stop : {false, true}) {
+    Faulty model(36, stop);
+    Simulator part(torus(6, phold_links()), SimConfig{.seed = 2}, model);
+    const std::vector<int> owner = split(part.network(), Split::round_robin);
+    ParallelRun run(part, owner);
+    try {
+      run.run({.until = seconds(60)});
+      FAIL() << "the failure was not reported";
+    } catch (const core::InternalError& e) {
+      // The owner of node 5 reports its own error (a refused request_stop is a precondition); the
+      // others that another rank failed.
+      if (owner[5] != world_rank()) {
+        EXPECT_NE(std::string(e.what()).find("another MPI rank failed"), std::string::npos) << e.what();
+      } else {
+        EXPECT_TRUE(stop) << e.what();
+        EXPECT_NE(std::string(e.what()).find("request_stop"), std::string::npos) << e.what();
+      }
+    } catch (const std::runtime_error& e) {
+      EXPECT_FALSE(stop);
+      EXPECT_EQ(owner[5], world_rank());
+      EXPECT_STREQ(e.what(), "node 5 failed");
+    }
+  }
 }
 
 // --- A timer-driven gossip: timers (set and cancelled), broadcasts, phases, loss, duplication,

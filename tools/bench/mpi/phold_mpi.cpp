@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,13 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
+/// Seconds of CPU time this process used so far (the machine may be shared).
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 /// Wall seconds of one empty window exchange (Alltoall of the header + empty Alltoallv), averaged.
 double exchange_latency(int ranks) {
   std::vector<std::int64_t> send(4 * static_cast<std::size_t>(ranks)), recv(send.size());
@@ -85,10 +93,13 @@ int main(int argc, char** argv) {
       if (rank == 0) std::fprintf(stderr, "phold_mpi: --sequential 1 runs on one rank\n");
       return 2;
     }
+    const double cpu_start = cpu_seconds();
     const RunReport r = sim.run({.until = until});
-    std::printf("mode=sequential ranks=1 nodes=%zu events=%llu wall_s=%.3f events_per_s=%.0f "
-                "peak_mb=%.1f trace=%016llx\n",
-                n, static_cast<unsigned long long>(r.events_processed), r.wall_seconds, r.events_per_second,
+    const double cpu = cpu_seconds() - cpu_start;
+    std::printf("mode=sequential ranks=1 nodes=%zu events=%llu wall_s=%.3f events_per_s=%.0f cpu_s=%.3f "
+                "ns_per_event_cpu=%.1f peak_mb=%.1f trace=%016llx\n",
+                n, static_cast<unsigned long long>(r.events_processed), r.wall_seconds, r.events_per_second, cpu,
+                1e9 * cpu / static_cast<double>(r.events_processed),
                 static_cast<double>(r.peak_memory_bytes) / 1e6,
                 static_cast<unsigned long long>(sim.trace().hash()));
     return 0;
