@@ -57,13 +57,13 @@ struct ParallelReport {
   RunReport run;                  ///< as Simulator::run's: events summed, end time, wall time
   int ranks = 1;                  ///< MPI ranks
   Duration lookahead = 0;         ///< the window width (time_max when no link is cut)
-  std::uint64_t windows = 0;      ///< windows processed
+  std::uint64_t windows = 0;      ///< windows processed (this and the figures per rank: over every run call so far)
   std::uint64_t cut_links = 0;    ///< directed links between ranks
-  std::uint64_t remote_copies = 0;  ///< copies sent between ranks (all ranks)
-  std::uint64_t remote_bytes = 0;   ///< their encoded size
+  std::uint64_t remote_copies = 0;  ///< copies sent between ranks (all ranks, all calls)
+  std::uint64_t remote_bytes = 0;   ///< their encoded size (all calls)
   // Per rank (index = rank), gathered on rank 0:
   std::vector<std::uint64_t> nodes;           ///< nodes owned
-  std::vector<std::uint64_t> events;          ///< events processed
+  std::vector<std::uint64_t> events;          ///< events processed (all calls)
   std::vector<double> event_seconds;          ///< wall time inside Simulator::run
   std::vector<double> sync_seconds;           ///< wall time in the exchanges and reductions
   std::vector<std::uint64_t> peak_memory_bytes;  ///< peak resident set size
