@@ -31,8 +31,8 @@ int main(int argc, char** argv) {
     const int status = app.exit(e);
     return e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success) ? status : 2;
   }
-  if (parallel.ranks() > 1 && !app.got_subcommand("simulate")) {
-    std::cerr << "laguerre: only 'simulate' runs across MPI ranks so far; run '" << app.get_subcommands().front()->get_name()
+  if (parallel.ranks() > 1 && !app.got_subcommand("simulate") && !app.got_subcommand("run")) {
+    std::cerr << "laguerre: only 'simulate' and 'run' run across MPI ranks so far; run '" << app.get_subcommands().front()->get_name()
               << "' without mpirun (or with -np 1)\n";
     return 2;
   }
