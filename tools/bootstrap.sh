@@ -24,11 +24,13 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev          # exact predicates, diagrams
   libboost-dev libboost-graph-dev             # planarity (Boyer–Myrvold), graph algorithms
   libeigen3-dev                               # linear algebra
+  libsuitesparse-dev                          # CHOLMOD: supernodal Cholesky for Newton packing at 10^6 (optional)
   libmuparser-dev                             # metric fields given as expressions (meshing)
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev  # scenario files, CLI, JSON output
   libcairo2-dev                               # pictures (SVG, PNG)
   libgtest-dev libgmock-dev libbenchmark-dev  # tests and benchmarks
   libopenmpi-dev openmpi-bin libmetis-dev     # the parallel kernel over MPI, its partitions (sim/mpi)
+  libns3-dev libgsl-dev                       # laguerre::ns3 and its example (optional; ns-3's libraries need GSL)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -2,15 +2,14 @@
 #include "laguerre/scenarios/ProtocolRun.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <memory>
-#include <type_traits>
 
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/protocols/Codec.hpp"
 #include "laguerre/protocols/Reliable.hpp"
+#include "laguerre/sim/LiveCluster.hpp"
 #include "laguerre/sim/SimHost.hpp"
 
 namespace laguerre::scenarios {
@@ -35,9 +34,11 @@ sim::Duration max_latency(const sim::Network& net, const sim::LinkModel& link) {
   return m;
 }
 
+}  // namespace
+
 // Traffic is counted under the message type; a frame of the reliability layer under the type of the
 // message it carries (retransmissions included), a probe (empty frame) and an ack under their own.
-sim::Phase phase_of(std::span<const std::byte> bytes) {
+sim::Phase traffic_phase(std::span<const std::byte> bytes) {
   const std::size_t frame_header = protocols::encoded_size(protocols::MessageType::frame);
   if (bytes.size() > frame_header + 1 && bytes[1] == static_cast<std::byte>(protocols::MessageType::frame))
     return static_cast<sim::Phase>(bytes[frame_header + 1]);
@@ -53,13 +54,15 @@ protocols::PackingParams packing_params(const ProtocolSetup& setup) {
   return params;
 }
 
+namespace {
 std::string crash_text(const CrashSpec& c) {
   return std::to_string(c.node) + "@" + format_duration(c.at) + (c.recover_at ? "-" + format_duration(*c.recover_at) : "");
 }
 
-// Hop distances (breadth-first search) from every source that appears in `pairs`; other rows empty.
-std::vector<std::vector<std::uint32_t>> bfs_from_sources(const core::PlanarGraph& g,
-                                                          const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs) {
+}  // namespace
+
+std::vector<std::vector<std::uint32_t>> hop_distances_from_sources(
+    const core::PlanarGraph& g, const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs) {
   const std::size_t n = g.num_vertices();
   constexpr std::uint32_t unreached = 0xffffffffu;
   std::vector<std::vector<std::uint32_t>> dist(n);
@@ -79,12 +82,64 @@ std::vector<std::vector<std::uint32_t>> bfs_from_sources(const core::PlanarGraph
   return dist;
 }
 
-class Collector : public protocols::PacketSink {
-public:
-  void on_packet_end(const protocols::PacketReport& r) override { reports.push_back(r); }
-  std::vector<protocols::PacketReport> reports;
-};
-}  // namespace
+PackingNodeSummary summarize(const protocols::PackingNode& node) {
+  return {node.placement().circle, node.local_condition(), node.outcome(), node.is_final(), node.steps(),
+          node.round(),           node.counters(),        node.finished_at(), node.suspect()};
+}
+
+void collect_packing_summaries(const core::PlanarGraph& g, std::span<const PackingNodeSummary> nodes,
+                               const std::vector<bool>& down, ProtocolOutcome& out) {
+  const std::size_t n = g.num_vertices();
+  LAGUERRE_PRECONDITION(nodes.size() == n, "collect_packing_summaries needs one summary per vertex.");
+  out.circles.resize(n);
+  out.local.resize(n);
+  for (core::Vertex v = 0; v < n; ++v) {
+    const PackingNodeSummary& node = nodes[v];
+    out.circles[v] = node.circle;
+    out.local[v] = node.local;
+    out.converged_nodes += node.outcome == protocols::PackingOutcome::converged;
+    out.holds_nodes += node.local == core::LocalCondition::holds;
+    out.iterations = std::max(out.iterations, node.steps);
+    out.rounds = std::max(out.rounds, node.round);
+    out.reliability += node.counters;
+    if (node.finished_at >= 0) out.finished_at = std::max(out.finished_at, node.finished_at);
+    // A node down for good is no survivor; a node that came back counts as one.
+    if (!down.empty() && down[v]) {
+      ++out.crashed_nodes;
+      continue;
+    }
+    if (node.outcome == protocols::PackingOutcome::neighbour_failed) {
+      ++out.failed_nodes;
+      ++out.suspects[node.suspect];
+    }
+  }
+  for (OutageOutcome& o : out.outages) {
+    o.outcome = nodes[o.node].outcome;
+    o.final = nodes[o.node].final;
+  }
+}
+
+void collect_packing_nodes(const core::PlanarGraph& g,
+                           const std::function<const protocols::PackingNode&(core::Vertex)>& node_of,
+                           const std::vector<bool>& down, ProtocolOutcome& out) {
+  std::vector<PackingNodeSummary> nodes;
+  nodes.reserve(g.num_vertices());
+  for (core::Vertex v = 0; v < g.num_vertices(); ++v) nodes.push_back(summarize(node_of(v)));
+  collect_packing_summaries(g, nodes, down, out);
+}
+
+void collect_traffic(const sim::TrafficMetrics& traffic, ProtocolOutcome& out) {
+  const sim::TrafficCounters total = traffic.total();
+  out.messages = total.messages_sent;
+  out.bytes = total.bytes_sent;
+  for (std::size_t v = 0; v < traffic.node_count(); ++v) {
+    const auto t = traffic.node_total(static_cast<std::uint32_t>(v));
+    out.max_node_messages = std::max(out.max_node_messages, t.messages_sent);
+    out.max_node_bytes = std::max(out.max_node_bytes, t.bytes_sent);
+  }
+  out.by_phase.clear();
+  for (std::size_t p = 0; p < traffic.phase_count(); ++p) out.by_phase.push_back(traffic.phase_total(static_cast<sim::Phase>(p)));
+}
 
 ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
                                      const ProtocolSetup& setup) {
@@ -121,68 +176,23 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
       [&](protocols::Runtime& rt, sim::NodeIndex v) -> std::unique_ptr<protocols::Node> {
         return std::make_unique<protocols::PackingNode>(rt, protocols::local_knowledge(g, v), params);
       },
-      phase_of);
+      traffic_phase);
   // The nodes' results, read where each node lives (every node here, or its MPI rank's).
   sim::InPlaceRunner in_place;
   sim::HostRunner& runner = setup.runner != nullptr ? *setup.runner : in_place;
   const sim::RunReport report = runner.run(host, {});
-  struct Summary {
-    core::Circle circle;
-    core::LocalCondition local;
-    protocols::PackingOutcome outcome;
-    bool final;
-    std::uint32_t steps, round;
-    protocols::PackingCounters counters;
-    protocols::Time finished_at;
-    protocols::NodeId suspect;
-  };
-  static_assert(std::is_trivially_copyable_v<Summary>);
   const std::vector<std::vector<std::byte>> described = runner.gather([&](sim::NodeIndex v) {
-    const auto& node = static_cast<const protocols::PackingNode&>(host.node(v));
-    const Summary s{node.placement().circle, node.local_condition(), node.outcome(), node.is_final(), node.steps(),
-                    node.round(), node.counters(), node.finished_at(), node.suspect()};
-    const auto* p = reinterpret_cast<const std::byte*>(&s);
-    return std::vector<std::byte>(p, p + sizeof s);
+    std::vector<std::byte> bytes;
+    sim::append_bytes(bytes, summarize(static_cast<const protocols::PackingNode&>(host.node(v))));
+    return bytes;
   });
-  std::vector<Summary> nodes(n);
-  for (core::Vertex v = 0; v < n; ++v) std::memcpy(&nodes[v], described[v].data(), sizeof(Summary));
-
-  out.circles.resize(n);
-  out.local.resize(n);
+  std::vector<PackingNodeSummary> nodes(n);
   for (core::Vertex v = 0; v < n; ++v) {
-    const Summary& node = nodes[v];
-    out.circles[v] = node.circle;
-    out.local[v] = node.local;
-    out.converged_nodes += node.outcome == protocols::PackingOutcome::converged;
-    out.holds_nodes += node.local == core::LocalCondition::holds;
-    out.iterations = std::max(out.iterations, node.steps);
-    out.rounds = std::max(out.rounds, node.round);
-    out.reliability += node.counters;
-    if (node.finished_at >= 0) out.finished_at = std::max(out.finished_at, node.finished_at);
-    // A node down for good is no survivor; a node that came back counts as one.
-    if (down[v]) {
-      ++out.crashed_nodes;
-      continue;
-    }
-    if (node.outcome == protocols::PackingOutcome::neighbour_failed) {
-      ++out.failed_nodes;
-      ++out.suspects[node.suspect];
-    }
+    std::size_t at = 0;
+    nodes[v] = sim::read_bytes<PackingNodeSummary>(described[v], at);
   }
-  for (OutageOutcome& o : out.outages) {
-    o.outcome = nodes[o.node].outcome;
-    o.final = nodes[o.node].final;
-  }
-  const auto& traffic = runner.traffic();
-  const sim::TrafficCounters total = traffic.total();
-  out.messages = total.messages_sent;
-  out.bytes = total.bytes_sent;
-  for (sim::NodeIndex v = 0; v < n; ++v) {
-    const auto t = traffic.node_total(v);
-    out.max_node_messages = std::max(out.max_node_messages, t.messages_sent);
-    out.max_node_bytes = std::max(out.max_node_bytes, t.bytes_sent);
-  }
-  for (std::size_t p = 0; p < traffic.phase_count(); ++p) out.by_phase.push_back(traffic.phase_total(static_cast<sim::Phase>(p)));
+  collect_packing_summaries(g, nodes, down, out);
+  collect_traffic(runner.traffic(), out);
   out.simulated_time = report.simulated_time;
   out.wall_seconds = report.wall_seconds;
   out.events = report.events_processed;
@@ -244,72 +254,102 @@ protocols::ForwardingNode& forwarding_node(protocols::Node& node) {
   return static_cast<protocols::ForwardingNode&>(layer ? layer->inner() : node);
 }
 
+std::vector<core::Point2> forwarding_positions(const core::CircleEmbedding& circles,
+                                               const std::vector<core::Point2>& positions) {
+  if (!positions.empty()) return positions;
+  std::vector<core::Point2> pos(circles.size());
+  for (std::size_t v = 0; v < circles.size(); ++v) pos[v] = core::centre(circles[v]);
+  return pos;
+}
+
+protocols::DataPacket forwarding_packet(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
+                                        const std::vector<core::Point2>& positions, core::Scheme scheme,
+                                        const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs, std::size_t i) {
+  // core::route's default hop limit, so that the hop-by-hop outcomes are core's.
+  const auto ttl = static_cast<std::uint32_t>(std::min<std::size_t>(core::default_ttl(g, scheme), 0xffffffffu));
+  const core::Vertex t = pairs[i].second;
+  return {i, g.id(t), circles[t], ttl, scheme, positions[t]};
+}
+
+ForwardingResult summarize_forwarding(core::Scheme scheme, const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs,
+                                      const std::vector<std::vector<std::uint32_t>>& hop_distance,
+                                      const std::vector<protocols::PacketReport>& reports) {
+  ForwardingResult res;
+  res.scheme = scheme;
+  res.packets = pairs.size();
+  // In packet order, not in the order the packets ended: the sums (hence the means, to the last bit)
+  // depend on the packets' outcomes only, not on the host's timing.
+  std::vector<const protocols::PacketReport*> by_packet;
+  by_packet.reserve(reports.size());
+  for (const auto& r : reports) by_packet.push_back(&r);
+  std::sort(by_packet.begin(), by_packet.end(), [](const auto* a, const auto* b) { return a->packet < b->packet; });
+  std::vector<double> stretch;
+  double hops = 0;
+  for (const protocols::PacketReport* report : by_packet) {
+    const protocols::PacketReport& r = *report;
+    switch (r.outcome) {
+      case protocols::PacketOutcome::delivered: {
+        ++res.delivered;
+        hops += r.hops;
+        const auto [s, t] = pairs[r.packet];
+        const std::uint32_t d = hop_distance[s][t];
+        if (d > 0) stretch.push_back(static_cast<double>(r.hops) / static_cast<double>(d));
+        break;
+      }
+      case protocols::PacketOutcome::dead_end: ++res.dead_ends; break;
+      case protocols::PacketOutcome::loop: ++res.loops; break;
+      case protocols::PacketOutcome::ttl_exceeded: ++res.ttl_exceeded; break;
+    }
+  }
+  res.hops_mean = res.delivered ? hops / static_cast<double>(res.delivered) : 0.0;
+  if (!stretch.empty()) {
+    double sum = 0;
+    for (double x : stretch) sum += x;
+    res.stretch_mean = sum / static_cast<double>(stretch.size());
+    res.stretch_max = *std::max_element(stretch.begin(), stretch.end());
+    res.stretch_p95 = core::nearest_rank_percentile(stretch, 95);
+  }
+  return res;
+}
+
+protocols::ReliableParams forwarding_reliable_params(sim::Duration max_latency) {
+  protocols::ReliableParams reliable = protocols::lossy_link_params(max_latency);
+  reliable.probes = false;
+  return reliable;
+}
+
 std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
                                              const std::vector<core::Point2>& positions, const sim::LinkModel& link,
                                              std::uint64_t seed, const std::vector<core::Scheme>& schemes,
                                              const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs) {
   const std::size_t n = g.num_vertices();
-  std::vector<core::Point2> pos(n);
-  for (core::Vertex v = 0; v < n; ++v) pos[v] = positions.empty() ? core::centre(circles[v]) : positions[v];
-  const std::vector<std::vector<std::uint32_t>> hop_distance = bfs_from_sources(g, pairs);
+  const std::vector<core::Point2> pos = forwarding_positions(circles, positions);
+  const std::vector<std::vector<std::uint32_t>> hop_distance = hop_distances_from_sources(g, pairs);
   // On lossy links every node runs the reliability layer under its forwarding node: each hop is
-  // delivered exactly once, so the packets take core::route's paths. No probes: an idle forwarder has
-  // nothing to watch, and the queue drains once every packet has arrived and been acknowledged.
+  // delivered exactly once, so the packets take core::route's paths.
   const bool lossy = link.loss > 0 || link.duplication > 0;
   std::optional<protocols::ReliableParams> reliable;
-  if (lossy) {
-    reliable = protocols::lossy_link_params(max_latency(make_network(g, positions, link), link));
-    reliable->probes = false;
-  }
+  if (lossy) reliable = forwarding_reliable_params(max_latency(make_network(g, positions, link), link));
   sim::SimConfig config;
   config.seed = seed;
   std::vector<ForwardingResult> results;
   for (const core::Scheme scheme : schemes) {
-    ForwardingResult res;
-    res.scheme = scheme;
-    res.packets = pairs.size();
-    Collector sink;
+    PacketCollector sink;
     sim::SimHost fwd(
         make_network(g, positions, link), config,
         [&](protocols::Runtime& rt, sim::NodeIndex v) {
           return make_forwarding_node(rt, sink, g, v, circles, pos, reliable);
         },
-        phase_of);
-    // core::route's default hop limit, so that the hop-by-hop outcomes are core's.
-    const auto ttl = static_cast<std::uint32_t>(std::min<std::size_t>(core::default_ttl(g, scheme), 0xffffffffu));
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-      const auto [s, t] = pairs[i];
-      forwarding_node(fwd.node(s)).originate({i, g.id(t), circles[t], ttl, scheme, pos[t]});
-    }
+        traffic_phase);
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+      forwarding_node(fwd.node(pairs[i].first)).originate(forwarding_packet(g, circles, pos, scheme, pairs, i));
     const sim::RunReport fwd_report = fwd.run();
+    std::uint64_t retransmissions = 0;
     for (sim::NodeIndex v = 0; lossy && v < n; ++v)
-      res.retransmissions += static_cast<const protocols::ReliableNode&>(fwd.node(v)).counters().retransmissions;
+      retransmissions += static_cast<const protocols::ReliableNode&>(fwd.node(v)).counters().retransmissions;
+    ForwardingResult res = summarize_forwarding(scheme, pairs, hop_distance, sink.reports);
+    res.retransmissions = retransmissions;
     res.simulated_seconds = sim::to_seconds(fwd_report.simulated_time);
-    std::vector<double> stretch;
-    double hops = 0;
-    for (const auto& r : sink.reports) {
-      switch (r.outcome) {
-        case protocols::PacketOutcome::delivered: {
-          ++res.delivered;
-          hops += r.hops;
-          const auto [s, t] = pairs[r.packet];
-          const std::uint32_t d = hop_distance[s][t];
-          if (d > 0) stretch.push_back(static_cast<double>(r.hops) / static_cast<double>(d));
-          break;
-        }
-        case protocols::PacketOutcome::dead_end: ++res.dead_ends; break;
-        case protocols::PacketOutcome::loop: ++res.loops; break;
-        case protocols::PacketOutcome::ttl_exceeded: ++res.ttl_exceeded; break;
-      }
-    }
-    res.hops_mean = res.delivered ? hops / static_cast<double>(res.delivered) : 0.0;
-    if (!stretch.empty()) {
-      double sum = 0;
-      for (double x : stretch) sum += x;
-      res.stretch_mean = sum / static_cast<double>(stretch.size());
-      res.stretch_max = *std::max_element(stretch.begin(), stretch.end());
-      res.stretch_p95 = core::nearest_rank_percentile(stretch, 95);
-    }
     results.push_back(res);
   }
   return results;

@@ -183,13 +183,20 @@ std::vector<std::string> supported_formats() {
 
 const std::vector<std::string> repair_policies = {"fail", "largest-block", "three-connected-core", "triangulate-faces"};
 
-Topology prepare(core::GraphInput input, std::string name, std::string_view family) {
+Topology prepare(core::GraphInput input, std::string name, std::string_view family,
+                 core::OuterRule rule = core::OuterRule::face) {
   Topology t;
   try {
-    t.graph = core::prepare_for_packing(input, &t.kind);
+    core::PreparedInput prepared = core::prepare_input(input, rule);
+    t.graph = std::move(input.graph);
+    t.kind = prepared.kind;
+    t.removed = std::move(prepared.removed);
   } catch (const std::exception& e) {
     throw TopologyError(name + " cannot be packed: " + e.what());
   }
+  for (std::uint64_t id : t.removed)
+    t.note += (t.note.empty() ? "" : "; ") + std::string("outer puncture: vertex ") + std::to_string(id) +
+              " removed (its neighbours are the boundary; it is not packed and not routed)";
   t.positions = std::move(input.positions);
   t.name = std::move(name);
   t.family = std::string(family);
@@ -235,7 +242,8 @@ Topology build_file(const Args& a, std::uint64_t, std::size_t repetition) {
     throw TopologyError("graph index " + std::to_string(index) + " is out of range: " + path + " holds " +
                         std::to_string(graphs.size()) + " graph(s)");
   std::string name = graphs[k].name;
-  return prepare(std::move(graphs[k]), std::move(name), "file");
+  return prepare(std::move(graphs[k]), std::move(name), "file",
+                 core::parse_name(core::outer_rule_names, a.text("outer"), "topology.outer"));
 }
 
 Topology build_uniform_triangulation(const Args& a, std::uint64_t seed, std::size_t) {
@@ -390,7 +398,13 @@ std::vector<GeneratorInfo> make_registry() {
        Param("format", T::choice, "its format").choices(supported_formats()).fallback(std::string("automatic")),
        Param("index", T::integer, "which graph of a multi-graph file, from 1; 0 = graph (repetition mod count) + 1")
            .range(0, 1e9)
-           .fallback(I{1})},
+           .fallback(I{1}),
+       Param("outer", T::choice,
+             "for a triangulated sphere (every face a triangle): face keeps a face outside (the file's '# outer:' "
+             "face, else the default one); puncture removes the vertex of largest degree (smallest id on ties), "
+             "whose neighbours become the boundary; other graphs are unchanged")
+           .choices(core::names_of(core::outer_rule_names))
+           .fallback(std::string(core::name_of(core::outer_rule_names, core::OuterRule::face)))},
       build_file));
   r.push_back(generator(
       "uniform-triangulation",
@@ -512,7 +526,7 @@ Topology build_topology(std::string_view generator, const TopologyParams& params
   const GeneratorInfo* info = find_generator(generator);
   if (!info) throw TopologyError("unknown topology generator '" + std::string(generator) + "'");
   if (!info->available) throw TopologyError(info->unavailable_reason);
-  if (!info->build) throw TopologyError("generator '" + std::string(generator) + "' is registered but has no builder");
+  LAGUERRE_PRECONDITION(info->build, "generator '" + std::string(generator) + "' is registered without a builder");
   try {
     return info->build(params, seed, repetition);
   } catch (const TopologyError&) {

@@ -14,6 +14,7 @@
 #include "FuzzTarget.hpp"
 #include "laguerre/core/diagrams/MobiusDiagram.hpp"
 #include "laguerre/core/diagrams/PowerDiagram.hpp"
+#include "laguerre/core/diagrams/SitesFile.hpp"
 #include "laguerre/core/diagrams/VoronoiDiagram.hpp"
 
 namespace {
@@ -21,10 +22,6 @@ namespace {
 namespace core = laguerre::core;
 
 constexpr std::size_t max_sites = 200;
-// Values beyond this magnitude, or nonzero below its inverse, are skipped: the diagrams' validity checks
-// fail on such ranges (open finding sites-1 in tests/fuzz/open/README.md, and the known probes 1e160,
-// 1e300, 1e-300 assigned to the diagrams work). Remove when that is fixed.
-constexpr double max_magnitude = 1e6;
 
 // The numbers of the file, row by row; empty if a field is not a finite number or rows differ in length.
 std::vector<std::vector<double>> numbers(std::string_view text) {
@@ -40,7 +37,8 @@ std::vector<std::vector<double>> numbers(std::string_view text) {
       double v = 0;
       const auto [ptr, ec] = std::from_chars(line.data() + at, line.data() + end, v);
       if (ec != std::errc() || ptr != line.data() + end || !std::isfinite(v)) return {};
-      if (std::abs(v) > max_magnitude || (v != 0 && std::abs(v) < 1 / max_magnitude)) return {};
+      // Outside the sites reader's range (SitesFile.hpp): the diagrams' contract starts where its checks end.
+      if (std::abs(v) > core::max_site_magnitude || (v != 0 && std::abs(v) < core::min_site_magnitude)) return {};
       row.push_back(v);
       at = end;
     }

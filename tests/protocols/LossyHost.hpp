@@ -70,7 +70,7 @@ public:
       return host_.push(host_.now_ + after, Event::alarm, index_, 0, timer, {});
     }
     bool cancel(TimerHandle handle) override { return host_.live_timers_.erase(handle) == 1; }
-    std::uint64_t random_u64() override { return splitmix64(host_.rng_); }
+    std::uint64_t random_u64() override { return host_.rng_.next(); }
 
   private:
     LossyHost& host_;
@@ -145,10 +145,10 @@ private:
   };
 
   bool up(std::size_t v) const { return crash_at_[v] < 0 || now_ < crash_at_[v]; }
-  double uniform() { return static_cast<double>(splitmix64(rng_) >> 11) * 0x1p-53; }
+  double uniform() { return rng_.uniform01(); }
   Duration latency() {
     const auto span = static_cast<std::uint64_t>(config_.latency_hi - config_.latency_lo + 1);
-    return config_.latency_lo + static_cast<Duration>(splitmix64(rng_) % span);
+    return config_.latency_lo + static_cast<Duration>(rng_.next() % span);
   }
 
   std::uint64_t push(Time at, Event::Kind kind, std::size_t node, NodeId from, TimerId timer, std::span<const std::byte> bytes) {
@@ -175,7 +175,7 @@ private:
   }
 
   LossyConfig config_;
-  std::uint64_t rng_;
+  core::SplitMix64 rng_;
   std::vector<std::unique_ptr<NodeRuntime>> runtimes_;
   std::vector<std::unique_ptr<Node>> nodes_;
   std::unordered_map<NodeId, core::Vertex> index_;

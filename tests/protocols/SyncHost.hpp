@@ -16,17 +16,11 @@
 #include <vector>
 
 #include "laguerre/core/graph/PlanarGraph.hpp"
+#include "laguerre/core/random/Random.hpp"
 #include "laguerre/protocols/PackingNode.hpp"
 #include "laguerre/protocols/Runtime.hpp"
 
 namespace laguerre::protocols::testing {
-
-inline std::uint64_t splitmix64(std::uint64_t& state) {
-  std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
 
 class DequeHost {
 public:
@@ -39,7 +33,7 @@ public:
   class NodeRuntime final : public Runtime {
   public:
     NodeRuntime(DequeHost& host, NodeId self, std::vector<NodeId> neighbours, std::uint64_t seed)
-        : host_(host), self_(self), neighbours_(std::move(neighbours)), random_state_(seed ^ (self * 0xd1342543de82ef95ull)) {}
+        : host_(host), self_(self), neighbours_(std::move(neighbours)), random_(seed ^ (self * 0xd1342543de82ef95ull)) {}
     NodeId self() const override { return self_; }
     Time now() const override { return static_cast<Time>(host_.delivered_); }
     void send(NodeId to, std::span<const std::byte> bytes) override {
@@ -52,13 +46,13 @@ public:
     }
     TimerHandle schedule(Duration, TimerId) override { return ++host_.timers_; }
     bool cancel(TimerHandle) override { return false; }
-    std::uint64_t random_u64() override { return splitmix64(random_state_); }
+    std::uint64_t random_u64() override { return random_.next(); }
 
   private:
     DequeHost& host_;
     NodeId self_;
     std::vector<NodeId> neighbours_;
-    std::uint64_t random_state_;
+    core::SplitMix64 random_;
   };
 
   // Builds the node of vertex v (any protocol) on the runtime the host made for it.
@@ -89,11 +83,11 @@ public:
 
   // Delivers queued messages (as run, without starting the nodes).
   void deliver(std::uint64_t shuffle_seed = 0, std::uint64_t max_messages = 200'000'000) {
-    std::uint64_t rng = shuffle_seed;
+    core::SplitMix64 rng(shuffle_seed);
     const std::uint64_t limit = delivered_ + max_messages;
     while (!queue_.empty() && delivered_ < limit) {
       if (shuffle_seed != 0) {
-        const std::size_t k = static_cast<std::size_t>(splitmix64(rng) % queue_.size());
+        const std::size_t k = static_cast<std::size_t>(rng.next() % queue_.size());
         std::swap(queue_[k], queue_.front());
       }
       Envelope e = std::move(queue_.front());

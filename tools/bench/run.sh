@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the Release preset and prints the packing benchmark table.
 #   tools/bench/run.sh [--quick|--huge]   (--quick: sizes up to 10^4, about a minute;
-#                                          --huge: 10^6 vertices to LPD: Newton, then Anderson (hours))
+#                                          --huge: first tools/bench/newton.sh --huge (Newton's linear
+#                                          solvers side by side at 10^4, 10^5, 10^6), then 10^6 vertices
+#                                          to LPD with Newton and with Anderson (hours))
 # The default run takes about 5 minutes (the 10^4 plain and 10^5 whole runs dominate).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -9,6 +11,6 @@ tools/bootstrap.sh --preset release >/dev/null
 filter='^BM_(ThurstonSweep|LayoutAndLpdCheck|LayoutAndLpdCheckAtLpd|Pack)/'
 case "${1:-}" in
   --quick) filter='^BM_[A-Za-z]+/(1000|10000)(/|$)' ;;
-  --huge) filter='^BM_PackHuge' ;;
+  --huge) filter='^BM_PackHuge'; tools/bench/newton.sh --huge ;;
 esac
 build/release/tools/bench/bench_packing --benchmark_filter="$filter" --benchmark_counters_tabular=true

@@ -17,6 +17,8 @@ Action add_pack_command(CLI::App& app);
 Action add_route_command(CLI::App& app);
 /// `laguerre simulate …`: the distributed protocol in the discrete-event simulator.
 Action add_simulate_command(CLI::App& app);
+/// `laguerre live …`: the distributed protocol over UDP on 127.0.0.1, in several processes.
+Action add_live_command(CLI::App& app);
 /// `laguerre generate …`: random graphs of the documented families.
 Action add_generate_command(CLI::App& app);
 /// `laguerre thesis-table …`: the experiment of thesis §5.4.1.

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <filesystem>
+#include <iostream>
 
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/InputFile.hpp"
@@ -16,6 +17,21 @@ void add_graph_options(CLI::App& cmd, GraphArgs& args, const std::string& name, 
   cmd.add_option("--index", args.index, "Which graph of a multi-graph file (from 1)")->capture_default_str();
 }
 
+void add_outer_option(CLI::App& cmd, GraphArgs& args) {
+  add_choice(cmd, "--outer", args.outer, core::outer_rule_names,
+             "Outer face of a triangulated sphere (every face a triangle): face keeps one (the file's '# outer:', else "
+             "the default face); puncture removes the vertex of largest degree (smallest id on ties), its neighbours "
+             "become the boundary, and it is reported as removed (not packed, not routed). Other graphs: unchanged");
+}
+
+std::string removed_line(const std::vector<std::uint64_t>& removed) {
+  if (removed.empty()) return {};
+  std::string line = "removed      " + std::to_string(removed.size()) + " vertex";
+  for (std::uint64_t id : removed) line += " " + std::to_string(id);
+  return line + " (--outer puncture: its neighbours are the boundary; it is not in the embedding, gets no circle, "
+                "sends and receives no packet)\n";
+}
+
 std::vector<core::GraphInput> read_graph_file(const std::string& path, const std::string& format) {
   (void)core::open_input_file(path, "graph file");  // the one message for a missing file or a folder
   return core::read_graphs(path, core::parse_graph_format(format));
@@ -27,8 +43,10 @@ LoadedGraph load_graph(const GraphArgs& args) {
     throw core::InputError("--index", 0,
                            "graph index " + std::to_string(args.index) + " is out of range: " + args.path + " holds " +
                                std::to_string(graphs.size()) + " graph(s).");
-  LoadedGraph out{std::move(graphs[args.index - 1]), {}};
-  out.input.graph = core::prepare_for_packing(out.input, &out.kind);
+  LoadedGraph out{std::move(graphs[args.index - 1]), {}, {}};
+  core::PreparedInput prepared = core::prepare_input(out.input, core::parse_name(core::outer_rule_names, args.outer, "--outer"));
+  out.kind = prepared.kind;
+  out.removed = std::move(prepared.removed);
   return out;
 }
 
@@ -55,6 +73,28 @@ CLI::Option* add_acceleration_option(CLI::App& cmd, std::string& value) {
   return add_choice(cmd, "--accelerate", value, core::acceleration_names,
                     "Sweep acceleration: plain, superstep (Collins-Stephenson), anderson, or newton (damped Newton steps "
                     "on the angle sums instead of sweeps; an iteration is then a Newton step)");
+}
+
+int run_program(CLI::App& app, int argc, char** argv, const char* program, const std::function<int()>& action) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11's message, then the documented status: 0 for --help and --version, 2 for bad input.
+    const int status = app.exit(e);
+    return e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success) ? status : 2;
+  }
+  try {
+    return action();
+  } catch (const core::InputError& e) {  // every bad-input error (core/Error.hpp, tier 1)
+    std::cerr << program << ": " << e.what() << '\n';
+    return 2;
+  } catch (const core::InternalError& e) {  // a broken precondition or invariant: a bug (tier 2)
+    std::cerr << program << ": internal error (please report): " << e.what() << '\n';
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << program << ": error: " << e.what() << '\n';
+    return 1;
+  }
 }
 
 CLI::Validator seed_validator() {

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,23 +46,31 @@ struct GraphArgs {
   std::string path;                 ///< the graph file
   std::string format = "automatic";  ///< --format
   std::size_t index = 1;            ///< --index (from 1)
+  std::string outer = "face";       ///< --outer (core::outer_rule_names), where add_outer_option offers it
 };
 
 /// Registers GraphArgs on `cmd`: the positional `name` (described by `what`), --format and --index.
 void add_graph_options(CLI::App& cmd, GraphArgs& args, const std::string& name, const std::string& what);
 
+/// Registers --outer (core::OuterRule by core::outer_rule_names) on `cmd`, stored in args.outer.
+void add_outer_option(CLI::App& cmd, GraphArgs& args);
+
 /// A graph read from a file and prepared for packing (kind decided, outer face chosen).
 struct LoadedGraph {
-  core::GraphInput input;  ///< graph, positions, name
-  core::GraphKind kind{};  ///< triangulated disc or 3-connected
+  core::GraphInput input;               ///< graph, positions, name
+  core::GraphKind kind{};               ///< triangulated disc or 3-connected
+  std::vector<std::uint64_t> removed;   ///< ids of the file's vertices --outer puncture removed (not in input)
 };
 
 /// Every graph of `path` in `format`, the file opened as core::open_input_file does (core::InputError
 /// for a missing file or a folder).
 std::vector<core::GraphInput> read_graph_file(const std::string& path, const std::string& format = "automatic");
 
+/// The summary line of the vertices --outer puncture removed ("removed      vertex 17 (...)\n"), or "" if none.
+std::string removed_line(const std::vector<std::uint64_t>& removed);
+
 /// Reads graph number `index` (from 1) of `path` in `format` (as read_graph_file) and prepares it for
-/// packing.
+/// packing under the outer rule `args.outer` (core::prepare_input).
 LoadedGraph load_graph(const GraphArgs& args);
 
 /// --scheme (named `option` in messages): one scheme by name (dashes or underscores), or "all".
@@ -81,6 +90,12 @@ CLI::Option* add_choice(CLI::App& cmd, const std::string& name, std::string& val
 
 /// --accelerate (core::acceleration_names), as `pack` and `thesis-table` offer it.
 CLI::Option* add_acceleration_option(CLI::App& cmd, std::string& value);
+
+/// Parses `argv` into `app`, then runs `action`, with the documented exit statuses: CLI11's message
+/// and 2 for bad options (0 for --help and --version), "PROGRAM: message" on stderr and 2 for bad
+/// input (core::InputError), 1 for a bug (core::InternalError) or any other exception; otherwise
+/// what `action` returns.
+int run_program(CLI::App& app, int argc, char** argv, const char* program, const std::function<int()>& action);
 
 /// A validator for --seed: an integer in [0, 2^64 − 1], written in decimal without a sign (as the
 /// scenario key seed).

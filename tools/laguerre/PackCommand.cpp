@@ -1,5 +1,6 @@
 // `laguerre pack`: compute a greedy power embedding and write it as JSON plus a picture.
 #include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <cstdio>
 #include <fstream>
@@ -34,19 +35,25 @@ struct PackArgs {
   bool json_stdout = false;
   bool no_picture = false;
   std::string accelerate = "plain";
+  std::string newton_solver = "cholesky";
 };
 
 class ProgressPrinter : public core::PackVisitor {
 public:
   explicit ProgressPrinter(std::size_t n)
       : n_(n), tty_(::isatty(2) != 0), start_(std::chrono::steady_clock::now()), last_(start_) {}
+  void on_layout(int /*iteration*/, const core::Layout& layout) override {
+    smallest_ = layout.smallest_radius;
+    degraded_ = layout.precision != core::Precision::ok;
+  }
   void on_check(int iteration, double angle_error, std::size_t ok) override {
     if (!tty_) return;  // progress is for people watching a terminal, not for logs
     const auto now = std::chrono::steady_clock::now();
     if (now - last_ < std::chrono::seconds(1)) return;
     last_ = now;
-    std::fprintf(stderr, "\r  iteration %d: %zu/%zu vertices satisfy LPD, angle error %.3g   ", iteration, ok, n_,
-                 angle_error);
+    std::fprintf(stderr, "\r  iteration %d, %.0f s: %zu/%zu vertices satisfy LPD, angle error %.3g, smallest radius %.3g%s   ",
+                 iteration, std::chrono::duration<double>(now - start_).count(), ok, n_, angle_error, smallest_,
+                 degraded_ ? " (precision degraded)" : "");
     shown_ = true;
   }
   ~ProgressPrinter() override {
@@ -57,6 +64,8 @@ private:
   std::size_t n_;
   bool tty_;
   std::chrono::steady_clock::time_point start_, last_;
+  double smallest_ = 0;
+  bool degraded_ = false;
   bool shown_ = false;
 };
 
@@ -71,6 +80,7 @@ int run_pack(const PackArgs& a) {
   opt.max_iterations = a.max_iterations;
   opt.angle_epsilon = a.epsilon;
   opt.acceleration = core::parse_name(core::acceleration_names, a.accelerate, "--accelerate");
+  opt.newton_solver = core::parse_name(core::newton_solver_names, a.newton_solver, "--newton-solver");
 
   const std::string stem = a.out.empty() ? file_stem(a.graph.path) + "-packing" : a.out;
   if (!a.json_stdout) check_writable(stem + ".json", a.force);
@@ -80,22 +90,27 @@ int run_pack(const PackArgs& a) {
   }
 
   const auto t0 = std::chrono::steady_clock::now();
+  const std::clock_t c0 = std::clock();
   core::PackResult r;
   {
     ProgressPrinter progress(g.num_vertices());
     r = core::pack(g, opt, &progress);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;  // all threads of the process
 
   nlohmann::json doc = embedding_to_json(g, r.circles);
   doc["format"] = "laguerre-embedding";
   doc["version"] = 1;
   doc["name"] = loaded.input.name;
   doc["kind"] = std::string(core::to_string(loaded.kind));
+  doc["outer_rule"] = a.graph.outer;
+  doc["removed_vertices"] = loaded.removed;
   doc["packing"] = {{"status", std::string(core::to_string(r.status))},
                     {"stop_rule", std::string(core::to_string(r.rule))},
                     {"iterations", r.iterations},
                     {"accelerated_jumps", r.jumps},
+                    {"newton_solver", opt.acceleration == core::Acceleration::newton ? nlohmann::json(a.newton_solver) : nlohmann::json()},
                     {"steps_per_check", a.steps},
                     {"sweep", a.sweep},
                     {"angle_error", r.angle_error},
@@ -103,7 +118,8 @@ int run_pack(const PackArgs& a) {
                     {"local_ok", r.local_ok},
                     {"smallest_radius", r.layout.smallest_radius},
                     {"root", r.layout.root == core::none ? nlohmann::json() : nlohmann::json(g.id(r.layout.root))},
-                    {"seconds", seconds}};
+                    {"seconds", seconds},
+                    {"cpu_seconds", cpu_seconds}};
   for (core::Vertex v = 0; v < g.num_vertices(); ++v)
     doc["vertices"][v]["local"] = std::string(core::to_string(r.local[v]));
   nlohmann::json faces = nlohmann::json::array();
@@ -135,8 +151,18 @@ int run_pack(const PackArgs& a) {
   std::ostream& os = a.json_stdout ? std::cerr : std::cout;
   os << "graph        " << loaded.input.name << ": " << g.num_vertices() << " vertices, " << g.num_edges()
      << " edges, " << core::to_string(loaded.kind) << ", boundary of " << g.boundary_cycle().size() << '\n'
+     << removed_line(loaded.removed)
      << "status       " << core::to_string(r.status) << " (stop rule " << core::to_string(r.rule) << ") after "
-     << r.iterations << " iterations, " << seconds << " s\n"
+     << r.iterations << " iterations, " << seconds << " s (" << cpu_seconds << " s CPU)\n";
+  if (r.status == core::PackStatus::iteration_cap)
+    os << "             --max-iterations " << a.max_iterations << " reached before the stop rule held\n";
+  else if (r.status == core::PackStatus::precision_loss)
+    os << "             the layout is not representable in doubles (NaN, infinite or zero radius): nothing is claimed\n";
+  if (opt.acceleration == core::Acceleration::newton)
+    os << "newton       linear solver " << a.newton_solver
+       << (opt.newton_solver == core::NewtonSolver::cholesky ? " (" + std::string(core::cholesky_backend()) + ")" : "")
+       << ", " << r.jumps << " improving Newton steps\n";
+  os
      << (loaded.kind == core::GraphKind::triangulated_disc ? "LPD          " : "GLPD         ") << r.local_ok << " / "
      << g.num_vertices() << " vertices\n"
      << "angle error  " << r.angle_error << " rad\n"
@@ -152,6 +178,7 @@ int run_pack(const PackArgs& a) {
 Action add_pack_command(CLI::App& app) {
   const auto c = add_command<PackArgs>(app, pack_help);
   add_graph_options(*c.cmd, c.args->graph, "graph", "Graph file (edge list, coords or planar_code)");
+  add_outer_option(*c.cmd, c.args->graph);
   add_choice(*c.cmd, "--stop", c.args->stop, core::stop_rule_names,
              "Stopping rule: lpd (LPD/GLPD everywhere), exact, angle, cap");
   add_choice(*c.cmd, "--sweep", c.args->sweep, core::sweep_names, "Update order: jacobi or gauss-seidel");
@@ -163,6 +190,9 @@ Action add_pack_command(CLI::App& app) {
   c.cmd->add_option("-o,--out", c.args->out, "Output path stem (writes STEM.json, STEM.svg, STEM.png); default GRAPHNAME-packing");
   c.cmd->add_flag("--force", c.args->force, "Overwrite existing output files");
   add_acceleration_option(*c.cmd, c.args->accelerate);
+  add_choice(*c.cmd, "--newton-solver", c.args->newton_solver, core::newton_solver_names,
+             "Linear solver of --accelerate newton: cholesky (sparse Cholesky, CHOLMOD when built with it), pcg "
+             "(incomplete-Cholesky conjugate gradients) or lu (the original finite-difference Jacobian with sparse LU)");
   c.cmd->add_flag("--json", c.args->json_stdout, "Print the embedding JSON on standard output instead of writing STEM.json");
   c.cmd->add_flag("--no-picture", c.args->no_picture, "Do not draw the SVG/PNG picture");
   return [args = c.args] { return run_pack(*args); };

@@ -13,6 +13,7 @@
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/packing/PackingNames.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
+#include "laguerre/scenarios/generators/UniformTriangulation.hpp"
 
 namespace laguerre::tools {
 
@@ -21,7 +22,11 @@ constexpr CommandHelp thesis_table_help{
     "thesis-table",
     "Reproduce the experiment of thesis §5.4.1 (iterations to LPD vs exact packing).",
     "Without graph files: random Delaunay triangulations and 3-connected graphs obtained from them by\n"
-    "deleting edges (the interim random families documented in RandomGraphs.hpp)."};
+    "deleting edges (the interim random families documented in RandomGraphs.hpp); --family spheres adds\n"
+    "uniform random triangulations of the sphere (Poulalhon-Schaeffer, every face a triangle).\n"
+    "Every triangulated sphere (the spheres family; a graph file's, every face a triangle) is packed once\n"
+    "per --outer rule, the same graphs each time: face keeps a face outside, puncture removes the vertex\n"
+    "of largest degree (its neighbours become the boundary; it is counted in removed_vertices)."};
 
 struct TableArgs {
   std::size_t count = 20;
@@ -33,10 +38,15 @@ struct TableArgs {
   std::vector<std::string> files;
   bool json = false;
   std::string accelerate = "plain";
+  std::vector<std::string> families{"delaunay", "three-connected"};
+  std::vector<std::string> outer{"face", "puncture"};
 };
 
 struct Row {
   std::string name;
+  std::string group;  ///< the family row it belongs to ("triangulations", "spheres/puncture", ...)
+  std::string outer;  ///< the outer rule, for a triangulated sphere; else empty
+  std::size_t removed = 0;
   core::GraphKind kind{};
   std::size_t n = 0;
   int to_lpd = -1, to_exact = -1;
@@ -86,43 +96,70 @@ Row measure(const core::PlanarGraph& g, core::GraphKind kind, const std::string&
 
 int run_table(const TableArgs& a) {
   std::vector<Row> rows;
-  if (a.files.empty()) {
-    for (std::size_t i = 0; i < a.count; ++i) {
-      core::GraphInput t = core::random_delaunay_triangulation(a.size, a.seed + i);
-      core::GraphKind kind{};
-      const core::PlanarGraph g = core::prepare_for_packing(t, &kind);
-      rows.push_back(measure(g, kind, "delaunay#" + std::to_string(i + 1), a));
-      std::fprintf(stderr, "\r  %zu/%zu graphs", rows.size(), 2 * a.count);
+  std::vector<std::string> groups;  // in order of appearance
+  // Measures `in` under each --outer rule if it is a triangulated sphere (family `family`, or its kind's
+  // name when empty), else once.
+  auto add = [&](const core::GraphInput& in, const std::string& family) {
+    const bool sphere = core::is_triangulated_sphere(in.graph);
+    for (const std::string& rule : sphere ? a.outer : std::vector<std::string>{"face"}) {
+      core::GraphInput copy = in;
+      const core::PreparedInput prepared =
+          core::prepare_input(copy, core::parse_name(core::outer_rule_names, rule, "--outer"));
+      Row row = measure(copy.graph, prepared.kind, in.name, a);
+      row.group = family.empty() ? (prepared.kind == core::GraphKind::triangulated_disc ? "triangulations" : "3-connected")
+                                 : family;
+      if (sphere) {
+        row.outer = rule;
+        row.group += "/" + rule;
+      }
+      row.removed = prepared.removed.size();
+      if (std::find(groups.begin(), groups.end(), row.group) == groups.end()) groups.push_back(row.group);
+      rows.push_back(std::move(row));
     }
-    for (std::size_t i = 0; i < a.count; ++i) {
-      core::GraphInput t = core::random_three_connected(a.size, a.seed + 1000 + i);
-      core::GraphKind kind{};
-      const core::PlanarGraph g = core::prepare_for_packing(t, &kind);
-      rows.push_back(measure(g, kind, "3conn#" + std::to_string(i + 1), a));
-      std::fprintf(stderr, "\r  %zu/%zu graphs", rows.size(), 2 * a.count);
+  };
+  if (a.files.empty()) {
+    std::size_t done = 0;
+    const std::size_t total = a.count * a.families.size();
+    for (const std::string& family : a.families) {
+      for (std::size_t i = 0; i < a.count; ++i) {
+        if (family == "spheres") {
+          add(core::GraphInput{scenarios::uniform_triangulation(a.size, a.seed + 2000 + i), {},
+                               "sphere#" + std::to_string(i + 1), true},
+              "spheres");
+        } else {  // the hull (Delaunay) or the largest face (3-connected) outside, whatever --outer says
+          const bool delaunay = family == "delaunay";
+          const core::GraphInput t = delaunay ? core::random_delaunay_triangulation(a.size, a.seed + i)
+                                              : core::random_three_connected(a.size, a.seed + 1000 + i);
+          core::GraphKind kind{};
+          const core::PlanarGraph g = core::prepare_for_packing(t, &kind);
+          Row row = measure(g, kind, (delaunay ? "delaunay#" : "3conn#") + std::to_string(i + 1), a);
+          row.group = delaunay ? "triangulations" : "3-connected";
+          if (std::find(groups.begin(), groups.end(), row.group) == groups.end()) groups.push_back(row.group);
+          rows.push_back(std::move(row));
+        }
+        std::fprintf(stderr, "\r  %zu/%zu graphs", ++done, total);
+      }
     }
     std::fprintf(stderr, "\n");
   } else {
-    for (const auto& f : a.files) {
-      for (auto& in : read_graph_file(f)) {
-        core::GraphKind kind{};
-        const core::PlanarGraph g = core::prepare_for_packing(in, &kind);
-        rows.push_back(measure(g, kind, in.name, a));
-      }
-    }
+    for (const auto& f : a.files)
+      for (auto& in : read_graph_file(f)) add(in, "");
   }
 
   nlohmann::json families = nlohmann::json::array();
   if (!a.json)
     std::printf("Thesis §5.4.1: iterations (Jacobi sweeps, checked every %d) to a greedy power embedding vs an exact "
-                "packing\n%-16s %6s %6s %22s %22s %14s %14s %9s\n",
+                "packing\n%-24s %6s %6s %22s %22s %14s %14s %9s %8s\n",
                 a.steps, "family", "graphs", "n", "to LPD/GLPD mean±sd", "to exact mean±sd", "ratio(mean)", "ratio(means)",
-                "delivery");
-  for (core::GraphKind kind : {core::GraphKind::triangulated_disc, core::GraphKind::three_connected}) {
+                "delivery", "removed");
+  for (const std::string& fam : groups) {
     std::vector<double> lpd, exact, ratio, n, delivery;
-    std::size_t graphs = 0, failed = 0;
+    std::size_t graphs = 0, failed = 0, removed = 0;
+    std::string outer;
     for (const Row& r : rows) {
-      if (r.kind != kind) continue;
+      if (r.group != fam) continue;
+      outer = r.outer;
+      removed += r.removed;
       ++graphs;
       n.push_back(static_cast<double>(r.n));
       if (r.to_lpd < 0 || r.to_exact < 0) {
@@ -138,9 +175,9 @@ int run_table(const TableArgs& a) {
     const Summary sl = summarize(lpd), se = summarize(exact), sr = summarize(ratio), sn = summarize(n),
                   sd = summarize(delivery);
     const double ratio_of_means = sl.mean > 0 ? se.mean / sl.mean : 0;
-    const std::string fam = kind == core::GraphKind::triangulated_disc ? "triangulations" : "3-connected";
     if (a.json) {
-      families.push_back({{"family", fam}, {"graphs", graphs}, {"not_converged", failed}, {"n_mean", sn.mean},
+      families.push_back({{"family", fam}, {"outer", outer.empty() ? nlohmann::json() : nlohmann::json(outer)},
+                          {"removed_vertices", removed}, {"graphs", graphs}, {"not_converged", failed}, {"n_mean", sn.mean},
                           {"to_lpd", {{"mean", sl.mean}, {"sd", sl.sd}, {"min", sl.min}, {"max", sl.max}}},
                           {"to_exact", {{"mean", se.mean}, {"sd", se.sd}, {"min", se.min}, {"max", se.max}}},
                           {"ratio_mean", sr.mean}, {"ratio_of_means", ratio_of_means}, {"greedy_delivery_min", sd.min},
@@ -150,21 +187,25 @@ int run_table(const TableArgs& a) {
     char a1[64], a2[64];
     std::snprintf(a1, sizeof a1, "%.1f±%.1f [%g,%g]", sl.mean, sl.sd, sl.min, sl.max);
     std::snprintf(a2, sizeof a2, "%.1f±%.1f [%g,%g]", se.mean, se.sd, se.min, se.max);
-    std::printf("%-16s %6zu %6.1f %22s %22s %14.2f %14.2f %8.2f%%\n", fam.c_str(), graphs, sn.mean, a1, a2, sr.mean,
-                ratio_of_means, 100 * sd.min);
+    std::printf("%-24s %6zu %6.1f %22s %22s %14.2f %14.2f %8.2f%% %8zu\n", fam.c_str(), graphs, sn.mean, a1, a2, sr.mean,
+                ratio_of_means, 100 * sd.min, removed);
     if (failed) std::printf("  (%zu graphs did not converge within %d iterations)\n", failed, a.max_iterations);
   }
   if (a.json) {
     nlohmann::json per_graph = nlohmann::json::array();
     for (const Row& r : rows)
-      per_graph.push_back({{"name", r.name}, {"kind", std::string(core::to_string(r.kind))}, {"n", r.n},
+      per_graph.push_back({{"name", r.name}, {"family", r.group}, {"kind", std::string(core::to_string(r.kind))},
+                           {"outer", r.outer.empty() ? nlohmann::json() : nlohmann::json(r.outer)},
+                           {"removed_vertices", r.removed}, {"n", r.n},
                            {"to_lpd", r.to_lpd}, {"to_exact", r.to_exact}, {"greedy_delivery", r.delivery},
                            {"status", r.status}});
     std::cout << nlohmann::json{{"families", families}, {"graphs", per_graph}}.dump(1) << '\n';
   } else {
     std::printf("Thesis (Fusy's uniform graphs, ~50 vertices): triangulations < 100 iterations, exact/LPD ratio 3.8; "
                 "3-connected 100-500 iterations, ratio 1.8.\n"
-                "delivery = worst greedy power delivery rate over the family's LPD/GLPD embeddings (all ordered pairs).\n");
+                "delivery = worst greedy power delivery rate over the family's LPD/GLPD embeddings (all ordered pairs "
+                "of the embedded vertices); removed = vertices --outer puncture took out of the family's spheres "
+                "(one per graph; not packed, not routed); n counts the vertices packed.\n");
   }
   return 0;
 }
@@ -182,6 +223,14 @@ Action add_thesis_table_command(CLI::App& app) {
       ->check(CLI::Range(1, 100000000))->capture_default_str();
   c.cmd->add_flag("--json", c.args->json, "Machine-readable output");
   add_acceleration_option(*c.cmd, c.args->accelerate);
+  c.cmd->add_option("--family", c.args->families,
+                    "Random families without graph files: delaunay, three-connected, spheres (uniform random sphere "
+                    "triangulations); repeatable")
+      ->check(CLI::IsMember({"delaunay", "three-connected", "spheres"}))->capture_default_str();
+  c.cmd->add_option("--outer", c.args->outer,
+                    "Outer rules a triangulated sphere is packed under, each on the same graphs: face, puncture; "
+                    "repeatable")
+      ->check(CLI::IsMember(core::names_of(core::outer_rule_names)))->capture_default_str();
   return [args = c.args] { return run_table(*args); };
 }
 

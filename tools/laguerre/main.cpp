@@ -1,12 +1,11 @@
 // The `laguerre` command-line program: one executable, one subcommand per task.
 #include <CLI/CLI.hpp>
 
-#include <exception>
 #include <iostream>
 
 #include "Commands.hpp"
+#include "Common.hpp"
 #include "Parallel.hpp"
-#include "laguerre/core/Error.hpp"
 
 int main(int argc, char** argv) {
   laguerre::tools::ParallelContext parallel(argc, argv);
@@ -20,41 +19,27 @@ int main(int argc, char** argv) {
   Action table = add_thesis_table_command(app);
   Action generate = add_generate_command(app);
   Action simulate = add_simulate_command(app);
+  Action live = add_live_command(app);
   Action run = add_run_command(app);
   Action compare = add_compare_command(app);
   Action diagram = add_diagram_command(app);
   Action mesh = add_mesh_command(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    // CLI11's message, then the documented status: 0 for --help and --version, 2 for bad input.
-    const int status = app.exit(e);
-    return e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success) ? status : 2;
-  }
-  if (parallel.ranks() > 1 && !app.got_subcommand("simulate") && !app.got_subcommand("run")) {
-    std::cerr << "laguerre: only 'simulate' and 'run' run across MPI ranks so far; run '" << app.get_subcommands().front()->get_name()
-              << "' without mpirun (or with -np 1)\n";
-    return 2;
-  }
-  try {
+  return run_program(app, argc, argv, "laguerre", [&] {
+    if (parallel.ranks() > 1 && !app.got_subcommand("simulate") && !app.got_subcommand("run")) {
+      std::cerr << "laguerre: only 'simulate' and 'run' run across MPI ranks so far; run '"
+                << app.get_subcommands().front()->get_name() << "' without mpirun (or with -np 1)\n";
+      return 2;
+    }
     if (app.got_subcommand("pack")) return pack();
     if (app.got_subcommand("route")) return route();
     if (app.got_subcommand("thesis-table")) return table();
     if (app.got_subcommand("generate")) return generate();
     if (app.got_subcommand("simulate")) return simulate();
+    if (app.got_subcommand("live")) return live();
     if (app.got_subcommand("run")) return run();
     if (app.got_subcommand("compare")) return compare();
     if (app.got_subcommand("diagram")) return diagram();
     if (app.got_subcommand("mesh")) return mesh();
-  } catch (const laguerre::core::InputError& e) {  // every bad-input error (core/Error.hpp, tier 1)
-    std::cerr << "laguerre: " << e.what() << '\n';
-    return 2;
-  } catch (const laguerre::core::InternalError& e) {  // a broken precondition or invariant: a bug (tier 2)
-    std::cerr << "laguerre: internal error (please report): " << e.what() << '\n';
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "laguerre: error: " << e.what() << '\n';
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

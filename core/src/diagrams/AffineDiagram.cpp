@@ -13,7 +13,6 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <cmath>
-#include <type_traits>
 
 #include "detail/AffineCells.hpp"
 #include "detail/Validity.hpp"
@@ -25,19 +24,7 @@ namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using EK = CGAL::Exact_predicates_exact_constructions_kernel;
 
-/// The exact circumcentre rounded to doubles, for the faces whose centre the doubles overflow to
-/// inf or 0/0 (nearly collinear sites on the hull: their determinant rounds to 0).
-template <class RT>
-Point2 exact_centre(typename RT::Finite_faces_iterator f) {
-  const CGAL::Cartesian_converter<K, EK> to_exact;
-  const auto p = [&](int k) { return to_exact(f->vertex(k)->point()); };
-  EK::Point_2 c;
-  if constexpr (std::is_same_v<typename RT::Point, K::Point_2>)
-    c = EK().construct_circumcenter_2_object()(p(0), p(1), p(2));
-  else
-    c = EK().construct_weighted_circumcenter_2_object()(p(0), p(1), p(2));
-  return {CGAL::to_double(c.x()), CGAL::to_double(c.y())};
-}
+const CGAL::Cartesian_converter<K, EK> to_exact;
 
 template <class Site>
 struct Traits;
@@ -54,6 +41,13 @@ struct Traits<Point2> {
   static WeightedPoint weighted(const Point2& s) { return {s.x, s.y, 0.0}; }
   static K::Point_2 input(const Point2& s) { return K::Point_2(s.x, s.y); }
   static K::Point_2 centre(const RT& rt, typename RT::Finite_faces_iterator f) { return rt.circumcenter(f); }
+  /// The exact circumcentre rounded to doubles, for the faces whose centre the doubles overflow to inf
+  /// or 0/0 (nearly collinear sites on the hull: their determinant rounds to 0).
+  static Point2 exact_centre(typename RT::Finite_faces_iterator f) {
+    const auto p = [&](int k) { return to_exact(f->vertex(k)->point()); };
+    const EK::Point_2 c = EK().construct_circumcenter_2_object()(p(0), p(1), p(2));
+    return {CGAL::to_double(c.x()), CGAL::to_double(c.y())};
+  }
   static SiteIndex nearest(const RT& rt, Point2 q) { return rt.nearest_vertex(K::Point_2(q.x, q.y))->info(); }
   /// A hidden site is an exact duplicate of the visible site located at its point.
   static std::string hidden_violation(const std::vector<Point2>& sites, SiteIndex i, SiteIndex located) {
@@ -77,6 +71,12 @@ struct Traits<WeightedPoint> {
   static WeightedPoint weighted(const WeightedPoint& s) { return s; }
   static RT::Weighted_point input(const WeightedPoint& s) { return RT::Weighted_point(K::Point_2(s.x, s.y), s.w); }
   static K::Point_2 centre(const RT& rt, typename RT::Finite_faces_iterator f) { return rt.weighted_circumcenter(f); }
+  /// The exact weighted circumcentre rounded to doubles (see Traits<Point2>::exact_centre).
+  static Point2 exact_centre(typename RT::Finite_faces_iterator f) {
+    const auto p = [&](int k) { return to_exact(f->vertex(k)->point()); };
+    const EK::Point_2 c = EK().construct_weighted_circumcenter_2_object()(p(0), p(1), p(2));
+    return {CGAL::to_double(c.x()), CGAL::to_double(c.y())};
+  }
   static SiteIndex nearest(const RT& rt, Point2 q) { return rt.nearest_power_vertex(K::Point_2(q.x, q.y))->info(); }
   /// A hidden site is hidden for a reason: its power at its own point is not smaller than the located
   /// site's (for an exact duplicate, equal).
@@ -137,7 +137,7 @@ AffineDiagram<Site>::AffineDiagram(std::vector<Site> sites, const Box& box) : im
         x = {c.x(), c.y()};
       } catch (const CGAL::Failure_exception&) {
       }
-      if (!std::isfinite(x.x) || !std::isfinite(x.y)) x = exact_centre<RT>(f);
+      if (!std::isfinite(x.x) || !std::isfinite(x.y)) x = T::exact_centre(f);
       m.vertices.push_back({x, {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
     }
   m.cells = detail::build_affine_cells(m.weighted, m.hidden, neighbours, box);

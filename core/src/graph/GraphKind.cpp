@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <utility>
 
 namespace laguerre::core {
@@ -151,6 +152,63 @@ PlanarGraph prepare_for_packing(const PlanarGraph& g, bool outer_given, GraphKin
 
 PlanarGraph prepare_for_packing(const GraphInput& input, GraphKind* kind_out) {
   return prepare_for_packing(input.graph, input.outer_given, kind_out, input.name);
+}
+
+bool is_triangulated_sphere(const PlanarGraph& g) {
+  for (Face f = 0; f < g.num_faces(); ++f)
+    if (g.face_size(f) != 3) return false;
+  return true;
+}
+
+Vertex puncture_vertex(const PlanarGraph& g) {
+  LAGUERRE_PRECONDITION(g.num_vertices() > 0, "puncture_vertex needs a vertex");
+  Vertex hub = 0;
+  for (Vertex v = 1; v < g.num_vertices(); ++v)
+    if (g.degree(v) > g.degree(hub) || (g.degree(v) == g.degree(hub) && g.id(v) < g.id(hub))) hub = v;
+  return hub;
+}
+
+PlanarGraph puncture(const PlanarGraph& g, Vertex hub) {
+  LAGUERRE_PRECONDITION(g.num_vertices() >= 4, "puncturing needs at least 4 vertices");
+  std::vector<std::vector<Vertex>> rotation;
+  std::vector<std::uint64_t> ids;
+  auto renumber = [hub](Vertex v) { return v > hub ? v - 1 : v; };
+  for (Vertex v = 0; v < g.num_vertices(); ++v) {
+    if (v == hub) continue;
+    std::vector<Vertex> around;
+    for (Vertex w : g.neighbours(v))
+      if (w != hub) around.push_back(renumber(w));
+    rotation.push_back(std::move(around));
+    ids.push_back(g.id(v));
+  }
+  const PlanarGraph punctured = PlanarGraph::from_rotation(std::move(rotation), std::move(ids));
+  // The hub's link is now one face; pick the dart between two consecutive link vertices whose left face
+  // has the link's length.
+  const auto link = g.neighbours(hub);
+  for (const auto& [a, b] : {std::pair{link[0], link[1]}, std::pair{link[1], link[0]}}) {
+    const Dart d = punctured.find_dart(renumber(a), renumber(b));
+    if (punctured.face_darts(punctured.face_of(d)).size() == link.size()) return punctured.with_outer_dart(d);
+  }
+  throw InternalError("puncture: the link of the removed vertex is not a face (a face around it is not a triangle)");
+}
+
+PreparedInput prepare_input(GraphInput& input, OuterRule rule) {
+  PreparedInput out;
+  if (rule == OuterRule::puncture && is_triangulated_sphere(input.graph)) {
+    const PlanarGraph& g = input.graph;
+    if (g.num_vertices() < 4)
+      throw GraphInputError(input.name, 0, 0,
+                            "--outer puncture: the triangulated sphere has " + std::to_string(g.num_vertices()) +
+                                " vertices; removing one needs at least 4 (use --outer face).");
+    const Vertex hub = puncture_vertex(g);
+    out.removed.push_back(g.id(hub));
+    PlanarGraph disc = puncture(g, hub);
+    if (!input.positions.empty()) input.positions.erase(input.positions.begin() + static_cast<std::ptrdiff_t>(hub));
+    input.graph = std::move(disc);
+    input.outer_given = true;
+  }
+  input.graph = prepare_for_packing(input, &out.kind);
+  return out;
 }
 
 }  // namespace laguerre::core

@@ -1,20 +1,62 @@
 #include "laguerre/core/packing/Newton.hpp"
 
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
+#ifdef LAGUERRE_HAVE_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "laguerre/core/packing/HyperbolicTriangle.hpp"
+
+// The symmetric variable (derivation of the closed forms in angle_jacobian).
+//
+// Write S = sinh, C = cosh, T = tanh, and u = log tanh(h/2), so du = dh / S(h) and ∂/∂u = S(h) ∂/∂h.
+//
+// Tangency triangle (x, y, z), angle α at x. From sin²(α/2) = S(h_y) S(h_z) / (S(h_x+h_y) S(h_x+h_z))
+// and d log sin²(α/2) = cot(α/2) dα, with coth a − coth b = S(b − a) / (S(a) S(b)):
+//     ∂α/∂h_y = tan(α/2) S(h_x) / (S(h_y) S(h_x + h_y)).
+// The incircle of the triangle of centres (radius ρ) touches the sides at the tangency points, so the
+// right triangle (centre x, tangency point, incentre) has legs h_x and ρ: tan(α/2) = T(ρ) / S(h_x).
+// Hence, with τ = T(ρ) a symmetric function of the triangle,
+//     ∂α/∂u_y = τ / S(h_x + h_y),        ∂α/∂u_x = −τ (coth(h_x + h_y) + coth(h_x + h_z)),
+// and ∂α_x/∂u_y = ∂α_y/∂u_x. In the lifts (X = e^{-2h}, X̄ = 1 − X) nothing cancels:
+//     τ² = X̄ Ȳ Z̄ / (4 (1 − XYZ)),  1 − XYZ = X̄ + X Ȳ + X Y Z̄,
+//     1 / S(h_x + h_y) = 2√(XY) / (1 − XY),  coth(h_x + h_y) = (1 + XY) / (1 − XY),  1 − XY = X̄ + X Ȳ.
+// A horocycle y (Y = 0) gives ∂α_x/∂u_y = 0 and α_y ≡ 0: it only drops out.
+//
+// Triangles of G′ (x, y tangent, face circle f orthogonal to both; HyperbolicTriangle.hpp): the angle
+// at x is atan(T(h_f) / S(h_x)), independent of h_y, and the angle at f is the sum of two such parts.
+// For one right triangle (x, f):
+//     ∂α_x/∂u_f = S_x S_f / (S_x² + S_f² + S_x² S_f²) =: w,   ∂α_x/∂u_x = −C_x C_f w,
+// and the part of α_f in it, atan(T_x / S_f), has ∂/∂u_x = w as well (the denominator is symmetric).
+// In the lifts, D = 4F X̄² + 4X F̄² + X̄² F̄²:  w = 4√(XF) X̄ F̄ / D,  C_x C_f w = (1+X)(1+F) X̄ F̄ / D.
+//
+// Definiteness. Per triangle the 3×3 block is symmetric with off-diagonal entries ≥ 0, and its column
+// sums are ∂(Σ angles)/∂u_x = −∂(area)/∂u_x < 0 (tangency: −τ (T((h_x+h_y)/2) + T((h_x+h_z)/2)), since
+// coth l − 1/S(l) = T(l/2); right triangle: −w (C_x C_f − 1)). Summing the blocks over the triangles
+// and keeping the interior rows and columns (boundary entries are ≥ 0 off the diagonal, so dropping
+// them only lowers the row sums further), J = ∂θ/∂u is symmetric with negative diagonal, non-negative
+// off-diagonal entries and strictly negative row sums: −J is strictly diagonally dominant with a
+// positive diagonal, hence symmetric positive definite (Gershgorin). J is the Hessian of the concave
+// functional whose critical point is the packing (Colin de Verdière; Chow–Luo); Newton's system is
+// −J δu = θ − 2π.
 
 namespace laguerre::core {
 
 namespace {
 constexpr double two_pi = 2 * std::numbers::pi;
-constexpr double fd_step = 1e-5;  // central-difference step in s = log h
+constexpr double fd_step = 1e-5;  // central-difference step (LU path in s = log h; the general overlap pattern in u)
+
+using SpMat = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 // Residuals r(v) = θ(v) − 2π over the interior vertices (row order), and their squared norm.
 double residuals(const PackingComplex& k, const Radii& h, const std::vector<Vertex>& interior, Eigen::VectorXd& r) {
@@ -28,29 +70,130 @@ double residuals(const PackingComplex& k, const Radii& h, const std::vector<Vert
   }
   return norm2;
 }
-}  // namespace
 
-NewtonStep newton_step(const PackingComplex& k, Radii& h) {
+// Derivatives of the angle at v of triangle (v, a, b) with respect to u_v, u_a, u_b.
+struct CornerDerivative {
+  double dv = 0, da = 0, db = 0;
+};
+
+// The right-triangle part (x, f) (f orthogonal to x): {∂/∂u_x, ∂/∂u_f} of atan(T_f / S_x).
+void right_part_derivative(Lift x, Lift f, double& dx, double& df) {
+  const double d = 4 * f.x * x.xbar * x.xbar + 4 * x.x * f.xbar * f.xbar + x.xbar * x.xbar * f.xbar * f.xbar;
+  const double p = x.xbar * f.xbar / d;
+  dx -= (1 + x.x) * (1 + f.x) * p;
+  df += 4 * std::sqrt(x.x * f.x) * p;
+}
+
+// Central differences in u of overlap_angle, for intersection patterns other than those of G′.
+CornerDerivative corner_by_differences(double hv, double ha, double hb, double cva, double cvb, double cab) {
+  CornerDerivative out;
+  const double h[3] = {hv, ha, hb};
+  double* d[3] = {&out.dv, &out.da, &out.db};
+  for (int c = 0; c < 3; ++c) {
+    if (std::isinf(h[c])) continue;
+    const double u = u_of_radius(h[c]), step = fd_step * std::min(1.0, -u);  // u + step < 0
+    double angle[2];
+    for (int sgn = 0; sgn < 2; ++sgn) {
+      Lift l[3] = {lift(hv), lift(ha), lift(hb)};
+      l[c] = lift(radius_of_u(u + (sgn == 0 ? step : -step)));
+      angle[sgn] = overlap_angle(l[0], l[1], l[2], cva, cvb, cab);
+    }
+    *d[c] = (angle[0] - angle[1]) / (2 * step);
+  }
+  return out;
+}
+
+CornerDerivative corner_derivative(Lift v, Lift a, Lift b, double hv, double ha, double hb, double cva, double cvb,
+                                   double cab) {
+  CornerDerivative out;
+  if (cva == 1 && cvb == 1 && cab == 1) {
+    const double e_va = v.xbar + v.x * a.xbar, e_vb = v.xbar + v.x * b.xbar;
+    const double all = v.xbar + v.x * a.xbar + v.x * a.x * b.xbar;  // 1 − VAB
+    const double tau = 0.5 * std::sqrt(v.xbar * a.xbar * b.xbar / all);
+    const double va = v.x * a.x, vb = v.x * b.x;
+    out.da = tau * 2 * std::sqrt(va) / e_va;
+    out.db = tau * 2 * std::sqrt(vb) / e_vb;
+    out.dv = -tau * ((1 + va) / e_va + (1 + vb) / e_vb);
+  } else if (cva == 1 && cvb == 0 && cab == 0) {  // b is the face circle
+    right_part_derivative(v, b, out.dv, out.db);
+  } else if (cvb == 1 && cva == 0 && cab == 0) {  // a is the face circle
+    right_part_derivative(v, a, out.dv, out.da);
+  } else if (cab == 1 && cva == 0 && cvb == 0) {  // v is the face circle
+    right_part_derivative(v, a, out.dv, out.da);
+    right_part_derivative(v, b, out.dv, out.db);
+  } else {
+    out = corner_by_differences(hv, ha, hb, cva, cvb, cab);
+  }
+  return out;
+}
+
+// The interior numbering of a complex.
+struct Interior {
+  std::vector<Vertex> vertices;
+  std::vector<std::int64_t> row;  // per vertex of K: row, or −1 on the boundary
+};
+
+Interior interior_of(const PackingComplex& k) {
+  Interior in;
   const PlanarGraph& g = k.graph;
-  NewtonStep out;
-  std::vector<Vertex> interior;
-  std::vector<Eigen::Index> row(g.num_vertices(), -1);
+  in.row.assign(g.num_vertices(), -1);
   for (Vertex v = 0; v < g.num_vertices(); ++v)
     if (!g.is_boundary(v)) {
-      row[v] = static_cast<Eigen::Index>(interior.size());
-      interior.push_back(v);
+      in.row[v] = static_cast<std::int64_t>(in.vertices.size());
+      in.vertices.push_back(v);
     }
-  if (interior.empty()) return out;
-  Eigen::VectorXd r;
-  const double norm0 = residuals(k, h, interior, r);
-  out.error_before = out.error_after = r.cwiseAbs().maxCoeff();
+  return in;
+}
 
-  // J = ∂θ/∂s by central differences, corner by corner: the angle at v of triangle (v, a, b)
-  // depends on h_v, h_a and h_b only; horocycles (boundary) are not unknowns.
+// J = ∂θ/∂u in compressed form (column c = row c by symmetry; the diagonal and the interior
+// neighbours of each interior vertex, indices increasing).
+void assemble_jacobian(const PackingComplex& k, const Radii& h, const Interior& in, std::vector<int>& outer,
+                       std::vector<int>& inner, std::vector<double>& values) {
+  const PlanarGraph& g = k.graph;
+  const std::size_t n = in.vertices.size();
+  outer.assign(n + 1, 0);
+  inner.clear();
+  values.clear();
+  std::vector<Lift> lifts(h.size());
+  for (Vertex v = 0; v < h.size(); ++v) lifts[v] = lift(h[v]);
+  std::vector<std::pair<int, double>> row;  // (column, value) of one row, before sorting
+  std::vector<int> slot;                    // per rotation position of a row: its entry in `row`, or −1
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vertex v = in.vertices[i];
+    const Dart first = g.first_dart(v);
+    const std::uint32_t deg = g.degree(v);
+    row.clear();
+    row.emplace_back(static_cast<int>(i), 0.0);
+    for (std::uint32_t e = 0; e < deg; ++e)  // one slot per interior neighbour, in rotation order
+      if (in.row[g.head(first + e)] >= 0) row.emplace_back(static_cast<int>(in.row[g.head(first + e)]), 0.0);
+    slot.assign(deg, -1);
+    for (std::uint32_t e = 0, s = 1; e < deg; ++e)
+      if (in.row[g.head(first + e)] >= 0) slot[e] = static_cast<int>(s++);
+    for (std::uint32_t e = 0; e < deg; ++e) {
+      const std::uint32_t f = e + 1 == deg ? 0 : e + 1;
+      const Vertex a = g.head(first + e), b = g.head(first + f);
+      const CornerDerivative d = corner_derivative(lifts[v], lifts[a], lifts[b], h[v], h[a], h[b], k.cos_angle[first + e],
+                                                   k.cos_angle[first + f], k.cos_angle[g.next_in_face(first + e)]);
+      row[0].second += d.dv;
+      if (slot[e] >= 0) row[static_cast<std::size_t>(slot[e])].second += d.da;
+      if (slot[f] >= 0) row[static_cast<std::size_t>(slot[f])].second += d.db;
+    }
+    std::sort(row.begin(), row.end());
+    for (const auto& [c, x] : row) {
+      inner.push_back(c);
+      values.push_back(x);
+    }
+    outer[i + 1] = static_cast<int>(inner.size());
+  }
+}
+
+// The original LU path: J = ∂θ/∂s (s = log h) by central differences, corner by corner.
+SpMat jacobian_in_log_radius(const PackingComplex& k, const Radii& h, const Interior& in) {
+  const PlanarGraph& g = k.graph;
   std::vector<Eigen::Triplet<double>> entries;
   std::vector<Lift> lifts(h.size());
   for (Vertex v = 0; v < h.size(); ++v) lifts[v] = lift(h[v]);
-  for (Vertex v : interior) {
+  for (Vertex v : in.vertices) {
     const Dart first = g.first_dart(v);
     const std::uint32_t deg = g.degree(v);
     for (std::uint32_t i = 0; i < deg; ++i) {
@@ -68,19 +211,126 @@ NewtonStep newton_step(const PackingComplex& k, Radii& h) {
         target[1] = lift(h[w] * std::exp(-fd_step));
         const double up = overlap_angle(lv[0], la[0], lb[0], cva, cvb, cab);
         const double down = overlap_angle(lv[1], la[1], lb[1], cva, cvb, cab);
-        entries.emplace_back(row[v], row[w], (up - down) / (2 * fd_step));
+        entries.emplace_back(in.row[v], in.row[w], (up - down) / (2 * fd_step));
       }
     }
   }
-  const auto n = static_cast<Eigen::Index>(interior.size());
-  Eigen::SparseMatrix<double> jac(n, n);
+  const auto n = static_cast<Eigen::Index>(in.vertices.size());
+  SpMat jac(n, n);
   jac.setFromTriplets(entries.begin(), entries.end());  // sums the corner contributions
   jac.makeCompressed();
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-  lu.compute(jac);
-  if (lu.info() != Eigen::Success) return out;
-  const Eigen::VectorXd delta = lu.solve(-r);
-  if (lu.info() != Eigen::Success || !delta.allFinite()) return out;
+  return jac;
+}
+}  // namespace
+
+std::string_view cholesky_backend() {
+#ifdef LAGUERRE_HAVE_CHOLMOD
+  return "cholmod";
+#else
+  return "eigen-ldlt";
+#endif
+}
+
+double u_of_radius(double h) {
+  if (std::isinf(h)) return 0;
+  if (h < 1) return std::log(std::tanh(h / 2));
+  return std::log1p(-2 / (std::exp(h) + 1));  // tanh(h/2) = 1 − 2/(e^h + 1)
+}
+
+double radius_of_u(double u) {
+  if (u >= 0) return std::numeric_limits<double>::infinity();
+  const double q = std::exp(u);
+  return std::log1p(2 * q / -std::expm1(u));  // (1 + q)/(1 − q) = 1 + 2q/(1 − q)
+}
+
+AngleJacobian angle_jacobian(const PackingComplex& k, const Radii& h) {
+  const Interior in = interior_of(k);
+  std::vector<int> outer, inner;
+  std::vector<double> values;
+  assemble_jacobian(k, h, in, outer, inner, values);
+  AngleJacobian out;
+  out.interior = in.vertices;
+  out.entries.reserve(values.size());
+  for (std::size_t r = 0; r + 1 < outer.size(); ++r)
+    for (int p = outer[r]; p < outer[r + 1]; ++p)
+      out.entries.push_back({static_cast<std::uint32_t>(r), static_cast<std::uint32_t>(inner[static_cast<std::size_t>(p)]),
+                             values[static_cast<std::size_t>(p)]});
+  return out;
+}
+
+struct NewtonMethod::State {
+  const PackingComplex* complex = nullptr;
+  std::size_t num_vertices = 0;
+  Interior interior;
+#ifdef LAGUERRE_HAVE_CHOLMOD
+  using Cholesky = Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower>;
+#else
+  using Cholesky = Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>>;
+#endif
+  std::optional<Cholesky> cholesky;  // symbolic analysis kept across steps
+  std::vector<int> outer, inner;
+  std::vector<double> values;
+};
+
+NewtonMethod::NewtonMethod(NewtonSolver solver) : solver_(solver), state_(std::make_unique<State>()) {}
+NewtonMethod::~NewtonMethod() = default;
+
+NewtonStep NewtonMethod::step(const PackingComplex& k, Radii& h) {
+  State& st = *state_;
+  if (st.complex != &k || st.num_vertices != k.graph.num_vertices()) {
+    st.complex = &k;
+    st.num_vertices = k.graph.num_vertices();
+    st.interior = interior_of(k);
+    st.cholesky.reset();
+  }
+  const std::vector<Vertex>& interior = st.interior.vertices;
+  NewtonStep out;
+  if (interior.empty()) return out;
+  Eigen::VectorXd r;
+  const double norm0 = residuals(k, h, interior, r);
+  out.error_before = out.error_after = r.cwiseAbs().maxCoeff();
+  const auto n = static_cast<Eigen::Index>(interior.size());
+
+  // δs: the Newton direction in s = log h.
+  Eigen::VectorXd delta;
+  if (solver_ == NewtonSolver::lu) {
+    const SpMat jac = jacobian_in_log_radius(k, h, st.interior);
+    Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu;
+    lu.compute(jac);
+    if (lu.info() != Eigen::Success) return out;
+    delta = lu.solve(-r);
+    if (lu.info() != Eigen::Success) return out;
+  } else {
+    assemble_jacobian(k, h, st.interior, st.outer, st.inner, st.values);
+    for (double& x : st.values) x = -x;  // A = −J, symmetric positive definite
+    const SpMat a = Eigen::Map<const SpMat>(n, n, static_cast<Eigen::Index>(st.values.size()), st.outer.data(),
+                                            st.inner.data(), st.values.data());
+    Eigen::VectorXd du;
+    if (solver_ == NewtonSolver::cholesky) {
+      if (!st.cholesky) {
+        st.cholesky.emplace();
+        st.cholesky->analyzePattern(a);
+      }
+      st.cholesky->factorize(a);
+      if (st.cholesky->info() != Eigen::Success) return out;
+      du = st.cholesky->solve(r);
+      if (st.cholesky->info() != Eigen::Success) return out;
+    } else {
+      Eigen::ConjugateGradient<SpMat, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>>> cg;
+      cg.setTolerance(std::clamp(std::sqrt(norm0), 1e-14, 1e-4));
+      cg.setMaxIterations(5000);
+      cg.compute(a);
+      if (cg.info() != Eigen::Success) return out;
+      du = cg.solve(r);
+      out.linear_iterations = static_cast<int>(cg.iterations());
+    }
+    delta.resize(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double hv = h[interior[static_cast<std::size_t>(i)]];
+      delta[i] = du[i] * (hv < 1e-8 ? 1.0 : std::sinh(hv) / hv);  // δs = δu · ds/du
+    }
+  }
+  if (!delta.allFinite()) return out;
 
   // Damped step: at most a factor e² per radius, halved until ‖θ − 2π‖₂ decreases.
   double t = std::min(1.0, 2.0 / std::max(1e-300, delta.cwiseAbs().maxCoeff()));
@@ -99,6 +349,11 @@ NewtonStep newton_step(const PackingComplex& k, Radii& h) {
     }
   }
   return out;
+}
+
+NewtonStep newton_step(const PackingComplex& k, Radii& h, NewtonSolver solver) {
+  NewtonMethod method(solver);
+  return method.step(k, h);
 }
 
 }  // namespace laguerre::core

@@ -74,6 +74,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
       angle = result.angle_error <= options.angle_epsilon;
       if (angle && result.first_angle < 0) result.first_angle = iteration;
     }
+    if (visitor) visitor->on_layout(iteration, result.layout);
     if (visitor) visitor->on_check(iteration, result.angle_error, result.local_ok);
     switch (options.stop) {
       case StopRule::lpd: return lpd;
@@ -86,6 +87,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
 
   int it = 0;
   Accelerator accelerator(options.acceleration);
+  NewtonMethod newton_method(options.newton_solver);
   const bool newton = options.acceleration == Acceleration::newton;
   const bool accelerate = options.acceleration != Acceleration::plain && !newton;
   Radii previous;
@@ -94,7 +96,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     const int steps = std::min(options.steps_per_check, options.max_iterations - it);
     for (int s = 0; s < steps; ++s) {
       if (newton) {  // a Newton step, or a plain sweep where Newton cannot improve (rounding level)
-        if (newton_step(k, result.radii).improved) {
+        if (newton_method.step(k, result.radii).improved) {
           ++result.jumps;
           continue;
         }

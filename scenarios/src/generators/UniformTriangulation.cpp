@@ -1,6 +1,7 @@
 #include "laguerre/scenarios/generators/UniformTriangulation.hpp"
 
 #include "laguerre/core/Error.hpp"
+#include "laguerre/core/graph/GraphKind.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -84,29 +85,7 @@ namespace laguerre::scenarios {
 
 core::PlanarGraph puncture_at_max_degree(const core::PlanarGraph& g) {
   LAGUERRE_PRECONDITION(g.num_vertices() >= 4, "puncturing needs at least 4 vertices");
-  core::Vertex hub = 0;
-  for (core::Vertex v = 1; v < g.num_vertices(); ++v)
-    if (g.degree(v) > g.degree(hub)) hub = v;
-  std::vector<std::vector<core::Vertex>> rotation;
-  std::vector<std::uint64_t> ids;
-  auto renumber = [hub](core::Vertex v) { return v > hub ? v - 1 : v; };
-  for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
-    if (v == hub) continue;
-    std::vector<core::Vertex> around;
-    for (core::Vertex w : g.neighbours(v))
-      if (w != hub) around.push_back(renumber(w));
-    rotation.push_back(std::move(around));
-    ids.push_back(g.id(v));
-  }
-  const core::PlanarGraph punctured = core::PlanarGraph::from_rotation(std::move(rotation), std::move(ids));
-  // The hub's link is now one face; pick the dart between two consecutive link vertices whose left
-  // face has the link's length.
-  const auto link = g.neighbours(hub);
-  for (const auto& [a, b] : {std::pair{link[0], link[1]}, std::pair{link[1], link[0]}}) {
-    const core::Dart d = punctured.find_dart(renumber(a), renumber(b));
-    if (punctured.face_darts(punctured.face_of(d)).size() == link.size()) return punctured.with_outer_dart(d);
-  }
-  throw std::logic_error("puncture_at_max_degree: the hub's link is not a face");
+  return core::puncture(g, core::puncture_vertex(g));
 }
 
 core::PlanarGraph with_largest_outer_face(const core::PlanarGraph& g) {

@@ -203,3 +203,29 @@ TEST(AffineDiagrams, SliverFacesHaveFiniteVertices) {
   for (const Point2& p : sites) weighted.push_back({p.x, p.y, 0.0});
   EXPECT_TRUE(PowerDiagram(weighted, bounding_box(sites, 0.15)).is_valid(true));
 }
+
+// One site ten decades away from the others leaves thin cells whose rounded vertices have a shoelace
+// area at the rounding level of the box, of either sign: degenerate, not clockwise (fuzz finding sites-3).
+TEST(AffineDiagrams, CellsAcrossTenDecadesAreValid) {
+  std::vector<Point2> sites{{0.15, 0.2}, {0.5, 0.1}, {0.85, 0.25}, {0.3, 42949672960.5}, {0.62, 0.45},
+                            {0.9, 0.6}, {0.12, 0.82}, {0.5, 0.8}, {0.78, 0.9}};
+  EXPECT_TRUE(VoronoiDiagram(sites, bounding_box(sites, 0.15)).is_valid(true));
+  std::vector<WeightedPoint> weighted;
+  for (const Point2& p : sites) weighted.push_back({p.x, p.y, 0.0});
+  EXPECT_TRUE(PowerDiagram(weighted, bounding_box(sites, 0.15)).is_valid(true));
+}
+
+// Far from the origin a margin of 1 (or 15% of a small span) is lost to rounding: the box still has a
+// positive width and height (fuzz finding sites-3, a single site at 2^64).
+TEST(AffineDiagrams, BoundingBoxesFarFromTheOriginAreNotFlat) {
+  for (const std::vector<Point2>& points : {std::vector<Point2>{{0.5, 0x1p64}},
+                                            std::vector<Point2>{{0, 1e19}, {1, 1e19}}}) {
+    const Box b = bounding_box(points, 0.15);
+    EXPECT_LT(b.xmin, b.xmax);
+    EXPECT_LT(b.ymin, b.ymax);
+    EXPECT_TRUE(VoronoiDiagram(points, b).is_valid(true));
+  }
+  const Box unit = bounding_box(std::vector<Point2>{{0, 0}, {1, 1}}, 0.1);  // unchanged near the origin
+  EXPECT_DOUBLE_EQ(unit.xmin, -0.1);
+  EXPECT_DOUBLE_EQ(unit.ymax, 1.1);
+}

@@ -7,6 +7,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "laguerre/core/graph/GraphIO.hpp"
+#include "laguerre/scenarios/ScenarioLoader.hpp"
+#include "laguerre/scenarios/Topology.hpp"
 
 namespace laguerre::scenarios {
 namespace {
@@ -41,6 +49,39 @@ TEST(OuterRule, LargestFaceGoesOutside) {
     for (core::Face f = 0; f < map.num_faces(); ++f) largest = std::max(largest, map.face_size(f));
     EXPECT_EQ(map.face_size(map.outer_face()), largest);
   }
+}
+
+TEST(OuterRule, FileTopologyPuncturesASphereOnlyWhenAsked) {
+  const core::PlanarGraph sphere = uniform_triangulation(30, 7);
+  const std::string path = (std::filesystem::temp_directory_path() / "laguerre-outer-rule-sphere.edges").string();
+  std::ofstream(path) << core::write_edge_list(sphere);
+  TopologyParams params;
+  params.set("path", path);
+  const Topology face = build_topology("file", params, 1);
+  EXPECT_EQ(face.graph.num_vertices(), 30u);
+  EXPECT_TRUE(face.removed.empty());
+  EXPECT_EQ(face.note, "");
+  params.set("outer", std::string("puncture"));
+  const Topology punctured = build_topology("file", params, 1);
+  EXPECT_EQ(punctured.graph.num_vertices(), 29u);
+  EXPECT_EQ(punctured.kind, core::GraphKind::triangulated_disc);
+  ASSERT_EQ(punctured.removed.size(), 1u);
+  EXPECT_EQ(punctured.removed[0], sphere.id(core::puncture_vertex(sphere)));
+  EXPECT_EQ(punctured.graph.boundary_cycle().size(), sphere.degree(core::puncture_vertex(sphere)));
+  EXPECT_NE(punctured.note.find("vertex " + std::to_string(punctured.removed[0]) + " removed"), std::string::npos)
+      << punctured.note;
+  // The loader refuses another value, naming the key and the choices.
+  const std::string yaml = "name: t\nseed: 1\ntopology:\n  generator: file\n  path: " + path + "\n  outer: hole\n";
+  try {
+    (void)load_scenario_from_string(yaml, "t.yaml", std::filesystem::temp_directory_path().string());
+    ADD_FAILURE() << "no error";
+  } catch (const ScenarioError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("outer"), std::string::npos) << what;
+    EXPECT_NE(what.find("hole"), std::string::npos) << what;
+    EXPECT_NE(what.find("puncture"), std::string::npos) << what;
+  }
+  std::remove(path.c_str());
 }
 
 }  // namespace

@@ -104,3 +104,10 @@ TEST_F(CliBadInput, EmbeddingWithAnInvalidRotationSystemIsNamed) {
 TEST_F(CliBadInput, FaceNodeIdsAboveTheProtocolLimitAreBadInput) {
   expect_bad("simulate " LAGUERRE_SOURCE_DIR "/tests/data/graphs/three-connected-60-big-ids.txt", {"4294967296", "2^31"});
 }
+
+TEST_F(CliBadInput, OuterRuleMustBeFaceOrPuncture) {
+  for (const char* cmd : {"pack ", "simulate "}) expect_bad(cmd + graph + " --outer hole", {"--outer", "hole", "face", "puncture"});
+  expect_bad("thesis-table --count 1 --size 20 --outer hole", {"--outer", "hole"});
+  const std::string triangle = write("triangle.edges", "1 2\n2 3\n3 1\n");
+  expect_bad("pack " + triangle + " --outer puncture --no-picture", {"triangle.edges", "at least 4"});
+}

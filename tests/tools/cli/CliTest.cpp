@@ -4,6 +4,7 @@
 
 #include "CliRunner.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -231,4 +233,71 @@ TEST_F(Cli, SimulateReportsACrashedNodeAtEverySurvivor) {
   EXPECT_EQ(doc["failed_nodes"], 59);
   EXPECT_EQ(doc["suspects"]["17"], 59);
   EXPECT_EQ(doc["verify"], "not applicable: the run was abandoned after a node failure");
+}
+
+namespace {
+/// The icosahedron with ids 3..14: a triangulated sphere, every vertex of degree 5.
+std::string icosahedron_edges() {
+  std::string text = "# the icosahedron: every face a triangle, no '# outer:' line\n";
+  auto edge = [&](int a, int b) { text += std::to_string(a + 3) + " " + std::to_string(b + 3) + "\n"; };
+  for (int i = 1; i <= 5; ++i) {
+    const int next = i % 5 + 1;
+    edge(0, i);             // top to the upper ring
+    edge(i, next);          // upper ring
+    edge(i + 5, next + 5);  // lower ring
+    edge(i, i + 5);
+    edge(i, next + 5);
+    edge(11, i + 5);  // bottom to the lower ring
+  }
+  return text;
+}
+}  // namespace
+
+TEST_F(Cli, OuterPunctureRemovesTheLargestDegreeVertexAndReportsIt) {
+  using laguerre::cli_test::run_json;
+  const std::string sphere = write("ico.edges", icosahedron_edges());
+  nlohmann::json doc = run_json("pack " + sphere + " --json --no-picture");
+  EXPECT_EQ(doc["outer_rule"], "face");
+  EXPECT_TRUE(doc["removed_vertices"].empty());
+  EXPECT_EQ(doc["vertices"].size(), 12u);
+  EXPECT_EQ(doc["outer_face"].size(), 3u);
+
+  doc = run_json("pack " + sphere + " --outer puncture --json --no-picture");
+  EXPECT_EQ(doc["outer_rule"], "puncture");
+  EXPECT_EQ(doc["removed_vertices"], nlohmann::json::array({3}));  // all of degree 5: the smallest id
+  EXPECT_EQ(doc["vertices"].size(), 11u);
+  EXPECT_EQ(doc["packing"]["status"], "converged");
+  std::vector<std::uint64_t> outer = doc["outer_face"].get<std::vector<std::uint64_t>>();
+  std::sort(outer.begin(), outer.end());
+  EXPECT_EQ(outer, (std::vector<std::uint64_t>{4, 5, 6, 7, 8}));  // the link of vertex 3
+  for (const auto& v : doc["vertices"]) EXPECT_NE(v["id"], 3);
+  const Outcome text = run("pack " + sphere + " --outer puncture --no-picture -o " + path("ico"));
+  EXPECT_EQ(text.status, 0) << text.out;
+  EXPECT_NE(text.out.find("removed      1 vertex 3 (--outer puncture"), std::string::npos) << text.out;
+
+  doc = run_json("simulate " + sphere + " --outer puncture --json");
+  EXPECT_EQ(doc["removed_vertices"], nlohmann::json::array({3}));
+  EXPECT_EQ(doc["nodes"], 11);
+  EXPECT_EQ(doc["packets"], 11 * 10);
+  EXPECT_EQ(doc["delivered"], doc["packets"]);
+}
+
+TEST_F(Cli, ThesisTablePacksTheSameSpheresUnderBothOuterRules) {
+  const nlohmann::json doc = laguerre::cli_test::run_json("thesis-table --family spheres --count 2 --size 30 --json");
+  ASSERT_EQ(doc["families"].size(), 2u);
+  EXPECT_EQ(doc["families"][0]["family"], "spheres/face");
+  EXPECT_EQ(doc["families"][1]["family"], "spheres/puncture");
+  EXPECT_EQ(doc["families"][0]["removed_vertices"], 0);
+  EXPECT_EQ(doc["families"][1]["removed_vertices"], 2);
+  EXPECT_EQ(doc["families"][0]["n_mean"], 30.0);
+  EXPECT_EQ(doc["families"][1]["n_mean"], 29.0);
+  for (const auto& f : doc["families"]) {
+    EXPECT_EQ(f["graphs"], 2);
+    EXPECT_EQ(f["not_converged"], 0);
+    EXPECT_EQ(f["greedy_delivery_min"], 1.0);
+  }
+  ASSERT_EQ(doc["graphs"].size(), 4u);  // sphere#1 face, sphere#1 puncture, sphere#2 face, sphere#2 puncture
+  EXPECT_EQ(doc["graphs"][0]["name"], doc["graphs"][1]["name"]);
+  EXPECT_EQ(doc["graphs"][0]["outer"], "face");
+  EXPECT_EQ(doc["graphs"][1]["outer"], "puncture");
 }

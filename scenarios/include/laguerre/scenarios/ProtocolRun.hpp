@@ -7,10 +7,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -99,6 +101,45 @@ struct ProtocolOutcome {
 sim::Network make_network(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
                           const sim::LinkModel& link);
 
+/// The phase a message's traffic is counted under: its codec message type (byte 1); a reliability
+/// frame under the type of the message it carries, a probe (empty frame) or an ack under their own.
+sim::Phase traffic_phase(std::span<const std::byte> bytes);
+
+/// The packing nodes' parameters for `setup` (the reliability layer still off).
+protocols::PackingParams packing_params(const ProtocolSetup& setup);
+
+/// What the summary of a run reads of one packing node; trivially copyable, so that it can travel
+/// between processes (sim::append_bytes).
+struct PackingNodeSummary {
+  core::Circle circle;                      ///< placement().circle
+  core::LocalCondition local;               ///< local_condition()
+  protocols::PackingOutcome outcome;        ///< outcome()
+  bool final;                               ///< is_final()
+  std::uint32_t steps, round;               ///< steps(), round()
+  protocols::PackingCounters counters;      ///< counters()
+  protocols::Time finished_at;              ///< finished_at()
+  protocols::NodeId suspect;                ///< suspect()
+};
+
+/// The summary of `node`.
+PackingNodeSummary summarize(const protocols::PackingNode& node);
+
+/// collect_packing_nodes from the nodes' summaries (nodes[v] of vertex v; requires one per vertex).
+void collect_packing_summaries(const core::PlanarGraph& g, std::span<const PackingNodeSummary> nodes,
+                               const std::vector<bool>& down, ProtocolOutcome& out);
+
+/// Fills the per-node fields of `out` (circles, local, converged/holds/failed/crashed counts,
+/// suspects, iterations, rounds, reliability, finished_at, and the outcomes of `out.outages`) from
+/// the nodes of a finished run, whatever hosted them: `node_of(v)` is vertex v's node, `down[v]`
+/// whether v was down for good (empty: no node was).
+void collect_packing_nodes(const core::PlanarGraph& g,
+                           const std::function<const protocols::PackingNode&(core::Vertex)>& node_of,
+                           const std::vector<bool>& down, ProtocolOutcome& out);
+
+/// Fills the traffic fields of `out` (messages, bytes, per-node maxima, by_phase) from `traffic`
+/// (indexed by vertex and traffic_phase).
+void collect_traffic(const sim::TrafficMetrics& traffic, ProtocolOutcome& out);
+
 /// Runs the protocol on `g` (prepared for packing). Throws core::InputError if an outage names an
 /// unknown node (source "crash ID@TIME") or a distance latency is used without positions.
 ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
@@ -136,6 +177,42 @@ struct ForwardingResult {
   double stretch_max = std::numeric_limits<double>::quiet_NaN();   ///< its maximum (NaN if none)
   double simulated_seconds = 0;   ///< simulated time of the forwarding run
   std::uint64_t retransmissions = 0;  ///< frames the reliability layer sent again (lossy links; else 0)
+};
+
+/// Where the geometric schemes place the nodes: `positions` if not empty, else the circles' centres.
+std::vector<core::Point2> forwarding_positions(const core::CircleEmbedding& circles,
+                                               const std::vector<core::Point2>& positions);
+
+/// Packet number `i` (its id) of `pairs`, towards pairs[i].second with `circles` and `positions`
+/// (forwarding_positions), under `scheme` with core::route's hop limit (core::default_ttl).
+protocols::DataPacket forwarding_packet(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
+                                        const std::vector<core::Point2>& positions, core::Scheme scheme,
+                                        const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs, std::size_t i);
+
+/// Hop distances (breadth-first search) from every source that appears in `pairs` (row s for source
+/// s; the other rows empty).
+std::vector<std::vector<std::uint32_t>> hop_distances_from_sources(
+    const core::PlanarGraph& g, const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs);
+
+/// One scheme's result from the end reports of its packets (ids = indices into `pairs`, any order),
+/// with hop stretch against `hop_distance` (hop_distances_from_sources); timing fields left 0. The
+/// reports are summed in packet order, so the same outcomes give the same means to the last bit,
+/// whatever order the packets ended in.
+ForwardingResult summarize_forwarding(core::Scheme scheme, const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs,
+                                      const std::vector<std::vector<std::uint32_t>>& hop_distance,
+                                      const std::vector<protocols::PacketReport>& reports);
+
+/// The reliability layer under forwarding nodes on lossy links of one-way latency at most
+/// `max_latency` ns: protocols::lossy_link_params without probes (an idle forwarder has nothing to
+/// watch, and the queue drains once every packet has arrived and been acknowledged).
+protocols::ReliableParams forwarding_reliable_params(sim::Duration max_latency);
+
+/// A PacketSink that keeps every report.
+class PacketCollector : public protocols::PacketSink {
+public:
+  /// Appends `r` to `reports`.
+  void on_packet_end(const protocols::PacketReport& r) override { reports.push_back(r); }
+  std::vector<protocols::PacketReport> reports;  ///< in the order the packets ended
 };
 
 /// Forwards one packet per pair in `pairs` hop by hop, one simulation per scheme, over the links of

@@ -106,6 +106,7 @@ struct Topology {
   std::string name;                     ///< e.g. "delaunay(n=50)" or "graphs/x.txt#2"
   std::string family;                   ///< the generator name
   std::string note;                     ///< what the generator reports (e.g. a sensor field's repair), or ""
+  std::vector<std::uint64_t> removed;   ///< ids of input vertices the outer rule removed (core::prepare_input)
 };
 
 /// What the registry knows about a generator.

@@ -11,6 +11,7 @@
 /// Bad input to the diagrams throws InputError (Error.hpp). Nothing here decides geometry: exact decisions are made in the .cpp files of core/src/diagrams.
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <span>
@@ -84,8 +85,9 @@ struct Box {
   std::vector<Point2> corners() const { return {{xmin, ymin}, {xmax, ymin}, {xmax, ymax}, {xmin, ymax}}; }
 };
 
-/// Bounding box of `points` grown by `relative_margin` × the larger side (at least 1 when all points
-/// coincide or the span is empty; then centred on the points, or the unit box for no points).
+/// Bounding box of `points` grown by `relative_margin` × the larger side (1 when all points coincide),
+/// and by at least 2^-40 × the largest coordinate magnitude, so that the margin survives rounding far
+/// from the origin and the box is never flat; the default box for no points.
 inline Box bounding_box(std::span<const Point2> points, double relative_margin = 0.1) {
   if (points.empty()) return {};
   Box b{points[0].x, points[0].y, points[0].x, points[0].y};
@@ -94,7 +96,8 @@ inline Box bounding_box(std::span<const Point2> points, double relative_margin =
     b.xmax = std::max(b.xmax, p.x), b.ymax = std::max(b.ymax, p.y);
   }
   const double side = std::max(b.width(), b.height());
-  return b.expanded(side > 0 ? relative_margin * side : 1.0);
+  const double magnitude = std::max({std::fabs(b.xmin), std::fabs(b.xmax), std::fabs(b.ymin), std::fabs(b.ymax)});
+  return b.expanded(std::max(side > 0 ? relative_margin * side : 1.0, magnitude * 0x1p-40));
 }
 
 /// A simple polygon as its vertices in counter-clockwise order (not repeated at the end).

@@ -3,10 +3,12 @@
 /// Classifying a planar graph for circle packing (triangulated disc or 3-connected) and choosing its
 /// outer face.
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "laguerre/core/EnumNames.hpp"
 #include "laguerre/core/graph/Embedding.hpp"
 #include "laguerre/core/graph/PlanarGraph.hpp"
 
@@ -53,5 +55,42 @@ PlanarGraph prepare_for_packing(const PlanarGraph& g, bool outer_given, GraphKin
 
 /// prepare_for_packing(input.graph, input.outer_given, kind_out, input.name).
 PlanarGraph prepare_for_packing(const GraphInput& input, GraphKind* kind_out = nullptr);
+
+/// How a triangulated sphere (a graph all of whose faces are triangles) becomes a disc for packing.
+/// Rationale and measurements of the default (`face`): docs/outer-face.md.
+enum class OuterRule {
+  face,     ///< keep a face as the outer face: the input's (`# outer:`), else default_outer_dart()'s
+  puncture  ///< remove puncture_vertex(); its neighbours, in their cyclic order, become the boundary
+};
+
+/// The one spelling of each OuterRule (`--outer`, scenario key `outer` of the file generator).
+inline constexpr EnumNames<OuterRule, 2> outer_rule_names{{{OuterRule::face, "face"}, {OuterRule::puncture, "puncture"}}};
+
+/// Whether every face of g is a triangle (g is a triangulated sphere; a disc bounded by a triangle is one).
+bool is_triangulated_sphere(const PlanarGraph& g);
+
+/// The vertex OuterRule::puncture removes: the one of largest degree, ties broken by the smallest user
+/// id. Precondition: g has a vertex.
+Vertex puncture_vertex(const PlanarGraph& g);
+
+/// g without vertex v (and its edges), with v's link as the outer face; the other vertices keep their
+/// ids and their relative order. Preconditions: g has at least 4 vertices and every face around v is a
+/// triangle (so the link of v is a simple cycle, a face of the result).
+PlanarGraph puncture(const PlanarGraph& g, Vertex v);
+
+/// What prepare_input decided.
+struct PreparedInput {
+  GraphKind kind{};                      ///< triangulated disc or 3-connected
+  std::vector<std::uint64_t> removed;    ///< user ids of the vertices removed (OuterRule::puncture), else empty
+};
+
+/// Prepares `input` for packing under `rule`, in place (graph and positions replaced):
+///  - OuterRule::puncture and is_triangulated_sphere(input.graph) (whether or not the input named an outer
+///    face): the vertex puncture_vertex() is removed with its position, its link becomes the outer face, and
+///    its id is listed in `removed` (it is not in the embedding: it gets no circle, sends and receives no
+///    packet); then as prepare_for_packing with the outer face given;
+///  - otherwise exactly prepare_for_packing(input) (OuterRule::puncture only concerns spheres).
+/// Throws GraphInputError as prepare_for_packing does, and for a puncture of a sphere of 3 vertices.
+PreparedInput prepare_input(GraphInput& input, OuterRule rule);
 
 }  // namespace laguerre::core

@@ -9,6 +9,7 @@
 #include "laguerre/core/geometry/Circle.hpp"
 #include "laguerre/core/packing/Accelerator.hpp"
 #include "laguerre/core/packing/Layout.hpp"
+#include "laguerre/core/packing/Newton.hpp"
 #include "laguerre/core/packing/Thurston.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 
@@ -49,6 +50,7 @@ struct PackOptions {
   double tangency_tolerance = 0.01;              ///< for StopRule::exact (fraction of smaller radius)
   bool track_all = false;                        ///< evaluate every rule at every check (for tables)
   Acceleration acceleration = Acceleration::plain;  ///< sweep acceleration (see Accelerator)
+  NewtonSolver newton_solver = NewtonSolver::cholesky;  ///< linear solver of Acceleration::newton
 };
 
 /// Result of a packing run.
@@ -76,6 +78,8 @@ public:
   virtual ~PackVisitor() = default;
   /// After each checked iteration: iteration count, angle error, vertices satisfying LPD/GLPD.
   virtual void on_check(int /*iteration*/, double /*angle_error*/, std::size_t /*local_ok*/) {}
+  /// After each checked iteration's layout, before `on_check`.
+  virtual void on_layout(int /*iteration*/, const Layout& /*layout*/) {}
 };
 
 /// Computes a greedy power embedding of G (a triangulated disc or a 3-connected planar graph whose

@@ -21,5 +21,8 @@ inline constexpr EnumNames<Sweep, 2> sweep_names{{{Sweep::jacobi, "jacobi"}, {Sw
 /// RootRule: deepest, smallest-id.
 inline constexpr EnumNames<RootRule, 2> root_rule_names{
     {{RootRule::deepest, "deepest"}, {RootRule::smallest_id, "smallest-id"}}};
+/// NewtonSolver: lu, cholesky, pcg.
+inline constexpr EnumNames<NewtonSolver, 3> newton_solver_names{
+    {{NewtonSolver::lu, "lu"}, {NewtonSolver::cholesky, "cholesky"}, {NewtonSolver::pcg, "pcg"}}};
 
 }  // namespace laguerre::core

@@ -39,13 +39,9 @@ core::PlanarGraph uniform_triangulation(std::size_t n, std::uint64_t seed);
 
 namespace laguerre::scenarios {
 
-/// How a uniform random map becomes a disc for the packing: keep the root face as the outer face, or
-/// puncture the map at its vertex of largest degree (smallest index on ties), whose neighbours then form
-/// the outer boundary — a sensor field's boundary rather than three far-away corners. A punctured
-/// triangulation of n + 1 vertices is a triangulated disc of n vertices.
-enum class OuterRule { root_face, puncture, largest_face };
-
-/// `g` minus its vertex of largest degree, with that vertex's link as the outer face. Ids are kept.
+/// `g` minus its vertex of largest degree (smallest id on ties: core::puncture_vertex), with that vertex's
+/// link as the outer face (core::puncture) — a sensor field's boundary rather than three far-away corners. A
+/// punctured triangulation of n + 1 vertices is a triangulated disc of n vertices. Ids are kept.
 /// Precondition: g has at least 4 vertices (the result at least 3).
 core::PlanarGraph puncture_at_max_degree(const core::PlanarGraph& g);
 

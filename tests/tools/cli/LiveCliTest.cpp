@@ -1,0 +1,71 @@
+// `laguerre live` as a user runs it: on the bundled 3-connected network, 2 processes over UDP on
+// 127.0.0.1 give `laguerre simulate`'s result (same iterations, rounds and delivery, and --verify says
+// bit for bit); the JSON has the simulate keys plus the live section; the quick-start scenario's network
+// verifies on 4 processes; a port in use and a bad
+// --processes are bad input (exit status 2) with a message naming them.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <string>
+
+#include "CliRunner.hpp"
+
+namespace {
+using laguerre::cli_test::Outcome;
+using laguerre::cli_test::run;
+using laguerre::cli_test::run_json;
+
+const std::string graph3 = std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/graphs/three-connected-60.txt";
+}  // namespace
+
+TEST(CliLive, TwoProcessesGiveTheSimulatorsResultBitForBit) {
+  const nlohmann::json sim = run_json("simulate " + graph3 + " --pairs 300 --verify --json");
+  const nlohmann::json live = run_json("live " + graph3 + " --processes 2 --pairs 300 --verify --timeout 30 --json");
+  ASSERT_TRUE(live.is_object());
+  EXPECT_EQ(live["verify"], "identical to core::pack, bit for bit");
+  for (const char* key : {"iterations", "rounds", "converged_nodes", "packets", "delivered", "hops_mean", "nodes", "kind"})
+    EXPECT_EQ(live[key], sim[key]) << key;
+  EXPECT_EQ(live["live"]["processes"], 2);
+  ASSERT_EQ(live["live"]["workers"].size(), 2u);
+  EXPECT_EQ(live["live"]["workers"][1]["first_node"], 30);
+  EXPECT_GT(live["live"]["datagrams"].get<std::uint64_t>(), 0u);
+}
+
+TEST(CliLive, TextSummaryHasSimulatesLinesAndTheLiveLine) {
+  const Outcome r = run("live " + graph3 + " --processes 2 --pairs 50 --loss 0.1 --retransmit-after 1ms --verify --timeout 30");
+  EXPECT_EQ(r.status, 0) << r.out;
+  for (const char* line : {"protocol     converged", "reliability  ", "verify       identical to core::pack, bit for bit",
+                           "forwarding   greedy_power  50/50", "live         2 process(es) on 127.0.0.1"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+}
+
+TEST(CliLive, TheQuickStartScenarioOnFourProcessesVerifies) {
+  const Outcome r = run("live " + std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/quickstart.yaml --processes 4 --verify --timeout 30");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("delaunay(n=60): 60 nodes"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("verify       identical to core::pack, bit for bit"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("live         4 process(es)"), std::string::npos) << r.out;
+}
+
+TEST(CliLive, APortInUseAndBadProcessCountsAreBadInput) {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+  socklen_t len = sizeof addr;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
+  const std::string port = std::to_string(ntohs(addr.sin_port));
+  const Outcome busy = run("live " + graph3 + " --base-port " + port + " --timeout 10");
+  EXPECT_EQ(busy.status, 2) << busy.out;
+  EXPECT_NE(busy.out.find("127.0.0.1:" + port + " is in use"), std::string::npos) << busy.out;
+  ::close(fd);
+  const Outcome many = run("live " + graph3 + " --processes 100 --timeout 10");
+  EXPECT_EQ(many.status, 2) << many.out;
+  EXPECT_NE(many.out.find("--processes"), std::string::npos) << many.out;
+}

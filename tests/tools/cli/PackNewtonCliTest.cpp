@@ -1,0 +1,43 @@
+// `laguerre pack --accelerate newton --newton-solver …`: every solver reaches LPD on the same graph,
+// the JSON names the solver, a cap ends with a clean status, and a bad name is exit status 2.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "CliRunner.hpp"
+
+#include <fstream>
+#include <string>
+
+namespace {
+using laguerre::cli_test::Outcome;
+using laguerre::cli_test::run;
+
+class PackNewtonCli : public laguerre::cli_test::ScratchDir {};
+
+const std::string example = std::string(LAGUERRE_SOURCE_DIR) + "/scenarios/graphs/delaunay-60.txt";
+}  // namespace
+
+TEST_F(PackNewtonCli, EverySolverReachesLpdAndIsNamed) {
+  for (const char* solver : {"lu", "cholesky", "pcg"}) {
+    const std::string stem = path(std::string("p-") + solver);
+    const Outcome r = run("pack " + example + " --accelerate newton --newton-solver " + solver + " --no-picture -o " + stem);
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("linear solver " + std::string(solver)), std::string::npos) << r.out;
+    std::ifstream in(stem + ".json");
+    const nlohmann::json doc = nlohmann::json::parse(in);
+    EXPECT_EQ(doc["packing"]["status"], "converged");
+    EXPECT_EQ(doc["packing"]["newton_solver"], solver);
+    EXPECT_EQ(doc["packing"]["local_ok"], 60);
+    EXPECT_GE(doc["packing"]["cpu_seconds"].get<double>(), 0.0);
+  }
+}
+
+TEST_F(PackNewtonCli, CapEndsWithAStatusAndBadSolverIsAnInputError) {
+  const Outcome capped = run("pack " + example + " --max-iterations 1 --no-picture -o " + path("capped"));
+  EXPECT_EQ(capped.status, 3) << capped.out;
+  EXPECT_NE(capped.out.find("iteration_cap"), std::string::npos) << capped.out;
+  EXPECT_NE(capped.out.find("--max-iterations 1 reached before the stop rule held"), std::string::npos) << capped.out;
+  const Outcome bad = run("pack " + example + " --accelerate newton --newton-solver qr --no-picture -o " + path("bad"));
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--newton-solver"), std::string::npos) << bad.out;
+}

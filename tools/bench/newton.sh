@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# Newton's method on the angle sums (`laguerre pack --accelerate newton`) with its three linear
+# solvers side by side in one run: lu (the original: finite-difference Jacobian in log h, Eigen's
+# SparseLU), cholesky (closed-form SPD Jacobian in u = log tanh(h/2), CHOLMOD supernodal) and pcg
+# (incomplete-Cholesky conjugate gradients), on random Delaunay triangulations and uniform random
+# triangulations, stopped at LPD.
+#   tools/bench/newton.sh [--huge] [--solvers "lu cholesky pcg"] [--families "delaunay uniform-triangulation"]
+#                         [--max-steps K] [SIZES…]
+# Defaults: sizes 10000 100000; --huge adds 1000000 (the lu solver is skipped there: ~40 s per step).
+# Per row: Newton steps (iterations; a step that cannot improve is replaced by a plain sweep, capped at
+# --max-steps, default 60), status (converged / iteration_cap / precision_loss, never hidden), vertices
+# with LPD, smallest Euclidean radius, wall and CPU seconds inside core::pack (CPU time is the figure
+# that survives a loaded machine), wall seconds of the whole command
+# (reading and checking the graph, writing the JSON) and its peak RSS (/usr/bin/time). Then the growth
+# exponents of steps and pack time between successive sizes (t ∝ n^a).
+# Inputs are cached in $LAGUERRE_BENCH_CACHE (default /tmp/laguerre-bench-newton): a 10^6 Delaunay
+# triangulation takes about a minute to generate. OPENBLAS_NUM_THREADS and OMP_NUM_THREADS default to 1
+# (a shared 2-core machine: spinning BLAS threads cost more than they bring here).
+# LAGUERRE_EXE=path uses that program instead of building it with tools/bootstrap.sh.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+
+solvers="lu cholesky pcg" families="delaunay uniform-triangulation" max_steps=60 huge=0 sizes=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --huge) huge=1; shift ;;
+    --solvers) solvers=$2; shift 2 ;;
+    --families) families=$2; shift 2 ;;
+    --max-steps) max_steps=$2; shift 2 ;;
+    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    *) sizes+=("$1"); shift ;;
+  esac
+done
+[ ${#sizes[@]} -eq 0 ] && sizes=(10000 100000)
+[ "$huge" -eq 1 ] && sizes+=(1000000)
+export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
+
+if [ -n "${LAGUERRE_EXE:-}" ]; then
+  laguerre=$LAGUERRE_EXE
+else
+  tools/bootstrap.sh --preset release --target laguerre >/dev/null
+  laguerre=build/release/tools/laguerre
+fi
+cache=${LAGUERRE_BENCH_CACHE:-/tmp/laguerre-bench-newton}
+mkdir -p "$cache"
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+
+echo "# $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load:$(uptime | sed 's/.*load average://'), OPENBLAS_NUM_THREADS=$OPENBLAS_NUM_THREADS"
+printf '%-22s %8s %-9s %5s %-15s %9s %10s %9s %9s %9s %9s\n' family n solver steps status LPD min_radius pack_s pack_cpu_s wall_s peak_MiB
+rows=$dir/rows.tsv
+: > "$rows"
+for family in $families; do
+  for n in "${sizes[@]}"; do
+    graph=$cache/$family-$n-seed42.edges
+    [ -s "$graph" ] || "$laguerre" generate "$family" -n "$n" --seed 42 --format edges -o "$graph" --force >/dev/null
+    for solver in $solvers; do
+      if [ "$solver" = lu ] && [ "$n" -ge 1000000 ]; then continue; fi
+      rc=0
+      /usr/bin/time -f '%e %M' -o "$dir/time" "$laguerre" pack "$graph" --accelerate newton --newton-solver "$solver" \
+        --max-iterations "$max_steps" --no-picture -o "$dir/out" --force > "$dir/log" 2>&1 || rc=$?
+      # Exit status 3: not converged (cap or precision loss), reported in the row; anything else fails.
+      if [ "$rc" -ne 0 ] && [ "$rc" -ne 3 ]; then
+        echo "newton.sh: laguerre pack failed on $graph with $solver (exit status $rc)" >&2
+        cat "$dir/log" >&2
+        exit "$rc"
+      fi
+      python3 - "$dir/out.json" "$dir/time" "$family" "$n" "$solver" >> "$rows" <<'PY'
+import json, sys
+p = json.load(open(sys.argv[1]))["packing"]
+wall, peak_kib = open(sys.argv[2]).read().split()[-2:]
+print("\t".join([sys.argv[3], sys.argv[4], sys.argv[5], str(p["iterations"]), p["status"], str(p["local_ok"]),
+                 f"{p['smallest_radius']:.3g}", f"{p['seconds']:.2f}", f"{p['cpu_seconds']:.2f}", wall,
+                 f"{int(peak_kib) / 1024:.0f}"]))
+PY
+      tail -n 1 "$rows" | awk -F'\t' '{printf "%-22s %8s %-9s %5s %-15s %9s %10s %9s %9s %9s %9s\n", $1,$2,$3,$4,$5,$6,$7,$8,$9,$10,$11}'
+    done
+  done
+done
+
+python3 - "$rows" <<'PY'
+import math, sys
+rows = [l.rstrip("\n").split("\t") for l in open(sys.argv[1]) if l.strip()]
+by = {}
+for r in rows:
+    by.setdefault((r[0], r[2]), []).append((int(r[1]), int(r[3]), float(r[8]), r[4]))
+print("\n# growth between successive sizes: steps and pack CPU time ~ n^a (converged rows only)")
+for (family, solver), pts in sorted(by.items()):
+    pts.sort()
+    for (n1, s1, t1, st1), (n2, s2, t2, st2) in zip(pts, pts[1:]):
+        if st1 != "converged" or st2 != "converged" or t1 <= 0:
+            continue
+        k = math.log(n2 / n1)
+        print(f"{family:<22} {solver:<9} {n1:>8} -> {n2:<8} steps {s1:>3} -> {s2:<3} (a = {math.log(s2 / s1) / k:5.2f})"
+              f"   pack CPU time a = {math.log(t2 / t1) / k:5.2f}")
+sides = {}
+for r in rows:
+    sides.setdefault((r[0], r[1]), {})[r[2]] = float(r[8])
+print("\n# pack CPU-time ratios against lu, same family and size")
+for (family, n), t in sorted(sides.items(), key=lambda x: (x[0][0], int(x[0][1]))):
+    if "lu" in t:
+        print(f"{family:<22} {n:>8}  " + "  ".join(f"lu/{s} = {t['lu'] / v:5.2f}" for s, v in t.items() if s != "lu" and v > 0))
+PY
