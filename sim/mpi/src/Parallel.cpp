@@ -11,6 +11,7 @@
 
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/random/Random.hpp"
+#include "laguerre/sim/LiveCluster.hpp"
 
 // The window loop (see docs/parallel.md for the correctness argument):
 //
@@ -36,20 +37,6 @@ namespace {
 
 void check(int code, const char* what) {
   if (code != MPI_SUCCESS) throw core::InternalError(std::string("MPI call failed: ") + what);
-}
-
-template <class T>
-void put(std::vector<std::byte>& out, const T& value) {
-  const auto* p = reinterpret_cast<const std::byte*>(&value);
-  out.insert(out.end(), p, p + sizeof(T));
-}
-
-template <class T>
-T get(const std::byte*& p) {
-  T value;
-  std::memcpy(&value, p, sizeof(T));
-  p += sizeof(T);
-  return value;
 }
 
 constexpr std::size_t counter_fields = 9;
@@ -152,12 +139,12 @@ void ParallelRun::post(Time at, std::uint64_t key, NodeIndex from, NodeIndex to,
                        std::span<const std::byte> bytes) {
   std::vector<std::byte>& out = outbox_[static_cast<std::size_t>(owner_[to])];
   const std::size_t before = out.size();
-  put(out, at);
-  put(out, key);
-  put(out, from);
-  put(out, to);
-  put(out, phase);
-  put(out, static_cast<std::uint32_t>(bytes.size()));
+  append_bytes(out, at);
+  append_bytes(out, key);
+  append_bytes(out, from);
+  append_bytes(out, to);
+  append_bytes(out, phase);
+  append_bytes(out, static_cast<std::uint32_t>(bytes.size()));
   out.insert(out.end(), bytes.begin(), bytes.end());
   outbox_min_ = std::min(outbox_min_, at);
   ++posted_;
@@ -174,12 +161,10 @@ Time ParallelRun::exchange(bool& failed, bool local_failure) {
   std::vector<std::int64_t> copies(n, 0);
   for (std::size_t r = 0; r < n; ++r) {
     // Count the copies by walking the encoding (cheap next to the exchange, and keeps post() lean).
-    const std::byte* p = outbox_[r].data();
-    const std::byte* end = p + outbox_[r].size();
-    while (p < end) {
-      p += sizeof(Time) + sizeof(std::uint64_t) + 2 * sizeof(NodeIndex) + sizeof(Phase);
-      p += get<std::uint32_t>(p);
-      ++copies[r];
+    const std::span<const std::byte> in(outbox_[r]);
+    for (std::size_t at = 0; at < in.size(); ++copies[r]) {
+      at += sizeof(Time) + sizeof(std::uint64_t) + 2 * sizeof(NodeIndex) + sizeof(Phase);
+      at += read_bytes<std::uint32_t>(in, at);
     }
     send[r * header + 0] = static_cast<std::int64_t>(outbox_[r].size());
     send[r * header + 1] = copies[r];
@@ -214,19 +199,19 @@ Time ParallelRun::exchange(bool& failed, bool local_failure) {
                         recv_counts.data(), recv_displs.data(), MPI_BYTE, comm_),
           "MPI_Alltoallv");
     for (std::size_t r = 0; r < n; ++r) {
-      const std::byte* p = recv_buffer.data() + recv_displs[r];
-      const std::byte* end = p + recv_counts[r];
+      const auto in = std::span<const std::byte>(recv_buffer).subspan(static_cast<std::size_t>(recv_displs[r]),
+                                                                      static_cast<std::size_t>(recv_counts[r]));
       std::int64_t received = 0;
-      while (p < end) {
-        const auto at = get<Time>(p);
-        const auto key = get<std::uint64_t>(p);
-        const auto from = get<NodeIndex>(p);
-        const auto to = get<NodeIndex>(p);
-        const auto phase = get<Phase>(p);
-        const auto size = get<std::uint32_t>(p);
-        sim_.deliver_remote(at, key, from, to, phase, std::span<const std::byte>(p, size));
-        p += size;
-        ++received;
+      for (std::size_t at = 0; at < in.size(); ++received) {
+        const auto time = read_bytes<Time>(in, at);
+        const auto key = read_bytes<std::uint64_t>(in, at);
+        const auto from = read_bytes<NodeIndex>(in, at);
+        const auto to = read_bytes<NodeIndex>(in, at);
+        const auto phase = read_bytes<Phase>(in, at);
+        const auto size = read_bytes<std::uint32_t>(in, at);
+        LAGUERRE_ASSERT(at + size <= in.size());
+        sim_.deliver_remote(time, key, from, to, phase, in.subspan(at, size));
+        at += size;
       }
       LAGUERRE_ASSERT(received == recv[r * header + 1]);  // the exchange neither lost nor invented copies
     }
@@ -385,8 +370,8 @@ std::vector<std::vector<std::byte>> ParallelRun::gather_nodes(
   for (NodeIndex v = 0; v < owner_.size(); ++v) {
     if (owner_[v] != rank_) continue;
     const std::vector<std::byte> bytes = describe(v);
-    put(mine, v);
-    put(mine, static_cast<std::uint64_t>(bytes.size()));
+    append_bytes(mine, v);
+    append_bytes(mine, static_cast<std::uint64_t>(bytes.size()));
     mine.insert(mine.end(), bytes.begin(), bytes.end());
   }
   const auto n = static_cast<std::size_t>(size_);
@@ -402,13 +387,14 @@ std::vector<std::vector<std::byte>> ParallelRun::gather_nodes(
   check(MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, comm_),
         "MPI_Allgatherv");
   std::vector<std::vector<std::byte>> result(owner_.size());
-  const std::byte* p = all.data();
-  const std::byte* end = p + all.size();
-  while (p < end) {
-    const auto v = get<NodeIndex>(p);
-    const auto size = static_cast<std::size_t>(get<std::uint64_t>(p));
-    result[v].assign(p, p + size);
-    p += size;
+  const std::span<const std::byte> in(all);
+  for (std::size_t at = 0; at < in.size();) {
+    const auto v = read_bytes<NodeIndex>(in, at);
+    const auto size = static_cast<std::size_t>(read_bytes<std::uint64_t>(in, at));
+    LAGUERRE_ASSERT(at + size <= in.size());
+    const auto bytes = in.subspan(at, size);
+    result[v].assign(bytes.begin(), bytes.end());
+    at += size;
   }
   return result;
 }
