@@ -29,6 +29,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev  # scenario files, CLI, JSON output
   libcairo2-dev                               # pictures (SVG, PNG)
   libgtest-dev libgmock-dev libbenchmark-dev  # tests and benchmarks
+  libopenmpi-dev openmpi-bin libmetis-dev     # the parallel kernel over MPI, its partitions (sim/mpi)
   libns3-dev libgsl-dev                       # laguerre::ns3 and its example (optional; ns-3's libraries need GSL)
 )
 missing=()

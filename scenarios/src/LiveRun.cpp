@@ -20,14 +20,7 @@ using sim::read_bytes;
 // One packing node's result, as a worker sends it.
 struct NodeRecord {
   std::uint32_t v = 0;
-  core::Circle circle;
-  core::LocalCondition local = core::LocalCondition::unrepresentable;
-  protocols::PackingOutcome outcome = protocols::PackingOutcome::running;
-  std::uint32_t steps = 0;
-  std::uint32_t round = 0;
-  protocols::Time finished_at = -1;
-  protocols::NodeId suspect = 0;
-  protocols::PackingCounters counters;
+  PackingNodeSummary node;
   std::uint64_t messages_sent = 0;
   std::uint64_t bytes_sent = 0;
 };
@@ -79,9 +72,7 @@ public:
       for (const core::Vertex v : host.local_vertices()) {
         const auto& node = static_cast<const protocols::PackingNode&>(host.node(v));
         const sim::TrafficCounters t = host.traffic().node_total(static_cast<std::uint32_t>(v));
-        append_bytes(out, NodeRecord{static_cast<std::uint32_t>(v), node.placement().circle, node.local_condition(),
-                            node.outcome(), node.steps(), node.round(), node.finished_at(), node.suspect(),
-                            node.counters(), t.messages_sent, t.bytes_sent});
+        append_bytes(out, NodeRecord{static_cast<std::uint32_t>(v), summarize(node), t.messages_sent, t.bytes_sent});
       }
       const auto& traffic = host.traffic();
       append_bytes(out, static_cast<std::uint32_t>(traffic.phase_count()));
@@ -119,26 +110,14 @@ private:
 };
 
 // The launcher's side of phase 0: the workers' node records merged as run_packing_protocol merges nodes.
-void merge_packing(const std::vector<std::vector<std::byte>>& results, std::size_t n, ProtocolOutcome& out) {
-  out.circles.resize(n);
-  out.local.resize(n);
+void merge_packing(const std::vector<std::vector<std::byte>>& results, const core::PlanarGraph& g, ProtocolOutcome& out) {
+  std::vector<PackingNodeSummary> nodes(g.num_vertices());
   for (const auto& blob : results) {
     std::size_t at = 0;
     const auto count = read_bytes<std::uint32_t>(blob, at);
     for (std::uint32_t i = 0; i < count; ++i) {
       const auto r = read_bytes<NodeRecord>(blob, at);
-      out.circles[r.v] = r.circle;
-      out.local[r.v] = r.local;
-      out.converged_nodes += r.outcome == protocols::PackingOutcome::converged;
-      out.holds_nodes += r.local == core::LocalCondition::holds;
-      out.iterations = std::max(out.iterations, r.steps);
-      out.rounds = std::max(out.rounds, r.round);
-      out.reliability += r.counters;
-      if (r.finished_at >= 0) out.finished_at = std::max(out.finished_at, r.finished_at);
-      if (r.outcome == protocols::PackingOutcome::neighbour_failed) {
-        ++out.failed_nodes;
-        ++out.suspects[r.suspect];
-      }
+      nodes[r.v] = r.node;
       out.messages += r.messages_sent;
       out.bytes += r.bytes_sent;
       out.max_node_messages = std::max(out.max_node_messages, r.messages_sent);
@@ -148,6 +127,7 @@ void merge_packing(const std::vector<std::vector<std::byte>>& results, std::size
     if (out.by_phase.size() < phases) out.by_phase.resize(phases);
     for (std::uint32_t p = 0; p < phases; ++p) out.by_phase[p] += read_bytes<sim::TrafficCounters>(blob, at);
   }
+  collect_packing_summaries(g, nodes, {}, out);
 }
 }  // namespace
 
@@ -186,7 +166,7 @@ LiveOutcome run_live(const core::PlanarGraph& g, const std::vector<core::Point2>
   LiveProtocols program(g, positions, params, reliable, schemes, pairs);
   sim::LiveCluster cluster(g, config, program, traffic_phase);
 
-  merge_packing(cluster.run_phase({}, n), n, out);
+  merge_packing(cluster.run_phase({}, n), g, out);
   if (out.failed_nodes == 0 && !pairs.empty()) {
     std::vector<std::byte> circles;
     for (const core::Circle& c : out.circles) append_bytes(circles, c);

@@ -9,6 +9,7 @@
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/protocols/Codec.hpp"
 #include "laguerre/protocols/Reliable.hpp"
+#include "laguerre/sim/LiveCluster.hpp"
 #include "laguerre/sim/SimHost.hpp"
 
 namespace laguerre::scenarios {
@@ -81,37 +82,50 @@ std::vector<std::vector<std::uint32_t>> hop_distances_from_sources(
   return dist;
 }
 
-void collect_packing_nodes(const core::PlanarGraph& g,
-                           const std::function<const protocols::PackingNode&(core::Vertex)>& node_of,
-                           const std::vector<bool>& down, ProtocolOutcome& out) {
+PackingNodeSummary summarize(const protocols::PackingNode& node) {
+  return {node.placement().circle, node.local_condition(), node.outcome(), node.is_final(), node.steps(),
+          node.round(),           node.counters(),        node.finished_at(), node.suspect()};
+}
+
+void collect_packing_summaries(const core::PlanarGraph& g, std::span<const PackingNodeSummary> nodes,
+                               const std::vector<bool>& down, ProtocolOutcome& out) {
   const std::size_t n = g.num_vertices();
+  LAGUERRE_PRECONDITION(nodes.size() == n, "collect_packing_summaries needs one summary per vertex.");
   out.circles.resize(n);
   out.local.resize(n);
   for (core::Vertex v = 0; v < n; ++v) {
-    const protocols::PackingNode& node = node_of(v);
-    out.circles[v] = node.placement().circle;
-    out.local[v] = node.local_condition();
-    out.converged_nodes += node.outcome() == protocols::PackingOutcome::converged;
-    out.holds_nodes += node.local_condition() == core::LocalCondition::holds;
-    out.iterations = std::max(out.iterations, node.steps());
-    out.rounds = std::max(out.rounds, node.round());
-    out.reliability += node.counters();
-    if (node.finished_at() >= 0) out.finished_at = std::max(out.finished_at, node.finished_at());
+    const PackingNodeSummary& node = nodes[v];
+    out.circles[v] = node.circle;
+    out.local[v] = node.local;
+    out.converged_nodes += node.outcome == protocols::PackingOutcome::converged;
+    out.holds_nodes += node.local == core::LocalCondition::holds;
+    out.iterations = std::max(out.iterations, node.steps);
+    out.rounds = std::max(out.rounds, node.round);
+    out.reliability += node.counters;
+    if (node.finished_at >= 0) out.finished_at = std::max(out.finished_at, node.finished_at);
     // A node down for good is no survivor; a node that came back counts as one.
     if (!down.empty() && down[v]) {
       ++out.crashed_nodes;
       continue;
     }
-    if (node.outcome() == protocols::PackingOutcome::neighbour_failed) {
+    if (node.outcome == protocols::PackingOutcome::neighbour_failed) {
       ++out.failed_nodes;
-      ++out.suspects[node.suspect()];
+      ++out.suspects[node.suspect];
     }
   }
   for (OutageOutcome& o : out.outages) {
-    const protocols::PackingNode& node = node_of(o.node);
-    o.outcome = node.outcome();
-    o.final = node.is_final();
+    o.outcome = nodes[o.node].outcome;
+    o.final = nodes[o.node].final;
   }
+}
+
+void collect_packing_nodes(const core::PlanarGraph& g,
+                           const std::function<const protocols::PackingNode&(core::Vertex)>& node_of,
+                           const std::vector<bool>& down, ProtocolOutcome& out) {
+  std::vector<PackingNodeSummary> nodes;
+  nodes.reserve(g.num_vertices());
+  for (core::Vertex v = 0; v < g.num_vertices(); ++v) nodes.push_back(summarize(node_of(v)));
+  collect_packing_summaries(g, nodes, down, out);
 }
 
 void collect_traffic(const sim::TrafficMetrics& traffic, ProtocolOutcome& out) {
@@ -163,11 +177,22 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
         return std::make_unique<protocols::PackingNode>(rt, protocols::local_knowledge(g, v), params);
       },
       traffic_phase);
-  const sim::RunReport report = host.run();
-  collect_packing_nodes(
-      g, [&](core::Vertex v) -> const protocols::PackingNode& { return static_cast<const protocols::PackingNode&>(host.node(v)); },
-      down, out);
-  collect_traffic(host.simulator().traffic(), out);
+  // The nodes' results, read where each node lives (every node here, or its MPI rank's).
+  sim::InPlaceRunner in_place;
+  sim::HostRunner& runner = setup.runner != nullptr ? *setup.runner : in_place;
+  const sim::RunReport report = runner.run(host, {});
+  const std::vector<std::vector<std::byte>> described = runner.gather([&](sim::NodeIndex v) {
+    std::vector<std::byte> bytes;
+    sim::append_bytes(bytes, summarize(static_cast<const protocols::PackingNode&>(host.node(v))));
+    return bytes;
+  });
+  std::vector<PackingNodeSummary> nodes(n);
+  for (core::Vertex v = 0; v < n; ++v) {
+    std::size_t at = 0;
+    nodes[v] = sim::read_bytes<PackingNodeSummary>(described[v], at);
+  }
+  collect_packing_summaries(g, nodes, down, out);
+  collect_traffic(runner.traffic(), out);
   out.simulated_time = report.simulated_time;
   out.wall_seconds = report.wall_seconds;
   out.events = report.events_processed;

@@ -77,7 +77,8 @@ core::CircleEmbedding point_circles(const std::vector<core::Point2>& positions) 
 
 }  // namespace
 
-RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifacts* artifacts) {
+RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifacts* artifacts,
+                      sim::HostRunner* host_runner) {
   const auto start = std::chrono::steady_clock::now();
   const ScenarioConfig& cfg = scenario.points.at(plan.point).config;
   RunRecord r;
@@ -114,6 +115,7 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
     setup.crashes = cfg.network.crashes;
     setup.retransmit_after = cfg.network.retransmit_after;
     setup.seed = plan.seed;
+    setup.runner = host_runner;
     ProtocolOutcome po;
     if (cfg.protocol.central) {
       // The same Jacobi iteration, centrally (core::pack), possibly accelerated; no messages.
@@ -225,6 +227,7 @@ ScenarioResults run_scenario(const Scenario& scenario, const RunnerOptions& opti
   out.artifacts.resize(plans.size());
   unsigned jobs = options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
   jobs = static_cast<unsigned>(std::min<std::size_t>(jobs, std::max<std::size_t>(1, plans.size())));
+  if (options.host_runner != nullptr) jobs = 1;  // its collective calls must come in plan order
   std::atomic<std::size_t> next{0};
   std::size_t done = 0;
   std::mutex lock;
@@ -232,7 +235,7 @@ ScenarioResults run_scenario(const Scenario& scenario, const RunnerOptions& opti
     for (std::size_t i = next++; i < plans.size(); i = next++) {
       const bool keep = options.keep_artifacts && options.keep_artifacts(plans[i]);
       RunArtifacts art;
-      RunRecord rec = execute_run(scenario, plans[i], keep ? &art : nullptr);
+      RunRecord rec = execute_run(scenario, plans[i], keep ? &art : nullptr, options.host_runner);
       const bool has = keep && (rec.status == RunStatus::ok || rec.status == RunStatus::not_converged);
       std::lock_guard<std::mutex> guard(lock);
       out.records[i] = std::move(rec);

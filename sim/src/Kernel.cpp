@@ -43,9 +43,7 @@ void Kernel::throw_delay(Duration delay) const {
                             " ns: delays must be non-negative and keep the clock representable.");
 }
 
-EventHandle Kernel::schedule_cancellable_at(Time at, HandlerId handler, std::uint32_t target,
-                                            std::uint64_t payload) {
-  if (at < now_) throw_past(at);
+std::uint32_t Kernel::take_slot(std::uint64_t payload) {
   std::uint32_t slot;
   if (!free_slots_.empty()) {
     slot = free_slots_.back();
@@ -60,9 +58,25 @@ EventHandle Kernel::schedule_cancellable_at(Time at, HandlerId handler, std::uin
   Slot& s = slots_[slot];
   s.payload = payload;
   s.state = slot_pending;
+  return slot;
+}
+
+EventHandle Kernel::schedule_cancellable_at(Time at, HandlerId handler, std::uint32_t target,
+                                            std::uint64_t payload) {
+  if (at < now_) throw_past(at);
+  const std::uint32_t slot = take_slot(payload);
   // The record carries the slot; the caller's payload waits in the slab until dispatch.
   queue_.push(Event{at, next_seq_++, slot, target, handler, flag_cancellable});
-  return EventHandle{(std::uint64_t{s.generation} << 32) | slot};
+  return EventHandle{(std::uint64_t{slots_[slot].generation} << 32) | slot};
+}
+
+EventHandle Kernel::schedule_cancellable_keyed_at(Time at, std::uint64_t key, HandlerId handler,
+                                                  std::uint32_t target, std::uint64_t payload) {
+  if (at < now_) throw_past(at);
+  const std::uint32_t slot = take_slot(payload);
+  ++next_seq_;
+  queue_.push(Event{at, key, slot, target, handler, flag_cancellable});
+  return EventHandle{(std::uint64_t{slots_[slot].generation} << 32) | slot};
 }
 
 void Kernel::free_slot(std::uint32_t slot) {

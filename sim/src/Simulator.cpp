@@ -8,6 +8,15 @@
 
 namespace laguerre::sim {
 
+namespace {
+// Event keys (see the file comment of Simulator.hpp).
+enum KeyKind : std::uint64_t { key_failure = 0, key_start = 1, key_message = 2, key_timer = 3 };
+constexpr unsigned key_counter_bits = 30;
+constexpr std::uint64_t event_key(KeyKind kind, std::uint32_t field, std::uint64_t counter) {
+  return (std::uint64_t{kind} << 62) | (std::uint64_t{field} << key_counter_bits) | counter;
+}
+}  // namespace
+
 Simulator::Simulator(Network network, SimConfig config, NodeHandler& handler)
     : network_(std::move(network)),
       config_(config),
@@ -36,17 +45,47 @@ Simulator::Simulator(Network network, SimConfig config, NodeHandler& handler)
   }
   down_.assign(n, 0);
   started_.assign(n, 0);
+  node_timers_.assign(n, 0);
+}
+
+void Simulator::partition(std::vector<std::uint8_t> owned, RemoteOutbox& outbox) {
+  LAGUERRE_PRECONDITION(!launched_, "Simulator::partition must be called before the first run.");
+  LAGUERRE_PRECONDITION(owned.size() == network_.node_count(),
+                        "Simulator::partition needs one ownership flag per node.");
+  owned_ = std::move(owned);
+  outbox_ = &outbox;
+  if (trace_.mode() == TraceMode::hash_only) trace_ = Trace(TraceMode::records);  // the merge needs them
+}
+
+void Simulator::deliver_remote(Time at, std::uint64_t key, NodeIndex from, NodeIndex to, Phase phase,
+                               std::span<const std::byte> bytes) {
+  LAGUERRE_PRECONDITION(outbox_ != nullptr && owned_[to] != 0,
+                        "Simulator::deliver_remote needs a partitioned simulator that owns the receiver.");
+  const std::uint32_t message = store(from, bytes, phase);
+  messages_[message].refs = 1;
+  kernel_.schedule_keyed_at(at, key, deliver_id_, to, message);
 }
 
 RunReport Simulator::run(const RunLimits& limits) {
   if (!launched_) {
     launched_ = true;
     // Failures first, then starts: see the file comment of Simulator.hpp for the resulting order.
-    for (const Crash& c : network_.crashes()) {
-      kernel_.schedule_at(c.at, crash_id_, c.node);
-      if (c.recover_at) kernel_.schedule_at(*c.recover_at, recover_id_, c.node);
+    const auto crashes = network_.crashes();
+    if (crashes.size() >= (std::uint64_t{1} << (key_counter_bits - 1))) {
+      throw std::length_error("Too many scheduled crashes (2^29).");
     }
-    for (NodeIndex v = 0; v < network_.node_count(); ++v) kernel_.schedule_at(0, start_id_, v);
+    const auto mine = [&](NodeIndex v) { return outbox_ == nullptr || owned_[v] != 0; };
+    for (std::size_t i = 0; i < crashes.size(); ++i) {
+      const Crash& c = crashes[i];
+      if (!mine(c.node)) continue;
+      kernel_.schedule_keyed_at(c.at, event_key(key_failure, c.node, 2 * i), crash_id_, c.node);
+      if (c.recover_at) {
+        kernel_.schedule_keyed_at(*c.recover_at, event_key(key_failure, c.node, 2 * i + 1), recover_id_, c.node);
+      }
+    }
+    for (NodeIndex v = 0; v < network_.node_count(); ++v) {
+      if (mine(v)) kernel_.schedule_keyed_at(0, event_key(key_start, v, 0), start_id_, v);
+    }
   }
   const std::uint64_t before = kernel_.events_processed();
   const auto start = std::chrono::steady_clock::now();
@@ -92,22 +131,34 @@ void Simulator::transmit(LinkIndex link, std::uint32_t message, std::uint32_t si
   ++counters.messages_sent;
   counters.bytes_sent += size;
   // The message's own stream: a pure function of (seed, link, position of the message on the link).
-  RandomStream rng(stream_key(config_.seed, StreamKind::message, link_keys_[link],
-                              link_messages_[link]++));
+  const std::uint64_t index = link_messages_[link]++;
+  if (index >= (std::uint64_t{1} << (key_counter_bits - 1))) {
+    throw std::length_error("Too many messages on one link (2^29): the event keys would repeat.");
+  }
+  RandomStream rng(stream_key(config_.seed, StreamKind::message, link_keys_[link], index));
   const LinkDecision fate = decide(network_.link_model(link), link_lengths_[link], rng);
-  const auto deliver = [&](bool lost, Duration latency) {
+  const auto deliver = [&](bool lost, Duration latency, std::uint64_t copy) {
     if (lost) {
       ++counters.messages_lost;
       counters.bytes_lost += size;
       return;
     }
+    LAGUERRE_PRECONDITION(latency <= time_max - kernel_.now(),
+                          "A latency of " + std::to_string(latency) + " ns at time " + std::to_string(kernel_.now()) +
+                              " ns would overflow the clock.");
+    const std::uint64_t key = event_key(key_message, link, 2 * index + copy);
+    if (outbox_ != nullptr && owned_[to] == 0) {
+      const Message& m = messages_[message];
+      outbox_->post(kernel_.now() + latency, key, from, to, phase, m.bytes);
+      return;
+    }
     ++messages_[message].refs;
-    kernel_.schedule_after(latency, deliver_id_, to, message);
+    kernel_.schedule_keyed_at(kernel_.now() + latency, key, deliver_id_, to, message);
   };
-  deliver(fate.lost, fate.latency);
+  deliver(fate.lost, fate.latency, 0);
   if (fate.duplicated) {
     ++counters.messages_duplicated;
-    deliver(fate.duplicate_lost, fate.duplicate_latency);
+    deliver(fate.duplicate_lost, fate.duplicate_latency, 1);
   }
 }
 
@@ -143,7 +194,16 @@ void Simulator::broadcast(NodeIndex from, std::span<const std::byte> bytes, Phas
 }
 
 TimerHandle Simulator::schedule_timer(NodeIndex v, Duration after, std::uint64_t timer) {
-  return kernel_.schedule_cancellable_after(after, timer_id_, v, timer);
+  LAGUERRE_PRECONDITION(after >= 0 && after <= time_max - kernel_.now(),
+                        "Cannot set a timer after " + std::to_string(after) + " ns at time " +
+                            std::to_string(kernel_.now()) + " ns: delays must be non-negative and keep the clock representable.");
+  const std::uint32_t index = node_timers_[v];
+  if (index >= (std::uint32_t{1} << key_counter_bits) - 1) {
+    throw std::length_error("Too many timers at one node (2^30): the event keys would repeat.");
+  }
+  ++node_timers_[v];
+  return kernel_.schedule_cancellable_keyed_at(kernel_.now() + after, event_key(key_timer, v, index), timer_id_, v,
+                                               timer);
 }
 
 void Simulator::on_start_event(Kernel&, const Event& event) {
@@ -170,6 +230,7 @@ void Simulator::on_deliver_event(Kernel& kernel, const Event& event) {
   ++counters.messages_received;
   counters.bytes_received += size;
   trace_.add(TraceRecord{kernel.now(), network_.id(from), network_.id(to), m.digest, size, phase});
+  if (outbox_ != nullptr && trace_.mode() != TraceMode::off) trace_keys_.push_back(event.seq);
   // The span stays valid during the callback even if the handler sends (messages_ may reallocate,
   // which moves the vector objects but not their heap buffers), and the slot cannot be recycled
   // before release() below because this copy still holds a reference.

@@ -7,6 +7,7 @@
 
 #include "Commands.hpp"
 #include "Common.hpp"
+#include "Parallel.hpp"
 #include "RunPictures.hpp"
 #include "ScenarioCli.hpp"
 #include "laguerre/scenarios/Results.hpp"
@@ -33,11 +34,15 @@ int run_run(const RunArgs& a) {
   if (!loaded) return 2;
   const scenarios::Scenario& s = loaded->front();
   const std::string dir = a.run.out.empty() ? (fs::path("out") / s.name).string() : a.run.out;
-  prepare_output_dir(dir, a.run.force, {"results.json", "results.csv"});
+  // Under mpirun every rank runs the scenario (the protocol simulations on the parallel kernel);
+  // rank 0 alone prepares the folder and writes.
+  const bool writes = host_runner() == nullptr || host_runner()->is_root();
+  if (writes) prepare_output_dir(dir, a.run.force, {"results.json", "results.csv"});
   const scenarios::OutputSpec& outputs = s.points.front().config.outputs;
   Progress progress(s.name);
   scenarios::RunnerOptions options;
   options.jobs = a.run.jobs;
+  options.host_runner = host_runner();
   options.on_progress = [&](const scenarios::RunProgress& p) { progress.update(p); };
   options.keep_artifacts = [&](const scenarios::RunPlan& p) {
     return p.repetition == 0 && s.points[p.point].config.outputs.pictures;
@@ -48,6 +53,11 @@ int run_run(const RunArgs& a) {
   std::printf("scenario %s: %zu point(s) x %zu repetition(s) = %zu run(s) in %.2f s\n", s.name.c_str(), s.points.size(),
               s.repetitions, results.records.size(), results.wall_seconds);
   std::fputs(scenarios::summary_table(s, results.records).c_str(), stdout);
+  if (!writes) {
+    for (const auto& r : results.records)
+      if (r.status != scenarios::RunStatus::ok) return 3;
+    return 0;
+  }
   std::vector<std::string> written;
   if (outputs.json) {
     write_text_file((fs::path(dir) / "results.json").string(), scenarios::results_json(s, results.records));

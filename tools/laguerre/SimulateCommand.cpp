@@ -13,6 +13,7 @@
 
 #include "Commands.hpp"
 #include "Common.hpp"
+#include "Parallel.hpp"
 #include "ProtocolSummary.hpp"
 #include "laguerre/core/packing/PackingNames.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
@@ -71,6 +72,7 @@ scenarios::ProtocolSetup setup_of(const SimulateArgs& a) {
   if (!a.retransmit_after.empty()) setup.retransmit_after = scenarios::parse_duration(a.retransmit_after, "--retransmit-after");
   setup.adaptive_rto = !a.fixed_rto;
   setup.seed = a.seed;
+  setup.runner = host_runner();  // the MPI kernel under mpirun (same results)
   return setup;
 }
 
@@ -90,8 +92,10 @@ int run_simulate(const SimulateArgs& a) {
   const auto pairs = po.failed_nodes > 0 ? std::vector<std::pair<core::Vertex, core::Vertex>>{} : core::select_pairs(n, selection);
   const std::vector<scenarios::ForwardingResult> results =
       scenarios::run_forwarding(g, po.circles, loaded.input.positions, setup.link, a.seed, schemes, pairs);
+  nlohmann::json extra;  // the protocol ran on the parallel kernel
+  if (mpi_ranks() > 1) extra["mpi_ranks"] = mpi_ranks();
   return print_protocol_summary(
-      {loaded, setup, a.mode, a.graph.outer, po, results, schemes, a.verify ? &verify : nullptr, {}, {}}, a.json);
+      {loaded, setup, a.mode, a.graph.outer, po, results, schemes, a.verify ? &verify : nullptr, {}, extra}, a.json);
 }
 }  // namespace
 

@@ -1,10 +1,14 @@
 // The `laguerre` command-line program: one executable, one subcommand per task.
 #include <CLI/CLI.hpp>
 
+#include <iostream>
+
 #include "Commands.hpp"
 #include "Common.hpp"
+#include "Parallel.hpp"
 
 int main(int argc, char** argv) {
+  laguerre::tools::ParallelContext parallel(argc, argv);
   CLI::App app{"laguerre — greedy power routing over circle packings (Wormser 2008, Part IV).\n"
                "Run `laguerre COMMAND --help` for the options of a command."};
   app.require_subcommand(1);
@@ -21,6 +25,11 @@ int main(int argc, char** argv) {
   Action diagram = add_diagram_command(app);
   Action mesh = add_mesh_command(app);
   return run_program(app, argc, argv, "laguerre", [&] {
+    if (parallel.ranks() > 1 && !app.got_subcommand("simulate") && !app.got_subcommand("run")) {
+      std::cerr << "laguerre: only 'simulate' and 'run' run across MPI ranks so far; run '"
+                << app.get_subcommands().front()->get_name() << "' without mpirun (or with -np 1)\n";
+      return 2;
+    }
     if (app.got_subcommand("pack")) return pack();
     if (app.got_subcommand("route")) return route();
     if (app.got_subcommand("thesis-table")) return table();

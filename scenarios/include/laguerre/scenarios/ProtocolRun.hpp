@@ -29,6 +29,7 @@
 #include "laguerre/protocols/Reliable.hpp"
 #include "laguerre/protocols/Runtime.hpp"
 #include "laguerre/scenarios/NetworkModel.hpp"
+#include "laguerre/sim/HostRunner.hpp"
 #include "laguerre/sim/Link.hpp"
 #include "laguerre/sim/Metrics.hpp"
 #include "laguerre/sim/Network.hpp"
@@ -46,6 +47,7 @@ struct ProtocolSetup {
   std::optional<sim::Duration> retransmit_after;  ///< explicit reliability period (else 3 × longest latency)
   bool adaptive_rto = true;                     ///< false: the timeout stays at the period (no RTT estimation)
   std::uint64_t seed = 1;                       ///< root of the simulator's random streams
+  sim::HostRunner* runner = nullptr;            ///< how the simulation runs (nullptr: in this process)
   /// Whether the reliability layer runs: loss, duplication, outages or an explicit period.
   bool lossy() const {
     return link.loss > 0 || link.duplication > 0 || !crashes.empty() || retransmit_after.has_value();
@@ -105,6 +107,26 @@ sim::Phase traffic_phase(std::span<const std::byte> bytes);
 
 /// The packing nodes' parameters for `setup` (the reliability layer still off).
 protocols::PackingParams packing_params(const ProtocolSetup& setup);
+
+/// What the summary of a run reads of one packing node; trivially copyable, so that it can travel
+/// between processes (sim::append_bytes).
+struct PackingNodeSummary {
+  core::Circle circle;                      ///< placement().circle
+  core::LocalCondition local;               ///< local_condition()
+  protocols::PackingOutcome outcome;        ///< outcome()
+  bool final;                               ///< is_final()
+  std::uint32_t steps, round;               ///< steps(), round()
+  protocols::PackingCounters counters;      ///< counters()
+  protocols::Time finished_at;              ///< finished_at()
+  protocols::NodeId suspect;                ///< suspect()
+};
+
+/// The summary of `node`.
+PackingNodeSummary summarize(const protocols::PackingNode& node);
+
+/// collect_packing_nodes from the nodes' summaries (nodes[v] of vertex v; requires one per vertex).
+void collect_packing_summaries(const core::PlanarGraph& g, std::span<const PackingNodeSummary> nodes,
+                               const std::vector<bool>& down, ProtocolOutcome& out);
 
 /// Fills the per-node fields of `out` (circles, local, converged/holds/failed/crashed counts,
 /// suspects, iterations, rounds, reliability, finished_at, and the outcomes of `out.outages`) from

@@ -28,6 +28,7 @@
 #include "laguerre/core/random/Random.hpp"
 #include "laguerre/scenarios/Scenario.hpp"
 #include "laguerre/scenarios/Topology.hpp"
+#include "laguerre/sim/HostRunner.hpp"
 
 namespace laguerre::scenarios {
 
@@ -129,6 +130,9 @@ struct RunnerOptions {
   unsigned jobs = 0;                                        ///< worker threads (0 = hardware threads)
   std::function<void(const RunProgress&)> on_progress;      ///< called under a lock, any thread
   std::function<bool(const RunPlan&)> keep_artifacts;       ///< which runs keep RunArtifacts
+  /// How the protocol simulations run (nullptr: in this process). With one (e.g. sim/mpi's, every MPI
+  /// rank making the same calls), runs go one at a time in plan order and `jobs` is ignored.
+  sim::HostRunner* host_runner = nullptr;
 };
 
 /// Results in plan order.
@@ -139,7 +143,9 @@ struct ScenarioResults {
 };
 
 /// Executes one run. Never throws for a bad topology or a failing protocol (see RunStatus).
-RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifacts* artifacts = nullptr);
+/// The protocol simulation runs on `host_runner` (nullptr: in this process).
+RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifacts* artifacts = nullptr,
+                      sim::HostRunner* host_runner = nullptr);
 
 /// Executes every run of `scenario` on `options.jobs` threads; the result does not depend on jobs.
 ScenarioResults run_scenario(const Scenario& scenario, const RunnerOptions& options = {});

@@ -105,6 +105,22 @@ public:
     queue_.push(Event{now_ + delay, next_seq_++, payload, target, handler, 0});
   }
 
+  /// Schedules `handler(target, payload)` at `at` ≥ now() with tie-break `key` in place of the
+  /// insertion number: among equal times, events fire by increasing key (see EventQueue.hpp). The
+  /// caller keeps keys unique among pending events of equal time (the order is then total and does
+  /// not depend on the order of scheduling, which is what makes a partitioned run reproduce a
+  /// sequential one); keyed and numbered events of equal time compare by the raw values.
+  /// Throws core::InternalError (a broken precondition) if `at` lies in the past.
+  void schedule_keyed_at(Time at, std::uint64_t key, HandlerId handler, std::uint32_t target,
+                         std::uint64_t payload = 0) {
+    if (at < now_) throw_past(at);
+    ++next_seq_;
+    queue_.push(Event{at, key, payload, target, handler, 0});
+  }
+  /// Like schedule_keyed_at, and returns a handle for `cancel`.
+  EventHandle schedule_cancellable_keyed_at(Time at, std::uint64_t key, HandlerId handler,
+                                            std::uint32_t target, std::uint64_t payload = 0);
+
   /// Like schedule_at, and returns a handle for `cancel`.
   EventHandle schedule_cancellable_at(Time at, HandlerId handler, std::uint32_t target,
                                       std::uint64_t payload = 0);
@@ -126,6 +142,8 @@ public:
   /// phases). May be called again to continue. When it stops on the time limit the clock is
   /// advanced to `limits.until`.
   StopReason run(const RunLimits& limits = {});
+  /// The time of the first pending record (cancelled ones included), or time_max if none is.
+  Time next_event_time() { return queue_.empty() ? time_max : queue_.top().time; }
   /// Asks run() to return after the current event (callable from a handler).
   void request_stop() { stop_requested_ = true; }
 
@@ -160,6 +178,7 @@ private:
   static constexpr std::uint16_t flag_cancellable = 1;
 
   [[noreturn]] void throw_past(Time at) const;
+  std::uint32_t take_slot(std::uint64_t payload);
   [[noreturn]] void throw_delay(Duration delay) const;
   void free_slot(std::uint32_t slot);
 

@@ -13,10 +13,18 @@
 ///    sender crashes are still delivered (they are on the air). A node down at time 0 is started when
 ///    it first recovers; a node that recovers after having started gets NodeHandler::on_recover (its
 ///    state survives the outage; timers that fell inside it are lost).
-///  - Failure events are scheduled when the first run starts, before the node starts and before
-///    anything a handler schedules, so at equal times a crash or recovery precedes every start,
-///    message and timer due at that instant (a crash at time 0 means the node never starts before
-///    it recovers).
+///  - Order at equal times: every event carries a key (Kernel::schedule_keyed_at) that depends only
+///    on the node or link that caused it, never on the order in which events were scheduled:
+///        kind (2 bits) · field (32 bits) · counter (30 bits), most significant first,
+///    kind 0 a crash or recovery (field: node; counter: 2·(index in the failure schedule) + 1 for the
+///    recovery), 1 a start (node; 0), 2 a delivered copy (directed link; 2·(index of the message on
+///    the link) + copy), 3 a timer (node; index of the timer among the node's timers). So at equal
+///    times a crash or recovery precedes every start, message and timer due at that instant (a crash
+///    at time 0 means the node never starts before it recovers), copies precede timers, copies come
+///    by (sender, receiver, message index) and a node's timers in the order it set them. Because
+///    the key is a function of the causing node's own history, a partitioned run (sim/mpi) processes
+///    every node's events in the same order as this one. Past 2^29 messages on one link or 2^30
+///    timers at one node, send/schedule_timer throw std::length_error.
 
 #include <cstdint>
 #include <memory>
@@ -49,6 +57,17 @@ public:
   virtual void on_timer(Simulator& sim, NodeIndex v, std::uint64_t timer) = 0;
   /// Node `v` came back after a crash (only if it had started before).
   virtual void on_recover(Simulator& /*sim*/, NodeIndex /*v*/) {}
+};
+
+/// Receives the copies that a partitioned Simulator addresses to nodes it does not own (see
+/// Simulator::partition); the parallel kernel implements it.
+class RemoteOutbox {
+public:
+  virtual ~RemoteOutbox() = default;
+  /// A copy of `bytes` from `from` to `to` (a node another part owns), due at `at` with event key
+  /// `key` (see the file comment); `bytes` is valid during the call only.
+  virtual void post(Time at, std::uint64_t key, NodeIndex from, NodeIndex to, Phase phase,
+                    std::span<const std::byte> bytes) = 0;
 };
 
 /// Run-wide settings.
@@ -101,6 +120,19 @@ public:
   const Trace& trace() const { return trace_; }
   /// Timers dropped because their node was down when they fired.
   std::uint64_t timers_dropped() const { return timers_dropped_; }
+  /// Makes this simulator one part of a partitioned run; call before the first run. It then starts
+  /// and fails only the nodes v with owned[v] != 0, hands every copy addressed to another node to
+  /// `outbox` (which must outlive it) instead of scheduling it, and keeps every trace record (a
+  /// hash_only trace becomes a records trace) with its event key (trace_keys), for the merge. Throws core::InternalError (a broken precondition) if called after
+  /// the first run or with owned.size() != node_count().
+  void partition(std::vector<std::uint8_t> owned, RemoteOutbox& outbox);
+  /// Schedules the delivery of a copy another part posted (RemoteOutbox::post's arguments); `to`
+  /// must be owned. Throws core::InternalError (a broken precondition) if `at` lies in the past.
+  void deliver_remote(Time at, std::uint64_t key, NodeIndex from, NodeIndex to, Phase phase,
+                      std::span<const std::byte> bytes);
+  /// The event key of each trace record, in trace order (partitioned runs only; empty otherwise).
+  std::span<const std::uint64_t> trace_keys() const { return trace_keys_; }
+
   /// The underlying kernel (to schedule extra model events with handlers of one's own).
   Kernel& kernel() { return kernel_; }
   /// The underlying kernel, read-only.
@@ -134,6 +166,7 @@ private:
   std::vector<RandomStream> node_streams_;
   std::vector<std::uint64_t> link_keys_;      // stream key of each directed link
   std::vector<std::uint64_t> link_messages_;  // messages sent so far on each link
+  std::vector<std::uint32_t> node_timers_;    // timers set so far by each node (their event keys)
   std::vector<double> link_lengths_;
   std::vector<std::uint32_t> down_;  // outages in progress per node
   std::vector<std::uint8_t> started_;
@@ -143,6 +176,9 @@ private:
   Trace trace_;
   std::uint64_t timers_dropped_ = 0;
   bool launched_ = false;
+  RemoteOutbox* outbox_ = nullptr;      // set by partition()
+  std::vector<std::uint8_t> owned_;     // partitioned runs: owned_[v] != 0 if v is this part's
+  std::vector<std::uint64_t> trace_keys_;
 };
 
 }  // namespace laguerre::sim
