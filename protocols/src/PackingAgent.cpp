@@ -9,7 +9,8 @@
 namespace laguerre::protocols::detail {
 
 PackingAgent::PackingAgent(AgentHost& host, std::size_t index, AgentSpec spec, PackingParams params)
-    : host_(host), index_(index), know_(std::move(spec)), params_(params), deg_(know_.neighbours.size()) {
+    : host_(host), index_(index), know_(std::move(spec)), params_(params), deg_(know_.neighbours.size()),
+      accelerator_(params.acceleration) {
   nbr_depth_.assign(deg_, unknown);
   nbr_depth_seen_.assign(deg_, 0);
   nbr_wave_.assign(deg_, unknown);
@@ -436,8 +437,9 @@ void PackingAgent::advance_steps() {
       star_h_[i] = radius_[i][slot].h;
     }
     // The Jacobi update on K: every neighbour value is from step t, the cosines are those of
-    // PackingComplex (spoke_/rim_ empty iff tangent_only), as in core::thurston_sweep.
-    h_ = core::star_updated_radius(h_, core::StarView{star_h_, spoke_, rim_}, params_.update);
+    // PackingComplex (spoke_/rim_ empty iff tangent_only), as in core::thurston_sweep; then this
+    // vertex's local acceleration, as core::pack applies it after the sweep.
+    h_ = accelerator_.next(h_, core::star_updated_radius(h_, core::StarView{star_h_, spoke_, rim_}, params_.update));
     ++step_;
     sent_step_ = false;
   }

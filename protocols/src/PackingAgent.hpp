@@ -179,6 +179,7 @@ private:
   std::array<std::uint32_t, 2> arrivals_{};
   bool sent_step_ = false;
   double h_ = 0;
+  core::LocalAccelerator accelerator_;  // plain: returns the update unchanged
   std::vector<std::array<Slot, 2>> radius_;
   std::vector<double> star_h_, spoke_, rim_;
   std::vector<std::array<PlacedSlot, 2>> placed_in_;

@@ -51,6 +51,7 @@ protocols::PackingParams packing_params(const ProtocolSetup& setup) {
   params.max_iterations = setup.max_iterations;
   params.root = setup.root;
   params.asynchronous = setup.asynchronous;
+  params.acceleration = setup.acceleration;
   return params;
 }
 
@@ -217,6 +218,7 @@ std::string verify_against_core(const core::PlanarGraph& g, core::GraphKind kind
   opt.steps_per_check = setup.steps_per_round;
   opt.max_iterations = setup.max_iterations;
   opt.root = setup.root;
+  opt.acceleration = setup.acceleration;
   const core::PackResult r = core::pack(g, opt);
   const core::CircleEmbedding& phi = outcome.circles;
   bool same = r.iterations == static_cast<int>(outcome.iterations);

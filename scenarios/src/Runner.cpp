@@ -109,6 +109,7 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
     setup.steps_per_round = cfg.protocol.steps_per_round;
     setup.max_iterations = cfg.protocol.max_iterations;
     setup.root = cfg.protocol.root;
+    setup.acceleration = cfg.protocol.acceleration;
     setup.link.latency = cfg.network.latency;
     setup.link.loss = cfg.network.loss;
     setup.link.duplication = cfg.network.duplication;

@@ -447,10 +447,13 @@ void parse_protocol(Context& ctx, const YAML::Node& n, ProtocolSpec& out) {
   if (const YAML::Node v = lookup(n, "acceleration"); v.IsDefined()) {
     if (read_choice(c, v, "protocol.acceleration", core::names_of(core::acceleration_names), s))
       out.acceleration = *core::find_name(core::acceleration_names, s);
-    if (!out.central && out.acceleration != core::Acceleration::plain)
-      c.report(v, "protocol.acceleration", "'" + s + "' with mode " +
-                   std::string(core::name_of(protocol_mode_names, out.asynchronous ? ProtocolMode::async : ProtocolMode::sync)),
-               "plain, or mode central (the distributed protocol has no acceleration)");
+    if (out.asynchronous && out.acceleration != core::Acceleration::plain)
+      c.report(v, "protocol.acceleration", "'" + s + "' with mode async",
+               "plain, or mode sync for the local accelerations (chebyshev, local-superstep)");
+    else if (!out.central && !core::is_local(out.acceleration))
+      c.report(v, "protocol.acceleration", "'" + s + "' with mode sync",
+               "plain, chebyshev or local-superstep, or mode central (the distributed protocol runs local "
+               "accelerations only)");
   }
   std::int64_t i = 0;
   if (const YAML::Node v = lookup(n, "steps_per_round");

@@ -71,6 +71,7 @@ inline core::PackOptions pack_options(const PackingParams& params) {
   opt.root = params.root;
   opt.steps_per_check = params.steps_per_check;
   opt.max_iterations = params.max_iterations;
+  opt.acceleration = params.acceleration;
   return opt;
 }
 

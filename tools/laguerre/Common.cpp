@@ -71,8 +71,10 @@ core::PairSelection parse_pairs(const std::string& text, std::uint64_t seed, con
 
 CLI::Option* add_acceleration_option(CLI::App& cmd, std::string& value) {
   return add_choice(cmd, "--accelerate", value, core::acceleration_names,
-                    "Sweep acceleration: plain, superstep (Collins-Stephenson), anderson, or newton (damped Newton steps "
-                    "on the angle sums instead of sweeps; an iteration is then a Newton step)");
+                    "Sweep acceleration: plain, superstep (Collins-Stephenson), anderson, newton (damped Newton steps "
+                    "on the angle sums instead of sweeps; an iteration is then a Newton step), or the local ones "
+                    "the protocol runs too: chebyshev (adaptive second-order iteration per vertex) and "
+                    "local-superstep (Collins-Stephenson with each vertex's own ratio)");
 }
 
 int run_program(CLI::App& app, int argc, char** argv, const char* program, const std::function<int()>& action) {

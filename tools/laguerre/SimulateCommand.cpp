@@ -41,6 +41,7 @@ constexpr CommandHelp simulate_help{
 struct SimulateArgs {
   GraphArgs graph;
   std::string mode = "sync";
+  std::string accelerate = "plain";
   std::string latency = "constant:1ms";
   double loss = 0;
   double dup = 0;
@@ -64,6 +65,15 @@ scenarios::ProtocolSetup setup_of(const SimulateArgs& a) {
   setup.steps_per_round = a.steps;
   setup.max_iterations = a.max_iterations;
   setup.root = core::parse_name(core::root_rule_names, a.root, "--root");
+  setup.acceleration = core::parse_name(core::acceleration_names, a.accelerate, "--accelerate");
+  if (!core::is_local(setup.acceleration))
+    throw core::InputError("--accelerate", 0,
+                           "found '" + a.accelerate + "', which needs global sums or a central solver; expected plain, "
+                           "chebyshev or local-superstep (the others run in 'laguerre pack' only)");
+  if (setup.asynchronous && setup.acceleration != core::Acceleration::plain)
+    throw core::InputError("--accelerate", 0,
+                           "found '" + a.accelerate + "' with --mode async; expected plain (the local accelerations "
+                           "extrapolate along consistent synchronous iterates: use --mode sync)");
   setup.link.latency = scenarios::parse_latency(a.latency, "--latency");
   setup.link.loss = a.loss;
   setup.link.duplication = a.dup;
@@ -131,6 +141,11 @@ Action add_simulate_command(CLI::App& app) {
   c.cmd->add_option("--max-iterations", c.args->max_iterations, "Cap on Thurston steps")
       ->check(CLI::Range(1, 100000000))->capture_default_str();
   add_choice(*c.cmd, "--root", c.args->root, core::root_rule_names, "Layout root election: deepest or smallest-id");
+  add_choice(*c.cmd, "--accelerate", c.args->accelerate, core::acceleration_names,
+             "Local acceleration each node runs on its own updates (sync mode, bit for bit with core::pack): "
+             "plain (Thurston's Jacobi), chebyshev (adaptive second-order iteration, ~15-20x fewer steps on "
+             "500-node uniform maps) or local-superstep (Collins-Stephenson with local ratios); superstep, "
+             "anderson and newton need global sums and are refused");
   c.cmd->add_option("--pairs", c.args->pairs, "'all' ordered pairs, or a number sampled with --seed")->capture_default_str();
   c.cmd->add_option("--scheme", c.args->scheme, "Forwarding scheme: greedy-power, greedy-euclid, compass, gfg or all")
       ->capture_default_str();

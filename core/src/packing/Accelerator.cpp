@@ -17,6 +17,8 @@ Acceleration parse_acceleration(std::string_view name) { return parse_name(accel
 bool Accelerator::after_sweep(const PackingComplex& k, const Radii& before, Radii& after) {
   switch (kind_) {
     case Acceleration::plain:
+    case Acceleration::chebyshev:
+    case Acceleration::local_superstep:  // per vertex: LocalAccelerator
     case Acceleration::newton: return false;  // pack() takes Newton steps instead of sweeps
     case Acceleration::superstep: return superstep(k, before, after);
     case Acceleration::anderson: return anderson(k, before, after);
@@ -130,6 +132,72 @@ bool Accelerator::anderson(const PackingComplex& k, const Radii& before, Radii& 
   }
   if (changed) ++jumps_;
   return changed;
+}
+
+namespace {
+constexpr double stable_tolerance = 0.04;  // |q − q_prev| ≤ this × (1 − q)
+constexpr int stable_needed = 1;           // window ratios agreeing with their predecessor
+constexpr double max_rho = 1 - 1e-9;
+constexpr int max_restarts = 20;
+}  // namespace
+
+bool LocalAccelerator::stable_ratio(double d, double& q) {
+  // The ratio over the last `window` steps, (d_k / d_{k−w})^{1/w}, from residuals of one sign: the
+  // oscillations that accelerated neighbours feed in average out over the window.
+  for (int i = window - 1; i > 0; --i) history_[i] = history_[i - 1];
+  history_[0] = d;
+  if (seen_ < window) ++seen_;
+  bool same_sign = seen_ == window;
+  for (int i = 1; i < seen_ && same_sign; ++i) same_sign = (history_[i] > 0) == (d > 0) && history_[i] != 0;
+  if (!same_sign || d == 0) {
+    has_q_ = false;
+    stable_ = 0;
+    return false;
+  }
+  q = std::pow(d / history_[window - 1], 1.0 / (window - 1));
+  if (q > 0 && q < 1 && has_q_ && std::abs(q - last_q_) <= stable_tolerance * (1 - q)) ++stable_;
+  else stable_ = 0;
+  last_q_ = q;
+  has_q_ = true;
+  return stable_ >= stable_needed;
+}
+
+double LocalAccelerator::next(double h, double f) {
+  accelerated_ = false;
+  if (kind_ != Acceleration::chebyshev && kind_ != Acceleration::local_superstep) return f;
+  const double d = f - h;  // the residual of the plain map at this vertex (Δy = −2d in y = log X)
+  double q = 0;
+  const bool stable = stable_ratio(d, q);
+  double out = f;
+  if (kind_ == Acceleration::chebyshev) {
+    if (stable) {
+      const double lambda = (q * q + omega_ - 1) / (omega_ * q);
+      if (lambda > rho_) {
+        rho_ = std::min(lambda, max_rho);
+        omega_ = 2 / (1 + std::sqrt(1 - rho_ * rho_));
+      }
+    }
+    if (has_previous_) out = previous_ + omega_ * (f - previous_);
+    previous_ = h;
+    has_previous_ = true;
+  } else if (stable) {
+    out = f + std::min(50.0, q / (1 - q)) * d;
+    seen_ = 0;  // after a jump the next ratio would mix two regimes
+    has_q_ = false;
+    stable_ = 0;
+  }
+  if (out == f) return f;
+  if (!(out >= 0.5 * f && out <= 2 * f)) {
+    // The safeguard: the plain update, a fresh history, and after max_restarts plain for good.
+    has_previous_ = false;
+    seen_ = 0;
+    has_q_ = false;
+    stable_ = 0;
+    if (++restarts_ >= max_restarts) kind_ = Acceleration::plain;
+    return f;
+  }
+  accelerated_ = true;
+  return out;
 }
 
 }  // namespace laguerre::core

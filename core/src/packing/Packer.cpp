@@ -89,7 +89,10 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   Accelerator accelerator(options.acceleration);
   NewtonMethod newton_method(options.newton_solver);
   const bool newton = options.acceleration == Acceleration::newton;
+  const bool local = options.acceleration != Acceleration::plain && is_local(options.acceleration);
   const bool accelerate = options.acceleration != Acceleration::plain && !newton;
+  std::vector<LocalAccelerator> local_state(local ? k.graph.num_vertices() : 0, LocalAccelerator(options.acceleration));
+  int local_jumps = 0;
   Radii previous;
   bool done = check(0);
   while (!done && it < options.max_iterations) {
@@ -103,13 +106,21 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
       }
       if (accelerate) previous = result.radii;
       thurston_sweep(k, result.radii, options.sweep, options.update, scratch);
-      if (accelerate) accelerator.after_sweep(k, previous, result.radii);
+      if (local) {  // each vertex on its own, as a network node does (PackingAgent::advance_steps)
+        for (Vertex v = 0; v < k.graph.num_vertices(); ++v)
+          if (!k.graph.is_boundary(v)) {
+            result.radii[v] = local_state[v].next(previous[v], result.radii[v]);
+            local_jumps += local_state[v].accelerated();
+          }
+      } else if (accelerate) {
+        accelerator.after_sweep(k, previous, result.radii);
+      }
     }
     it += steps;
     done = check(it);
   }
   result.iterations = it;
-  if (!newton) result.jumps = accelerator.jumps();
+  if (!newton) result.jumps = local ? local_jumps : accelerator.jumps();
   result.status = done ? PackStatus::converged : PackStatus::iteration_cap;
   // Never claim anything on circles the doubles cannot carry.
   if (result.layout.precision == Precision::unrepresentable) result.status = PackStatus::precision_loss;

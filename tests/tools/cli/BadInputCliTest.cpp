@@ -43,6 +43,16 @@ TEST_F(CliBadInput, StepsPerRoundZeroIsAClearError) {
   expect_bad("simulate " + graph + " --max-iterations 0", {"--max-iterations"});
 }
 
+TEST_F(CliBadInput, SimulateRefusesAccelerationsTheNetworkCannotRun) {
+  for (const char* a : {"anderson", "superstep", "newton"})
+    expect_bad("simulate " + graph + " --accelerate " + a, {"--accelerate", a, "chebyshev"});
+  expect_bad("simulate " + graph + " --accelerate chebyshev --mode async", {"--accelerate", "--mode async"});
+  expect_bad("simulate " + graph + " --accelerate warp", {"--accelerate"});
+  const Outcome r = run("simulate " + graph + " --accelerate chebyshev --verify --pairs 20");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("identical to core::pack, bit for bit"), std::string::npos) << r.out;
+}
+
 TEST_F(CliBadInput, ParseErrorsExitWith2) {
   expect_bad("simulate " + graph + " --no-such-option", {"--no-such-option"});
   expect_bad("simulate", {"graph"});

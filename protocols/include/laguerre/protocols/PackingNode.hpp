@@ -25,6 +25,7 @@
 
 #include "laguerre/core/geometry/Circle.hpp"
 #include "laguerre/core/graph/PlanarGraph.hpp"
+#include "laguerre/core/packing/Accelerator.hpp"
 #include "laguerre/core/packing/Layout.hpp"
 #include "laguerre/core/packing/Placement.hpp"
 #include "laguerre/core/packing/Thurston.hpp"
@@ -56,6 +57,9 @@ struct PackingParams : ReliableParams {
   core::UpdateRule update = core::UpdateRule::uniform_neighbour;  ///< per-vertex update
   core::RootRule root = core::RootRule::deepest;                  ///< which root the election picks
   bool asynchronous = false;  ///< asynchronous Thurston updates (chaotic relaxation); not bit for bit with core
+  /// plain, or a local acceleration (core::is_local: chebyshev, local_superstep), synchronous mode only:
+  /// each protocol vertex runs a core::LocalAccelerator on its own updates, with no extra message.
+  core::Acceleration acceleration = core::Acceleration::plain;
 };
 
 /// Turns the reliability layer on with periods fitted to links whose one-way latency is at most
@@ -124,7 +128,8 @@ public:
   /// A node with its static knowledge; `runtime` must outlive it. Throws core::InternalError (a broken precondition) if the
   /// knowledge is inconsistent (no neighbours, repeated neighbours, itself as neighbour, a boundary
   /// node without an outer wedge or an interior node with one, face walks that do not match the
-  /// neighbours) or the parameters are out of range; core::InputError if a polygon-face node id is above
+  /// neighbours) or the parameters are out of range (an acceleration the network cannot run, or a local
+  /// one in asynchronous mode); core::InputError if a polygon-face node id is above
   /// 2^31 − 1 (ids come from the user's graph file).
   PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingParams params);
   /// Destroys the node and its hosted vertices.

@@ -10,16 +10,24 @@
 
 namespace laguerre::core {
 
-/// How sweeps are accelerated. Both methods only need a few global sums per sweep, which a network
-/// can gather with the convergecast it already runs each round.
+/// How sweeps are accelerated. superstep and anderson need a few global sums per sweep (centralized
+/// only); chebyshev and local_superstep are local: each vertex reads only its own radius history
+/// (LocalAccelerator), so the distributed protocol runs them with no extra message.
 enum class Acceleration {
   plain,       ///< plain Thurston sweeps
   superstep,   ///< Collins & Stephenson's geometric extrapolation along a stable error direction
   anderson,    ///< Anderson mixing of the last few sweeps (AA(m), type II)
-  newton       ///< not a sweep: damped Newton steps on the angle sums (Newton.hpp; centralized only)
+  newton,      ///< not a sweep: damped Newton steps on the angle sums (Newton.hpp; centralized only)
+  chebyshev,   ///< local adaptive Chebyshev (second-order Richardson) iteration, per vertex
+  local_superstep  ///< Collins & Stephenson's extrapolation with the ratio each vertex sees locally
 };
 
-/// Name of an acceleration ("plain", "superstep", "anderson", "newton").
+/// Whether the distributed protocol can run `a` (plain and the local accelerations).
+constexpr bool is_local(Acceleration a) {
+  return a == Acceleration::plain || a == Acceleration::chebyshev || a == Acceleration::local_superstep;
+}
+
+/// Name of an acceleration ("plain", "superstep", "anderson", "newton", "chebyshev", "local-superstep").
 std::string_view to_string(Acceleration a);
 /// Parses an acceleration name; throws InputError listing the valid names (PackingNames.hpp).
 Acceleration parse_acceleration(std::string_view name);
@@ -37,6 +45,7 @@ Acceleration parse_acceleration(std::string_view name);
 ///   history with a plain sweep.
 /// In both, no hyperbolic radius may shrink below half its value in one step (X stays in (0, 1)).
 class Accelerator {
+  // (the local kinds are LocalAccelerator's; for them, as for plain, after_sweep changes nothing)
 public:
   /// An accelerator of the given kind (`plain` never changes anything).
   explicit Accelerator(Acceleration kind = Acceleration::superstep) : kind_(kind) {}
@@ -60,6 +69,55 @@ private:
   std::vector<std::vector<double>> dF_, dG_;
   double last_norm_ = 0;
   int jumps_ = 0;
+};
+
+/// The local accelerations of Thurston's Jacobi iteration, as one interior vertex runs them: its state
+/// is its own radius history, its input its current radius h = h_k and its plain update f = F(h_k)_v;
+/// no global quantity, no set-up constant. core::pack holds one per vertex and the distributed
+/// protocol one per protocol vertex, both calling `next` with the same values in the same order (bit
+/// for bit). docs/protocol.md derives the method; in short, with residual d_k = f − h_k:
+///
+/// - chebyshev: the second-order (stationary Chebyshev) iteration h_{k+1} = h_{k−1} + ω (f − h_{k−1}),
+///   ω = 2 / (1 + √(1 − ρ²)). ρ, the vertex's estimate of the spectral radius of the Jacobi map, starts
+///   at 0 (ω = 1: plain Thurston) and only grows. The vertex measures its contraction
+///   q = (d_k / d_{k−4})^{1/4} over its last five residuals when they have one sign; when two successive
+///   q agree within 4% of 1 − q (a real dominant mode μ = q, which the Perron–Frobenius vector of the
+///   monotone Thurston map shows at every vertex), the Jacobi eigenvalue behind it is
+///   λ = (q² + ω − 1) / (ω q), and ρ ← max(ρ, λ).
+/// - local_superstep: when two successive q ∈ (0, 1) agree as above, jumps to f + min(50, q/(1−q)) d_k
+///   (the rest of the geometric series at this vertex), then forgets its history.
+///
+/// Safeguard: a value outside [f/2, 2f] (or not finite) is replaced by f, the plain update, and the
+/// history is cleared; after 20 such restarts the vertex stays plain for good, so the iteration ends as
+/// Thurston's, which converges.
+class LocalAccelerator {
+public:
+  /// The state of a vertex that has not updated yet; `kind` not local or `plain`: `next` returns f.
+  explicit LocalAccelerator(Acceleration kind = Acceleration::plain) : kind_(kind) {}
+  /// The vertex's next radius. Pre: h and f finite and positive. Post: in [f/2, 2f].
+  double next(double h, double f);
+  /// Whether the last `next` extrapolated (returned something else than f).
+  bool accelerated() const { return accelerated_; }
+  /// The current estimate of the Jacobi map's spectral radius (chebyshev; 0 otherwise).
+  double rho() const { return rho_; }
+  /// Safeguard restarts so far.
+  int restarts() const { return restarts_; }
+
+private:
+  bool stable_ratio(double d, double& q);
+  Acceleration kind_;
+  double previous_ = 0;  // h_{k−1} (chebyshev), valid if has_previous_
+  bool has_previous_ = false;
+  static constexpr int window = 5;  // residuals per ratio estimate
+  double history_[window] = {};  // d_k, d_{k−1}, …; the first seen_ are valid
+  int seen_ = 0;
+  double last_q_ = 0;    // the last ratio; valid if has_q_
+  bool has_q_ = false;
+  int stable_ = 0;       // successive ratios agreeing with the one before
+  double rho_ = 0;
+  double omega_ = 1;
+  int restarts_ = 0;
+  bool accelerated_ = false;
 };
 
 }  // namespace laguerre::core

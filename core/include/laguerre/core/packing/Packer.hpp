@@ -61,7 +61,7 @@ struct PackResult {
   int first_lpd = -1;       ///< first checked iteration with LPD/GLPD everywhere (-1: never seen)
   int first_exact = -1;     ///< first checked iteration with an exact packing (tracked rules only)
   int first_angle = -1;     ///< first checked iteration with angle error ≤ epsilon (tracked only)
-  int jumps = 0;            ///< accelerated steps taken (PackOptions::acceleration; Newton: improving Newton steps)
+  int jumps = 0;            ///< accelerated steps taken (PackOptions::acceleration; Newton: improving Newton steps; local kinds: extrapolated vertex updates)
   double angle_error = 0;   ///< max |θ − 2π| at the end
   double max_tangency_error = 0;  ///< max tangency error over G's edges at the end
   CircleEmbedding circles;        ///< φ on G's vertices (indexed by Vertex of G)

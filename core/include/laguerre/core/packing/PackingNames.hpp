@@ -8,11 +8,13 @@
 
 namespace laguerre::core {
 
-/// Acceleration: plain, superstep, anderson, newton.
-inline constexpr EnumNames<Acceleration, 4> acceleration_names{{{Acceleration::plain, "plain"},
+/// Acceleration: plain, superstep, anderson, newton, chebyshev, local-superstep.
+inline constexpr EnumNames<Acceleration, 6> acceleration_names{{{Acceleration::plain, "plain"},
                                                                 {Acceleration::superstep, "superstep"},
                                                                 {Acceleration::anderson, "anderson"},
-                                                                {Acceleration::newton, "newton"}}};
+                                                                {Acceleration::newton, "newton"},
+                                                                {Acceleration::chebyshev, "chebyshev"},
+                                                                {Acceleration::local_superstep, "local-superstep"}}};
 /// StopRule: lpd, exact, angle, cap.
 inline constexpr EnumNames<StopRule, 4> stop_rule_names{
     {{StopRule::lpd, "lpd"}, {StopRule::exact, "exact"}, {StopRule::angle, "angle"}, {StopRule::cap, "cap"}}};
