@@ -4,7 +4,7 @@
 #
 #   tools/bench/gopack.sh [--gopack DIR] [--install] [--gopack-timeout S] [--laguerre-timeout S]
 #                         [--complexes "Pinwheel_K mixed10000_K ..."] [--random "tri:1000 tri:10000 3c:1000 ..."]
-#                         [--seed S] [--max-passes P] [--out DIR] [--laguerre BIN]
+#                         [--seed S] [--max-passes P] [--stall-passes K] [--out DIR] [--laguerre BIN]
 #
 #   --gopack DIR          the GOPack anchor (code/, complexes/*.p, edges/*.edges); default ../shared/anchors/gopack
 #                         next to the checkout, i.e. /work/shared/anchors/gopack
@@ -12,6 +12,8 @@
 #   --gopack-timeout S    GOPack's wall-time bound per input (default 600): no pass starts after S seconds, and the
 #                         process is killed at 2 S; such a run is reported as "timeout"
 #   --laguerre-timeout S  the same bound per laguerre run (default 600)
+#   --max-passes P        cap on GOPack's passes (default 100000); reaching it is reported as "stall"
+#   --stall-passes K      a GOPack run whose best visual error has not improved for K passes (default 25) stops, "stall"
 #   --laguerre BIN        the laguerre executable (default: build/release/tools/laguerre, built if missing)
 #   --out DIR             where the inputs, logs and JSON of every run go (default: a fresh /tmp/gopack-bench.*)
 #   --complexes LIST      which of the anchor's complexes (default: all four)
@@ -39,7 +41,7 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 gopack="$root/../shared/anchors/gopack"
 [[ -d $gopack ]] || gopack=/work/shared/anchors/gopack
 laguerre="$root/build/release/tools/laguerre"
-install=0 gtimeout=600 ltimeout=600 seed=1 maxpasses=100000 out=""
+install=0 gtimeout=600 ltimeout=600 seed=1 maxpasses=100000 stallpasses=25 out=""
 complexes="Pinwheel_K mixed10000_K lace42000_K twist41000_K"
 random="tri:1000 tri:10000 3c:1000 3c:10000"
 while (($#)); do
@@ -52,14 +54,15 @@ while (($#)); do
     --random) random=$2; shift ;;
     --seed) seed=$2; shift ;;
     --max-passes) maxpasses=$2; shift ;;
+    --stall-passes) stallpasses=$2; shift ;;
     --out) out=$2; shift ;;
     --laguerre) laguerre=$2; shift ;;
-    -h|--help) sed -n '2,36p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,38p' "$0"; exit 0 ;;
     *) echo "gopack.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
 done
-for v in "$gtimeout" "$ltimeout" "$seed" "$maxpasses"; do
+for v in "$gtimeout" "$ltimeout" "$seed" "$maxpasses" "$stallpasses"; do
   [[ $v =~ ^[0-9]+$ ]] || { echo "gopack.sh: expected a whole number, found '$v'" >&2; exit 2; }
 done
 [[ -d $gopack/code/@GOPacker ]] || { echo "gopack.sh: $gopack/code/@GOPacker not found (--gopack DIR)" >&2; exit 2; }
@@ -202,12 +205,13 @@ gopack_run() {  # label p_file -> prints: passes riffle_seconds final_err nan_co
   local m="$work/$label.m"
   cat >"$m" <<OCT
 t0 = tic; gop = GOPacker(); gop.readpack('$p'); gop.setMode(1);
-pass = 0; err = Inf; cum = 0; why = 'rule';
+pass = 0; err = Inf; cum = 0; why = 'rule'; best = Inf; best_pass = 0;
 while err > 0.01
-  if pass >= $maxpasses, why = 'stall'; break; end
+  if pass >= $maxpasses || pass - best_pass >= $stallpasses, why = 'stall'; break; end
   if toc(t0) > $gtimeout, why = 'timeout'; break; end
   tp = tic; gop.continueRiffle(1); cum = cum + toc(tp); pass = pass + 1;
   err = gop.visErrMonitor(end);
+  if err < best, best = err; best_pass = pass; end
   fprintf(stderr, '[$label] pass %d cum %.1fs maxVisErr %.4g\n', pass, cum, err);
 end
 nans = sum(isnan(gop.localradii(:))) + sum(isnan(real(gop.localcenters(:)))) + sum(isnan(imag(gop.localcenters(:))));
@@ -302,8 +306,8 @@ for entry in "${maps[@]}"; do
 done
 echo "load after: $(uptime | sed 's/.*load average: //')"
 cat <<'EOF'
-Columns: GOPack status (ok = max visual error <= 1%; timeout = no pass started after --gopack-timeout; stall = pass cap;
-NaN = non-finite radii or centres, whatever visErr it reports), passes, riffle seconds, process wall seconds, process
+Columns: GOPack status (ok = max visual error <= 1%; timeout = no pass started after --gopack-timeout; stall = pass cap or
+no better visual error for --stall-passes passes; NaN = non-finite radii or centres, whatever visErr it reports), passes, riffle seconds, process wall seconds, process
 CPU seconds, peak MB, final max visual error. laguerre: status (blank = converged), iterations (Newton steps or Jacobi sweeps), pack seconds,
 process wall seconds, process CPU seconds (user + system), peak MB, final max visual error (GOPack's rule, computed by
 this script on laguerre's circles). x(newton), x(plain) = GOPack CPU seconds / laguerre `--stop exact` CPU seconds, whole

@@ -22,8 +22,8 @@ constexpr CommandHelp thesis_table_help{
     "thesis-table",
     "Reproduce the experiment of thesis §5.4.1 (iterations to LPD vs exact packing).",
     "Without graph files: random Delaunay triangulations and 3-connected graphs obtained from them by\n"
-    "deleting edges (the interim random families documented in RandomGraphs.hpp); --family spheres adds\n"
-    "uniform random triangulations of the sphere (Poulalhon-Schaeffer, every face a triangle).\n"
+    "deleting edges (the interim random families documented in RandomGraphs.hpp), and uniform random\n"
+    "triangulations of the sphere (Poulalhon-Schaeffer, every face a triangle; --family picks among them).\n"
     "Every triangulated sphere (the spheres family; a graph file's, every face a triangle) is packed once\n"
     "per --outer rule, the same graphs each time: face keeps a face outside, puncture removes the vertex\n"
     "of largest degree (its neighbours become the boundary; it is counted in removed_vertices)."};
@@ -38,7 +38,7 @@ struct TableArgs {
   std::vector<std::string> files;
   bool json = false;
   std::string accelerate = "plain";
-  std::vector<std::string> families{"delaunay", "three-connected"};
+  std::vector<std::string> families{"delaunay", "three-connected", "spheres"};
   std::vector<std::string> outer{"face", "puncture"};
 };
 

@@ -116,7 +116,7 @@ TEST_F(Cli, ThesisTableRunsOnASmallSample) {
   ASSERT_EQ(r.status, 0) << r.out;
   const auto pos = r.out.find('{');
   const auto doc = nlohmann::json::parse(r.out.substr(pos));
-  ASSERT_EQ(doc["families"].size(), 2u);
+  ASSERT_EQ(doc["families"].size(), 4u);  // triangulations, 3-connected, spheres under face and under puncture
   for (const auto& f : doc["families"]) {
     EXPECT_EQ(f["graphs"], 2);
     EXPECT_EQ(f["greedy_delivery_min"], 1.0);
