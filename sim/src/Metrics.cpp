@@ -2,6 +2,8 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
+
 namespace laguerre::sim {
 
 TrafficCounters& TrafficCounters::operator+=(const TrafficCounters& o) {
@@ -18,32 +20,36 @@ TrafficCounters& TrafficCounters::operator+=(const TrafficCounters& o) {
 }
 
 void TrafficMetrics::grow(Phase phase) {
-  by_phase_.resize(std::size_t{phase} + 1, std::vector<TrafficCounters>(node_count_));
+  const std::size_t phases = std::size_t{phase} + 1;
+  std::vector<TrafficCounters> wider(node_count_ * phases);
+  for (std::size_t v = 0; v < node_count_; ++v)
+    std::copy_n(counters_.begin() + static_cast<std::ptrdiff_t>(v * phases_), phases_,
+                wider.begin() + static_cast<std::ptrdiff_t>(v * phases));
+  counters_ = std::move(wider);
+  phases_ = phases;
 }
 
 TrafficCounters TrafficMetrics::get(std::uint32_t node, Phase phase) const {
-  if (phase >= by_phase_.size()) return {};
-  return by_phase_[phase][node];
+  if (phase >= phases_) return {};
+  return counters_[std::size_t{node} * phases_ + phase];
 }
 
 TrafficCounters TrafficMetrics::node_total(std::uint32_t node) const {
   TrafficCounters sum;
-  for (const auto& row : by_phase_) sum += row[node];
+  for (std::size_t p = 0; p < phases_; ++p) sum += counters_[std::size_t{node} * phases_ + p];
   return sum;
 }
 
 TrafficCounters TrafficMetrics::phase_total(Phase phase) const {
   TrafficCounters sum;
-  if (phase >= by_phase_.size()) return sum;
-  for (const auto& c : by_phase_[phase]) sum += c;
+  if (phase >= phases_) return sum;
+  for (std::size_t v = 0; v < node_count_; ++v) sum += counters_[v * phases_ + phase];
   return sum;
 }
 
 TrafficCounters TrafficMetrics::total() const {
   TrafficCounters sum;
-  for (const auto& row : by_phase_) {
-    for (const auto& c : row) sum += c;
-  }
+  for (const auto& c : counters_) sum += c;
   return sum;
 }
 

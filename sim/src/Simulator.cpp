@@ -1,5 +1,6 @@
 #include "laguerre/sim/Simulator.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <string>
@@ -26,13 +27,13 @@ Simulator::Simulator(Network network, SimConfig config, NodeHandler& handler)
     node_streams_.push_back(RandomStream::of(config_.seed, StreamKind::node, network_.id(v)));
   }
   const std::size_t links = network_.link_count();
-  link_keys_.resize(links);
-  link_lengths_.resize(links);
-  link_messages_.assign(links, 0);
+  links_.resize(links);
   for (LinkIndex l = 0; l < links; ++l) {
-    link_keys_[l] = stream_key(config_.seed, StreamKind::link, network_.id(network_.link_source(l)),
-                               network_.id(network_.link_target(l)));
-    link_lengths_[l] = network_.link_length(l);
+    LinkState& s = links_[l];
+    s.key = stream_key(config_.seed, StreamKind::link, network_.id(network_.link_source(l)),
+                       network_.id(network_.link_target(l)));
+    s.length = network_.link_length(l);
+    s.model = &network_.link_model(l);
   }
   down_.assign(n, 0);
   started_.assign(n, 0);
@@ -62,46 +63,63 @@ RunReport Simulator::run(const RunLimits& limits) {
   return report;
 }
 
+std::span<const std::byte> Simulator::bytes_of(std::uint32_t message) {
+  const Message& m = slot(message);
+  if (m.size <= inline_bytes) return {m.bytes, m.size};
+  return spill_[message];
+}
+
 std::uint32_t Simulator::store(NodeIndex from, std::span<const std::byte> bytes, Phase phase) {
   std::uint32_t index;
   if (!free_messages_.empty()) {
-    index = free_messages_.back();
+    index = free_messages_.back();  // the most recently freed slot: likely still cached
     free_messages_.pop_back();
   } else {
-    index = static_cast<std::uint32_t>(messages_.size());
-    messages_.emplace_back();
+    if (slots_used_ % chunk_slots == 0) chunks_.push_back(std::make_unique<Message[]>(chunk_slots));
+    index = slots_used_++;
   }
-  Message& m = messages_[index];
-  m.bytes.assign(bytes.begin(), bytes.end());  // reuses the slot's capacity: no allocation at steady state
+  Message& m = slot(index);
   m.from = from;
-  m.phase = phase;
+  m.size = static_cast<std::uint32_t>(bytes.size());
   m.refs = 0;
-  m.digest = trace_.mode() == TraceMode::off ? 0 : fnv1a(bytes);
+  m.phase = phase;
+  if (bytes.size() <= inline_bytes) {
+    std::copy(bytes.begin(), bytes.end(), m.bytes);
+  } else {
+    if (spill_.size() <= index) spill_.resize(std::size_t{index} + 1);
+    spill_[index].assign(bytes.begin(), bytes.end());  // reuses the slot's capacity
+  }
   return index;
 }
 
 void Simulator::release(std::uint32_t message) {
-  if (--messages_[message].refs == 0) free_messages_.push_back(message);
+  if (--slot(message).refs == 0) free_messages_.push_back(message);
 }
 
-void Simulator::transmit(LinkIndex link, std::uint32_t message, std::uint32_t size) {
-  const NodeIndex from = network_.link_source(link);
-  const NodeIndex to = network_.link_target(link);
-  const Phase phase = messages_[message].phase;
-  TrafficCounters& counters = traffic_.at(from, phase);
+void Simulator::transmit(LinkIndex link, NodeIndex from, NodeIndex to, std::uint32_t message) {
+  Message& m = slot(message);
+  const std::uint32_t size = m.size;
+  TrafficCounters& counters = traffic_.at(from, m.phase);
   ++counters.messages_sent;
   counters.bytes_sent += size;
+  LinkState& state = links_[link];
+  const LinkModel& model = *state.model;
+  const std::uint64_t position = state.sent++;
+  if (model.is_deterministic()) {  // decide() would draw, but nothing it draws matters
+    ++m.refs;
+    kernel_.schedule_after(model.latency.base, deliver_id_, to, message);
+    return;
+  }
   // The message's own stream: a pure function of (seed, link, position of the message on the link).
-  RandomStream rng(stream_key(config_.seed, StreamKind::message, link_keys_[link],
-                              link_messages_[link]++));
-  const LinkDecision fate = decide(network_.link_model(link), link_lengths_[link], rng);
+  RandomStream rng(stream_key(config_.seed, StreamKind::message, state.key, position));
+  const LinkDecision fate = decide(model, state.length, rng);
   const auto deliver = [&](bool lost, Duration latency) {
     if (lost) {
       ++counters.messages_lost;
       counters.bytes_lost += size;
       return;
     }
-    ++messages_[message].refs;
+    ++m.refs;
     kernel_.schedule_after(latency, deliver_id_, to, message);
   };
   deliver(fate.lost, fate.latency);
@@ -115,16 +133,20 @@ void Simulator::send(NodeIndex from, NodeIndex to, std::span<const std::byte> by
   const auto link = network_.find_link(from, to);
   LAGUERRE_PRECONDITION(link.has_value(), "Node " + std::to_string(network_.id(from)) + " cannot send to node " +
                                               std::to_string(network_.id(to)) + ": they are not neighbours.");
-  const auto size = static_cast<std::uint32_t>(bytes.size());
+  send_on_link(*link, bytes, phase);
+}
+
+void Simulator::send_on_link(LinkIndex link, std::span<const std::byte> bytes, Phase phase) {
+  const NodeIndex from = network_.link_source(link);
   if (down_[from]) {
     TrafficCounters& c = traffic_.at(from, phase);
     ++c.messages_dropped;
-    c.bytes_dropped += size;
+    c.bytes_dropped += bytes.size();
     return;
   }
   const std::uint32_t message = store(from, bytes, phase);
-  transmit(*link, message, size);
-  if (messages_[message].refs == 0) free_messages_.push_back(message);  // every copy was lost
+  transmit(link, from, network_.link_target(link), message);
+  if (slot(message).refs == 0) free_messages_.push_back(message);  // every copy was lost
 }
 
 void Simulator::broadcast(NodeIndex from, std::span<const std::byte> bytes, Phase phase) {
@@ -138,8 +160,9 @@ void Simulator::broadcast(NodeIndex from, std::span<const std::byte> bytes, Phas
   }
   if (neighbours.empty()) return;
   const std::uint32_t message = store(from, bytes, phase);
-  for (std::size_t i = 0; i < neighbours.size(); ++i) transmit(network_.link_at(from, i), message, size);
-  if (messages_[message].refs == 0) free_messages_.push_back(message);
+  for (std::size_t i = 0; i < neighbours.size(); ++i)
+    transmit(network_.link_at(from, i), from, neighbours[i], message);
+  if (slot(message).refs == 0) free_messages_.push_back(message);
 }
 
 TimerHandle Simulator::schedule_timer(NodeIndex v, Duration after, std::uint64_t timer) {
@@ -156,8 +179,8 @@ void Simulator::on_start_event(Kernel&, const Event& event) {
 void Simulator::on_deliver_event(Kernel& kernel, const Event& event) {
   const NodeIndex to = event.target;
   const auto index = static_cast<std::uint32_t>(event.payload);
-  const Message& m = messages_[index];
-  const auto size = static_cast<std::uint32_t>(m.bytes.size());
+  const Message& m = slot(index);
+  const std::uint32_t size = m.size;
   const NodeIndex from = m.from;
   const Phase phase = m.phase;
   TrafficCounters& counters = traffic_.at(to, phase);
@@ -169,11 +192,12 @@ void Simulator::on_deliver_event(Kernel& kernel, const Event& event) {
   }
   ++counters.messages_received;
   counters.bytes_received += size;
-  trace_.add(TraceRecord{kernel.now(), network_.id(from), network_.id(to), m.digest, size, phase});
-  // The span stays valid during the callback even if the handler sends (messages_ may reallocate,
-  // which moves the vector objects but not their heap buffers), and the slot cannot be recycled
-  // before release() below because this copy still holds a reference.
-  const std::span<const std::byte> bytes(m.bytes.data(), m.bytes.size());
+  // The span stays valid during the callback even if the handler sends: slots live in chunks that
+  // never move, spilled bytes in buffers that never move, and the slot cannot be recycled before
+  // release() below because this copy still holds a reference.
+  const std::span<const std::byte> bytes = bytes_of(index);
+  if (trace_.mode() != TraceMode::off)
+    trace_.add(TraceRecord{kernel.now(), network_.id(from), network_.id(to), fnv1a(bytes), size, phase});
   handler_->on_message(*this, to, from, phase, bytes);
   release(index);
 }

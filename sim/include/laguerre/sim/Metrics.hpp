@@ -34,18 +34,20 @@ struct TrafficCounters {
   friend bool operator==(const TrafficCounters&, const TrafficCounters&) = default;
 };
 
-/// Counters indexed by (phase, node); phases appear as they are used.
+/// Counters indexed by (node, phase); phases appear as they are used. Stored node by node (a node's
+/// phases are adjacent: the counters a delivery and the sends it triggers touch share cache lines).
 class TrafficMetrics {
 public:
   /// Counters for `node_count` nodes, no phase yet.
   explicit TrafficMetrics(std::size_t node_count = 0) : node_count_(node_count) {}
-  /// The counters of (`node`, `phase`), created on first use.
+  /// The counters of (`node`, `phase`), created on first use. A reference stays valid until the next
+  /// call with a phase never seen before.
   TrafficCounters& at(std::uint32_t node, Phase phase) {
-    if (phase >= by_phase_.size()) grow(phase);
-    return by_phase_[phase][node];
+    if (phase >= phases_) grow(phase);
+    return counters_[std::size_t{node} * phases_ + phase];
   }
   /// Number of phases seen so far (the largest tag + 1).
-  std::size_t phase_count() const { return by_phase_.size(); }
+  std::size_t phase_count() const { return phases_; }
   /// Number of nodes.
   std::size_t node_count() const { return node_count_; }
   /// The counters of (`node`, `phase`), zero if the phase never occurred.
@@ -60,7 +62,8 @@ public:
 private:
   void grow(Phase phase);
   std::size_t node_count_;
-  std::vector<std::vector<TrafficCounters>> by_phase_;
+  std::size_t phases_ = 0;
+  std::vector<TrafficCounters> counters_;  // node-major: (node, phase) at node · phases_ + phase
 };
 
 /// What one call of Simulator::run did.
