@@ -2,8 +2,6 @@
 
 #include <sys/resource.h>
 
-#include <algorithm>
-
 namespace laguerre::sim {
 
 TrafficCounters& TrafficCounters::operator+=(const TrafficCounters& o) {
@@ -20,36 +18,73 @@ TrafficCounters& TrafficCounters::operator+=(const TrafficCounters& o) {
 }
 
 void TrafficMetrics::grow(Phase phase) {
-  const std::size_t phases = std::size_t{phase} + 1;
-  std::vector<TrafficCounters> wider(node_count_ * phases);
-  for (std::size_t v = 0; v < node_count_; ++v)
-    std::copy_n(counters_.begin() + static_cast<std::ptrdiff_t>(v * phases_), phases_,
-                wider.begin() + static_cast<std::ptrdiff_t>(v * phases));
-  counters_ = std::move(wider);
-  phases_ = phases;
+  if (phase >= hot_.size()) {
+    hot_.resize(std::size_t{phase} + 1);
+    cold_.resize(std::size_t{phase} + 1);
+  }
+  hot_[phase].resize(node_count_);
 }
 
+TrafficMetrics::Cold& TrafficMetrics::cold(std::uint32_t node, Phase phase) {
+  if (phase >= hot_.size()) {
+    hot_.resize(std::size_t{phase} + 1);
+    cold_.resize(std::size_t{phase} + 1);
+  }
+  if (cold_[phase].empty()) cold_[phase].resize(node_count_);
+  return cold_[phase][node];
+}
+
+void TrafficMetrics::add_lost(std::uint32_t node, Phase phase, std::uint64_t bytes) {
+  Cold& c = cold(node, phase);
+  ++c.messages_lost;
+  c.bytes_lost += bytes;
+}
+
+void TrafficMetrics::add_dropped(std::uint32_t node, Phase phase, std::uint64_t copies, std::uint64_t bytes) {
+  Cold& c = cold(node, phase);
+  c.messages_dropped += copies;
+  c.bytes_dropped += copies * bytes;
+}
+
+void TrafficMetrics::add_duplicated(std::uint32_t node, Phase phase) { ++cold(node, phase).messages_duplicated; }
+
 TrafficCounters TrafficMetrics::get(std::uint32_t node, Phase phase) const {
-  if (phase >= phases_) return {};
-  return counters_[std::size_t{node} * phases_ + phase];
+  TrafficCounters c;
+  if (phase >= hot_.size()) return c;
+  if (!hot_[phase].empty()) {
+    const Hot& h = hot_[phase][node];
+    c.messages_sent = h.messages_sent;
+    c.bytes_sent = h.bytes_sent;
+    c.messages_received = h.messages_received;
+    c.bytes_received = h.bytes_received;
+  }
+  if (!cold_[phase].empty()) {
+    const Cold& k = cold_[phase][node];
+    c.messages_lost = k.messages_lost;
+    c.bytes_lost = k.bytes_lost;
+    c.messages_dropped = k.messages_dropped;
+    c.bytes_dropped = k.bytes_dropped;
+    c.messages_duplicated = k.messages_duplicated;
+  }
+  return c;
 }
 
 TrafficCounters TrafficMetrics::node_total(std::uint32_t node) const {
   TrafficCounters sum;
-  for (std::size_t p = 0; p < phases_; ++p) sum += counters_[std::size_t{node} * phases_ + p];
+  for (std::size_t p = 0; p < hot_.size(); ++p) sum += get(node, static_cast<Phase>(p));
   return sum;
 }
 
 TrafficCounters TrafficMetrics::phase_total(Phase phase) const {
   TrafficCounters sum;
-  if (phase >= phases_) return sum;
-  for (std::size_t v = 0; v < node_count_; ++v) sum += counters_[v * phases_ + phase];
+  if (phase >= hot_.size()) return sum;
+  for (std::size_t v = 0; v < node_count_; ++v) sum += get(static_cast<std::uint32_t>(v), phase);
   return sum;
 }
 
 TrafficCounters TrafficMetrics::total() const {
   TrafficCounters sum;
-  for (const auto& c : counters_) sum += c;
+  for (std::size_t p = 0; p < hot_.size(); ++p) sum += phase_total(static_cast<Phase>(p));
   return sum;
 }
 

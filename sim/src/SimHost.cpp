@@ -107,6 +107,11 @@ void SimHost::on_message(Simulator& sim, NodeIndex v, NodeIndex from, Phase,
 
 void SimHost::on_timer(Simulator&, NodeIndex v, std::uint64_t timer) { nodes_[v]->on_timer(timer); }
 
+void SimHost::prefetch(NodeIndex v) const {
+  __builtin_prefetch(nodes_[v].get());
+  __builtin_prefetch(links_by_id_.data() + simulator_.network().link_at(v, 0));  // for its replies
+}
+
 void SimHost::on_recover(Simulator&, NodeIndex v) { nodes_[v]->on_recover(); }
 
 }  // namespace laguerre::sim

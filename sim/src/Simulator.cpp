@@ -21,6 +21,7 @@ Simulator::Simulator(Network network, SimConfig config, NodeHandler& handler)
   timer_id_ = kernel_.add_handler<&Simulator::on_timer_event>("timer", *this);
   crash_id_ = kernel_.add_handler<&Simulator::on_crash_event>("crash", *this);
   recover_id_ = kernel_.add_handler<&Simulator::on_recover_event>("recover", *this);
+  kernel_.set_prefetch(deliver_id_, &Simulator::prefetch_delivery, this);
   const std::size_t n = network_.node_count();
   node_streams_.reserve(n);
   for (NodeIndex v = 0; v < n; ++v) {
@@ -99,9 +100,8 @@ void Simulator::release(std::uint32_t message) {
 void Simulator::transmit(LinkIndex link, NodeIndex from, NodeIndex to, std::uint32_t message) {
   Message& m = slot(message);
   const std::uint32_t size = m.size;
-  TrafficCounters& counters = traffic_.at(from, m.phase);
-  ++counters.messages_sent;
-  counters.bytes_sent += size;
+  const Phase phase = m.phase;
+  traffic_.add_sent(from, phase, size);
   LinkState& state = links_[link];
   const LinkModel& model = *state.model;
   const std::uint64_t position = state.sent++;
@@ -115,8 +115,7 @@ void Simulator::transmit(LinkIndex link, NodeIndex from, NodeIndex to, std::uint
   const LinkDecision fate = decide(model, state.length, rng);
   const auto deliver = [&](bool lost, Duration latency) {
     if (lost) {
-      ++counters.messages_lost;
-      counters.bytes_lost += size;
+      traffic_.add_lost(from, phase, size);
       return;
     }
     ++m.refs;
@@ -124,7 +123,7 @@ void Simulator::transmit(LinkIndex link, NodeIndex from, NodeIndex to, std::uint
   };
   deliver(fate.lost, fate.latency);
   if (fate.duplicated) {
-    ++counters.messages_duplicated;
+    traffic_.add_duplicated(from, phase);
     deliver(fate.duplicate_lost, fate.duplicate_latency);
   }
 }
@@ -139,9 +138,7 @@ void Simulator::send(NodeIndex from, NodeIndex to, std::span<const std::byte> by
 void Simulator::send_on_link(LinkIndex link, std::span<const std::byte> bytes, Phase phase) {
   const NodeIndex from = network_.link_source(link);
   if (down_[from]) {
-    TrafficCounters& c = traffic_.at(from, phase);
-    ++c.messages_dropped;
-    c.bytes_dropped += bytes.size();
+    traffic_.add_dropped(from, phase, 1, bytes.size());
     return;
   }
   const std::uint32_t message = store(from, bytes, phase);
@@ -153,9 +150,7 @@ void Simulator::broadcast(NodeIndex from, std::span<const std::byte> bytes, Phas
   const auto neighbours = network_.neighbours(from);
   const auto size = static_cast<std::uint32_t>(bytes.size());
   if (down_[from]) {
-    TrafficCounters& c = traffic_.at(from, phase);
-    c.messages_dropped += neighbours.size();
-    c.bytes_dropped += std::uint64_t{size} * neighbours.size();
+    traffic_.add_dropped(from, phase, neighbours.size(), size);
     return;
   }
   if (neighbours.empty()) return;
@@ -176,6 +171,13 @@ void Simulator::on_start_event(Kernel&, const Event& event) {
   handler_->on_start(*this, v);
 }
 
+void Simulator::prefetch_delivery(const void* self, const Event& event) {
+  const auto& sim = *static_cast<const Simulator*>(self);
+  const auto message = static_cast<std::uint32_t>(event.payload);  // pending: its slot exists
+  __builtin_prefetch(&sim.chunks_[message / chunk_slots][message % chunk_slots]);
+  sim.handler_->prefetch(event.target);
+}
+
 void Simulator::on_deliver_event(Kernel& kernel, const Event& event) {
   const NodeIndex to = event.target;
   const auto index = static_cast<std::uint32_t>(event.payload);
@@ -183,15 +185,12 @@ void Simulator::on_deliver_event(Kernel& kernel, const Event& event) {
   const std::uint32_t size = m.size;
   const NodeIndex from = m.from;
   const Phase phase = m.phase;
-  TrafficCounters& counters = traffic_.at(to, phase);
   if (down_[to]) {
-    ++counters.messages_dropped;
-    counters.bytes_dropped += size;
+    traffic_.add_dropped(to, phase, 1, size);
     release(index);
     return;
   }
-  ++counters.messages_received;
-  counters.bytes_received += size;
+  traffic_.add_received(to, phase, size);
   // The span stays valid during the callback even if the handler sends: slots live in chunks that
   // never move, spilled bytes in buffers that never move, and the slot cannot be recycled before
   // release() below because this copy still holds a reference.

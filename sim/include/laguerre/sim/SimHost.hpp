@@ -70,6 +70,7 @@ private:
                   std::span<const std::byte> bytes) override;
   void on_timer(Simulator& sim, NodeIndex v, std::uint64_t timer) override;
   void on_recover(Simulator& sim, NodeIndex v) override;
+  void prefetch(NodeIndex v) const override;
 
   Simulator simulator_;
   PhaseOf phase_of_;

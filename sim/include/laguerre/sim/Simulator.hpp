@@ -49,6 +49,9 @@ public:
   virtual void on_timer(Simulator& sim, NodeIndex v, std::uint64_t timer) = 0;
   /// Node `v` came back after a crash (only if it had started before).
   virtual void on_recover(Simulator& /*sim*/, NodeIndex /*v*/) {}
+  /// A hint: a message for `v` is a few events ahead; start loading (__builtin_prefetch) the state
+  /// on_message will touch. Must not change anything. The default does nothing.
+  virtual void prefetch(NodeIndex /*v*/) const {}
 };
 
 /// Run-wide settings.
@@ -134,6 +137,7 @@ private:
     const LinkModel* model = nullptr; // its model (in network_, which never changes)
   };
 
+  static void prefetch_delivery(const void* self, const Event& event);
   void on_start_event(Kernel& kernel, const Event& event);
   void on_deliver_event(Kernel& kernel, const Event& event);
   void on_timer_event(Kernel& kernel, const Event& event);
