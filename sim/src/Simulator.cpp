@@ -175,6 +175,7 @@ void Simulator::prefetch_delivery(const void* self, const Event& event) {
   const auto& sim = *static_cast<const Simulator*>(self);
   const auto message = static_cast<std::uint32_t>(event.payload);  // pending: its slot exists
   __builtin_prefetch(&sim.chunks_[message / chunk_slots][message % chunk_slots]);
+  __builtin_prefetch(sim.links_.data() + sim.network_.link_at(event.target, 0));  // for its replies
   sim.handler_->prefetch(event.target);
 }
 
