@@ -18,32 +18,90 @@ TrafficCounters& TrafficCounters::operator+=(const TrafficCounters& o) {
 }
 
 void TrafficMetrics::grow(Phase phase) {
-  by_phase_.resize(std::size_t{phase} + 1, std::vector<TrafficCounters>(node_count_));
+  if (phase >= hot_.size()) {
+    hot_.resize(std::size_t{phase} + 1);
+    cold_.resize(std::size_t{phase} + 1);
+  }
+  hot_[phase].resize(node_count_);
+}
+
+TrafficMetrics::Cold& TrafficMetrics::cold(std::uint32_t node, Phase phase) {
+  if (phase >= hot_.size()) {
+    hot_.resize(std::size_t{phase} + 1);
+    cold_.resize(std::size_t{phase} + 1);
+  }
+  if (cold_[phase].empty()) cold_[phase].resize(node_count_);
+  return cold_[phase][node];
+}
+
+void TrafficMetrics::add_lost(std::uint32_t node, Phase phase, std::uint64_t bytes) {
+  Cold& c = cold(node, phase);
+  ++c.messages_lost;
+  c.bytes_lost += bytes;
+}
+
+void TrafficMetrics::add_dropped(std::uint32_t node, Phase phase, std::uint64_t copies, std::uint64_t bytes) {
+  Cold& c = cold(node, phase);
+  c.messages_dropped += copies;
+  c.bytes_dropped += copies * bytes;
+}
+
+void TrafficMetrics::add_duplicated(std::uint32_t node, Phase phase) { ++cold(node, phase).messages_duplicated; }
+
+void TrafficMetrics::add(std::uint32_t node, Phase phase, const TrafficCounters& c) {
+  Hot& h = hot(node, phase);
+  h.messages_sent += c.messages_sent;
+  h.bytes_sent += c.bytes_sent;
+  h.messages_received += c.messages_received;
+  h.bytes_received += c.bytes_received;
+  if (c.messages_lost == 0 && c.bytes_lost == 0 && c.messages_dropped == 0 && c.bytes_dropped == 0 &&
+      c.messages_duplicated == 0)
+    return;
+  Cold& k = cold(node, phase);
+  k.messages_lost += c.messages_lost;
+  k.bytes_lost += c.bytes_lost;
+  k.messages_dropped += c.messages_dropped;
+  k.bytes_dropped += c.bytes_dropped;
+  k.messages_duplicated += c.messages_duplicated;
 }
 
 TrafficCounters TrafficMetrics::get(std::uint32_t node, Phase phase) const {
-  if (phase >= by_phase_.size()) return {};
-  return by_phase_[phase][node];
+  TrafficCounters c;
+  if (phase >= hot_.size()) return c;
+  if (!hot_[phase].empty()) {
+    const Hot& h = hot_[phase][node];
+    c.messages_sent = h.messages_sent;
+    c.bytes_sent = h.bytes_sent;
+    c.messages_received = h.messages_received;
+    c.bytes_received = h.bytes_received;
+  }
+  if (!cold_[phase].empty()) {
+    const Cold& k = cold_[phase][node];
+    c.messages_lost = k.messages_lost;
+    c.bytes_lost = k.bytes_lost;
+    c.messages_dropped = k.messages_dropped;
+    c.bytes_dropped = k.bytes_dropped;
+    c.messages_duplicated = k.messages_duplicated;
+  }
+  return c;
 }
 
 TrafficCounters TrafficMetrics::node_total(std::uint32_t node) const {
   TrafficCounters sum;
-  for (const auto& row : by_phase_) sum += row[node];
+  for (std::size_t p = 0; p < hot_.size(); ++p) sum += get(node, static_cast<Phase>(p));
   return sum;
 }
 
 TrafficCounters TrafficMetrics::phase_total(Phase phase) const {
   TrafficCounters sum;
-  if (phase >= by_phase_.size()) return sum;
-  for (const auto& c : by_phase_[phase]) sum += c;
+  if (phase >= hot_.size()) return sum;
+  for (std::size_t v = 0; v < node_count_; ++v) sum += get(static_cast<std::uint32_t>(v), phase);
   return sum;
 }
 
 TrafficCounters TrafficMetrics::total() const {
   TrafficCounters sum;
-  for (const auto& row : by_phase_) {
-    for (const auto& c : row) sum += c;
-  }
+  for (std::size_t p = 0; p < hot_.size(); ++p) sum += phase_total(static_cast<Phase>(p));
   return sum;
 }
 

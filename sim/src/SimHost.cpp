@@ -1,5 +1,6 @@
 #include "laguerre/sim/SimHost.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -10,57 +11,88 @@ namespace laguerre::sim {
 /// The Runtime of one node: a (host, index) pair forwarding to the simulator.
 class SimHost::NodeRuntime final : public protocols::Runtime {
 public:
-  NodeRuntime(SimHost& host, NodeIndex v) : host_(host), v_(v) {}
+  /// Attaches the runtime to node `v` of `host` (once, before the node is built).
+  void bind(SimHost& host, NodeIndex v) {
+    host_ = &host;
+    v_ = v;
+  }
 
-  protocols::NodeId self() const override { return host_.simulator_.network().id(v_); }
-  protocols::Time now() const override { return host_.simulator_.now(); }
+  protocols::NodeId self() const override { return host_->simulator_.network().id(v_); }
+  protocols::Time now() const override { return host_->simulator_.now(); }
 
   void send(protocols::NodeId to, std::span<const std::byte> bytes) override {
-    const auto index = host_.simulator_.network().index_of(to);
-    if (!index) ++host_.bad_destinations_;
-    LAGUERRE_PRECONDITION(index.has_value(), "Node " + std::to_string(self()) + " cannot send to node " +
-                                                 std::to_string(to) + ": no such node in the network.");
-    if (!host_.simulator_.network().find_link(v_, *index)) ++host_.bad_destinations_;
-    host_.simulator_.send(v_, *index, bytes, host_.phase(bytes));  // throws for a non-neighbour
+    const auto link = host_->link_to(v_, to);
+    if (!link) host_->reject(v_, to);  // throws
+    host_->simulator_.send_on_link(*link, bytes, host_->phase(bytes));
   }
 
   void broadcast(std::span<const std::byte> bytes) override {
-    host_.simulator_.broadcast(v_, bytes, host_.phase(bytes));
+    host_->simulator_.broadcast(v_, bytes, host_->phase(bytes));
   }
 
   protocols::TimerHandle schedule(protocols::Duration after, protocols::TimerId timer) override {
-    return host_.simulator_.schedule_timer(v_, after, timer).value;
+    return host_->simulator_.schedule_timer(v_, after, timer).value;
   }
 
   bool cancel(protocols::TimerHandle handle) override {
-    return host_.simulator_.cancel_timer(TimerHandle{handle});
+    return host_->simulator_.cancel_timer(TimerHandle{handle});
   }
 
-  std::uint64_t random_u64() override { return host_.simulator_.node_stream(v_).next_u64(); }
+  std::uint64_t random_u64() override { return host_->simulator_.node_stream(v_).next_u64(); }
 
 private:
-  SimHost& host_;
-  NodeIndex v_;
+  SimHost* host_ = nullptr;
+  NodeIndex v_ = 0;
 };
 
 SimHost::SimHost(Network network, SimConfig config, const NodeFactory& factory, PhaseOf phase_of)
     : simulator_(std::move(network), config, *this), phase_of_(std::move(phase_of)) {
-  const std::size_t n = simulator_.network().node_count();
-  runtimes_.reserve(n);
+  const Network& net = simulator_.network();
+  const std::size_t n = net.node_count();
+  // Each node's links sorted by the neighbour's user id: the runtime resolves a destination id
+  // with a binary search in the sender's row, never a global lookup.
+  links_by_id_.reserve(net.link_count());
+  for (NodeIndex v = 0; v < n; ++v) {
+    const auto row = net.neighbours(v);
+    for (std::size_t i = 0; i < row.size(); ++i) links_by_id_.push_back({net.id(row[i]), net.link_at(v, i)});
+    const auto first = links_by_id_.end() - static_cast<std::ptrdiff_t>(row.size());
+    std::sort(first, links_by_id_.end(), [](const IdLink& a, const IdLink& b) { return a.id < b.id; });
+  }
+  runtimes_ = std::make_unique<NodeRuntime[]>(n);
   nodes_.reserve(n);
   for (NodeIndex v = 0; v < n; ++v) {
-    runtimes_.push_back(std::make_unique<NodeRuntime>(*this, v));
-    nodes_.push_back(factory(*runtimes_.back(), v));
+    runtimes_[v].bind(*this, v);
+    nodes_.push_back(factory(runtimes_[v], v));
     LAGUERRE_PRECONDITION(nodes_.back() != nullptr,
                           "The node factory returned no node for index " + std::to_string(v) + ".");
   }
+}
+
+std::optional<LinkIndex> SimHost::link_to(NodeIndex v, protocols::NodeId to) const {
+  const Network& net = simulator_.network();
+  const IdLink* first = links_by_id_.data() + net.link_at(v, 0);
+  const IdLink* last = first + net.neighbours(v).size();
+  const IdLink* it = std::lower_bound(first, last, to, [](const IdLink& a, protocols::NodeId id) { return a.id < id; });
+  if (it == last || it->id != to) return std::nullopt;
+  return it->link;
+}
+
+void SimHost::reject(NodeIndex v, protocols::NodeId to) {
+  ++bad_destinations_;
+  const Network& net = simulator_.network();
+  const bool known = net.index_of(to).has_value();
+  LAGUERRE_PRECONDITION(known, "Node " + std::to_string(net.id(v)) + " cannot send to node " + std::to_string(to) +
+                                   ": no such node in the network.");
+  core::detail::assertion_failed("precondition", "link_to(v, to).has_value()", __FILE__, __LINE__,
+                                 "Node " + std::to_string(net.id(v)) + " cannot send to node " + std::to_string(to) +
+                                     ": they are not neighbours.");
 }
 
 SimHost::~SimHost() {
   nodes_.clear();  // nodes go first: they hold references to their runtimes
 }
 
-protocols::Runtime& SimHost::runtime(NodeIndex v) { return *runtimes_[v]; }
+protocols::Runtime& SimHost::runtime(NodeIndex v) { return runtimes_[v]; }
 
 Phase SimHost::phase(std::span<const std::byte> bytes) const {
   return phase_of_ ? phase_of_(bytes) : Phase{0};
@@ -74,6 +106,11 @@ void SimHost::on_message(Simulator& sim, NodeIndex v, NodeIndex from, Phase,
 }
 
 void SimHost::on_timer(Simulator&, NodeIndex v, std::uint64_t timer) { nodes_[v]->on_timer(timer); }
+
+void SimHost::prefetch(NodeIndex v) const {
+  __builtin_prefetch(nodes_[v].get());
+  __builtin_prefetch(links_by_id_.data() + simulator_.network().link_at(v, 0));  // for its replies
+}
 
 void SimHost::on_recover(Simulator&, NodeIndex v) { nodes_[v]->on_recover(); }
 

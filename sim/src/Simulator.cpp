@@ -1,5 +1,6 @@
 #include "laguerre/sim/Simulator.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <string>
@@ -29,19 +30,20 @@ Simulator::Simulator(Network network, SimConfig config, NodeHandler& handler)
   timer_id_ = kernel_.add_handler<&Simulator::on_timer_event>("timer", *this);
   crash_id_ = kernel_.add_handler<&Simulator::on_crash_event>("crash", *this);
   recover_id_ = kernel_.add_handler<&Simulator::on_recover_event>("recover", *this);
+  kernel_.set_prefetch(deliver_id_, &Simulator::prefetch_delivery, this);
   const std::size_t n = network_.node_count();
   node_streams_.reserve(n);
   for (NodeIndex v = 0; v < n; ++v) {
     node_streams_.push_back(RandomStream::of(config_.seed, StreamKind::node, network_.id(v)));
   }
   const std::size_t links = network_.link_count();
-  link_keys_.resize(links);
-  link_lengths_.resize(links);
-  link_messages_.assign(links, 0);
+  links_.resize(links);
   for (LinkIndex l = 0; l < links; ++l) {
-    link_keys_[l] = stream_key(config_.seed, StreamKind::link, network_.id(network_.link_source(l)),
-                               network_.id(network_.link_target(l)));
-    link_lengths_[l] = network_.link_length(l);
+    LinkState& s = links_[l];
+    s.key = stream_key(config_.seed, StreamKind::link, network_.id(network_.link_source(l)),
+                       network_.id(network_.link_target(l)));
+    s.length = network_.link_length(l);
+    s.model = &network_.link_model(l);
   }
   down_.assign(n, 0);
   started_.assign(n, 0);
@@ -62,7 +64,7 @@ void Simulator::deliver_remote(Time at, std::uint64_t key, NodeIndex from, NodeI
   LAGUERRE_PRECONDITION(outbox_ != nullptr && owned_[to] != 0,
                         "Simulator::deliver_remote needs a partitioned simulator that owns the receiver.");
   const std::uint32_t message = store(from, bytes, phase);
-  messages_[message].refs = 1;
+  slot(message).refs = 1;
   kernel_.schedule_keyed_at(at, key, deliver_id_, to, message);
 }
 
@@ -101,46 +103,53 @@ RunReport Simulator::run(const RunLimits& limits) {
   return report;
 }
 
+std::span<const std::byte> Simulator::bytes_of(std::uint32_t message) {
+  const Message& m = slot(message);
+  if (m.size <= inline_bytes) return {m.bytes, m.size};
+  return spill_[message];
+}
+
 std::uint32_t Simulator::store(NodeIndex from, std::span<const std::byte> bytes, Phase phase) {
   std::uint32_t index;
   if (!free_messages_.empty()) {
-    index = free_messages_.back();
+    index = free_messages_.back();  // the most recently freed slot: likely still cached
     free_messages_.pop_back();
   } else {
-    index = static_cast<std::uint32_t>(messages_.size());
-    messages_.emplace_back();
+    if (slots_used_ % chunk_slots == 0) chunks_.push_back(std::make_unique<Message[]>(chunk_slots));
+    index = slots_used_++;
   }
-  Message& m = messages_[index];
-  m.bytes.assign(bytes.begin(), bytes.end());  // reuses the slot's capacity: no allocation at steady state
+  Message& m = slot(index);
   m.from = from;
-  m.phase = phase;
+  m.size = static_cast<std::uint32_t>(bytes.size());
   m.refs = 0;
-  m.digest = trace_.mode() == TraceMode::off ? 0 : fnv1a(bytes);
+  m.phase = phase;
+  if (bytes.size() <= inline_bytes) {
+    std::copy(bytes.begin(), bytes.end(), m.bytes);
+  } else {
+    if (spill_.size() <= index) spill_.resize(std::size_t{index} + 1);
+    spill_[index].assign(bytes.begin(), bytes.end());  // reuses the slot's capacity
+  }
   return index;
 }
 
 void Simulator::release(std::uint32_t message) {
-  if (--messages_[message].refs == 0) free_messages_.push_back(message);
+  if (--slot(message).refs == 0) free_messages_.push_back(message);
 }
 
-void Simulator::transmit(LinkIndex link, std::uint32_t message, std::uint32_t size) {
-  const NodeIndex from = network_.link_source(link);
-  const NodeIndex to = network_.link_target(link);
-  const Phase phase = messages_[message].phase;
-  TrafficCounters& counters = traffic_.at(from, phase);
-  ++counters.messages_sent;
-  counters.bytes_sent += size;
-  // The message's own stream: a pure function of (seed, link, position of the message on the link).
-  const std::uint64_t index = link_messages_[link]++;
+void Simulator::transmit(LinkIndex link, NodeIndex from, NodeIndex to, std::uint32_t message) {
+  Message& m = slot(message);
+  const std::uint32_t size = m.size;
+  const Phase phase = m.phase;
+  traffic_.add_sent(from, phase, size);
+  LinkState& state = links_[link];
+  const LinkModel& model = *state.model;
+  const std::uint64_t index = state.sent++;
   if (index >= (std::uint64_t{1} << (key_counter_bits - 1))) {
     throw std::length_error("Too many messages on one link (2^29): the event keys would repeat.");
   }
-  RandomStream rng(stream_key(config_.seed, StreamKind::message, link_keys_[link], index));
-  const LinkDecision fate = decide(network_.link_model(link), link_lengths_[link], rng);
   const auto deliver = [&](bool lost, Duration latency, std::uint64_t copy) {
     if (lost) {
-      ++counters.messages_lost;
-      counters.bytes_lost += size;
+      traffic_.add_lost(from, phase, size);
       return;
     }
     LAGUERRE_PRECONDITION(latency <= time_max - kernel_.now(),
@@ -148,16 +157,22 @@ void Simulator::transmit(LinkIndex link, std::uint32_t message, std::uint32_t si
                               " ns would overflow the clock.");
     const std::uint64_t key = event_key(key_message, link, 2 * index + copy);
     if (outbox_ != nullptr && owned_[to] == 0) {
-      const Message& m = messages_[message];
-      outbox_->post(kernel_.now() + latency, key, from, to, phase, m.bytes);
+      outbox_->post(kernel_.now() + latency, key, from, to, phase, bytes_of(message));
       return;
     }
-    ++messages_[message].refs;
+    ++m.refs;
     kernel_.schedule_keyed_at(kernel_.now() + latency, key, deliver_id_, to, message);
   };
+  if (model.is_deterministic()) {  // decide() would draw, but nothing it draws matters
+    deliver(false, model.latency.base, 0);
+    return;
+  }
+  // The message's own stream: a pure function of (seed, link, position of the message on the link).
+  RandomStream rng(stream_key(config_.seed, StreamKind::message, state.key, index));
+  const LinkDecision fate = decide(model, state.length, rng);
   deliver(fate.lost, fate.latency, 0);
   if (fate.duplicated) {
-    ++counters.messages_duplicated;
+    traffic_.add_duplicated(from, phase);
     deliver(fate.duplicate_lost, fate.duplicate_latency, 1);
   }
 }
@@ -166,31 +181,32 @@ void Simulator::send(NodeIndex from, NodeIndex to, std::span<const std::byte> by
   const auto link = network_.find_link(from, to);
   LAGUERRE_PRECONDITION(link.has_value(), "Node " + std::to_string(network_.id(from)) + " cannot send to node " +
                                               std::to_string(network_.id(to)) + ": they are not neighbours.");
-  const auto size = static_cast<std::uint32_t>(bytes.size());
+  send_on_link(*link, bytes, phase);
+}
+
+void Simulator::send_on_link(LinkIndex link, std::span<const std::byte> bytes, Phase phase) {
+  const NodeIndex from = network_.link_source(link);
   if (down_[from]) {
-    TrafficCounters& c = traffic_.at(from, phase);
-    ++c.messages_dropped;
-    c.bytes_dropped += size;
+    traffic_.add_dropped(from, phase, 1, bytes.size());
     return;
   }
   const std::uint32_t message = store(from, bytes, phase);
-  transmit(*link, message, size);
-  if (messages_[message].refs == 0) free_messages_.push_back(message);  // every copy was lost
+  transmit(link, from, network_.link_target(link), message);
+  if (slot(message).refs == 0) free_messages_.push_back(message);  // every copy was lost
 }
 
 void Simulator::broadcast(NodeIndex from, std::span<const std::byte> bytes, Phase phase) {
   const auto neighbours = network_.neighbours(from);
   const auto size = static_cast<std::uint32_t>(bytes.size());
   if (down_[from]) {
-    TrafficCounters& c = traffic_.at(from, phase);
-    c.messages_dropped += neighbours.size();
-    c.bytes_dropped += std::uint64_t{size} * neighbours.size();
+    traffic_.add_dropped(from, phase, neighbours.size(), size);
     return;
   }
   if (neighbours.empty()) return;
   const std::uint32_t message = store(from, bytes, phase);
-  for (std::size_t i = 0; i < neighbours.size(); ++i) transmit(network_.link_at(from, i), message, size);
-  if (messages_[message].refs == 0) free_messages_.push_back(message);
+  for (std::size_t i = 0; i < neighbours.size(); ++i)
+    transmit(network_.link_at(from, i), from, neighbours[i], message);
+  if (slot(message).refs == 0) free_messages_.push_back(message);
 }
 
 TimerHandle Simulator::schedule_timer(NodeIndex v, Duration after, std::uint64_t timer) {
@@ -213,28 +229,35 @@ void Simulator::on_start_event(Kernel&, const Event& event) {
   handler_->on_start(*this, v);
 }
 
+void Simulator::prefetch_delivery(const void* self, const Event& event) {
+  const auto& sim = *static_cast<const Simulator*>(self);
+  const auto message = static_cast<std::uint32_t>(event.payload);  // pending: its slot exists
+  __builtin_prefetch(&sim.chunks_[message / chunk_slots][message % chunk_slots]);
+  __builtin_prefetch(sim.links_.data() + sim.network_.link_at(event.target, 0));  // for its replies
+  sim.handler_->prefetch(event.target);
+}
+
 void Simulator::on_deliver_event(Kernel& kernel, const Event& event) {
   const NodeIndex to = event.target;
   const auto index = static_cast<std::uint32_t>(event.payload);
-  const Message& m = messages_[index];
-  const auto size = static_cast<std::uint32_t>(m.bytes.size());
+  const Message& m = slot(index);
+  const std::uint32_t size = m.size;
   const NodeIndex from = m.from;
   const Phase phase = m.phase;
-  TrafficCounters& counters = traffic_.at(to, phase);
   if (down_[to]) {
-    ++counters.messages_dropped;
-    counters.bytes_dropped += size;
+    traffic_.add_dropped(to, phase, 1, size);
     release(index);
     return;
   }
-  ++counters.messages_received;
-  counters.bytes_received += size;
-  trace_.add(TraceRecord{kernel.now(), network_.id(from), network_.id(to), m.digest, size, phase});
-  if (outbox_ != nullptr && trace_.mode() != TraceMode::off) trace_keys_.push_back(event.seq);
-  // The span stays valid during the callback even if the handler sends (messages_ may reallocate,
-  // which moves the vector objects but not their heap buffers), and the slot cannot be recycled
-  // before release() below because this copy still holds a reference.
-  const std::span<const std::byte> bytes(m.bytes.data(), m.bytes.size());
+  traffic_.add_received(to, phase, size);
+  // The span stays valid during the callback even if the handler sends: slots live in chunks that
+  // never move, spilled bytes in buffers that never move, and the slot cannot be recycled before
+  // release() below because this copy still holds a reference.
+  const std::span<const std::byte> bytes = bytes_of(index);
+  if (trace_.mode() != TraceMode::off) {
+    trace_.add(TraceRecord{kernel.now(), network_.id(from), network_.id(to), fnv1a(bytes), size, phase});
+    if (outbox_ != nullptr) trace_keys_.push_back(event.seq);
+  }
   handler_->on_message(*this, to, from, phase, bytes);
   release(index);
 }

@@ -259,9 +259,8 @@ private:
 
   // One message from hosted vertex v to neighbour w (id `to`).
   void put(core::Vertex v, core::Vertex w, protocols::NodeId to, RandomStream& loss, std::span<const std::byte> bytes) {
-    TrafficCounters& t = owner_.traffic_.at(static_cast<std::uint32_t>(v), phase_of(bytes));
-    ++t.messages_sent;
-    t.bytes_sent += bytes.size();
+    const Phase phase = phase_of(bytes);
+    owner_.traffic_.add_sent(static_cast<std::uint32_t>(v), phase, bytes.size());
     if (udp_header_size + udp_record_header + bytes.size() > config_.max_datagram)
       throw core::InputError("node " + std::to_string(g_.id(v)), 0,
                              "messages that fit a datagram of " + std::to_string(config_.max_datagram) +
@@ -271,8 +270,7 @@ private:
                                  std::to_string(g_.degree(v)) + ")");
     if (config_.loss > 0 && loss.bernoulli(config_.loss)) {
       ++owner_.counters_.induced_losses;
-      ++t.messages_lost;
-      t.bytes_lost += bytes.size();
+      owner_.traffic_.add_lost(static_cast<std::uint32_t>(v), phase, bytes.size());
       return;
     }
     if (slot_[w] >= 0) {

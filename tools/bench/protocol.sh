@@ -8,6 +8,9 @@
 # layout wave and convergecast; `laguerre simulate --max-iterations`) and their row says "capped@K":
 # the per-node figures are then those of K steps, not of a converged run, and the bit-for-bit check
 # against core::pack is skipped. An uncapped row that does not converge says "NOT converged".
+# cpu_s is the CPU time of the whole `laguerre simulate` process (set-up and forwarding included): on a
+# shared machine wall_s − cpu_s is time the cores spent on other processes, and the load averages
+# (uptime) are printed before and after the table.
 # LAGUERRE_EXE=path uses that program instead of building the release preset with tools/bootstrap.sh.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -31,7 +34,8 @@ else
 fi
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-printf '%8s %4s %10s %6s %13s %9s %10s %10s %11s %10s %13s %12s\n' nodes N iterations rounds status wall_s \
+echo "load before: $(uptime)"
+printf '%8s %4s %10s %6s %13s %9s %8s %10s %10s %11s %10s %13s %12s\n' nodes N iterations rounds status wall_s cpu_s \
   events/s msgs/node bytes/node peak_MiB peak_KiB/node verify
 for n in "${sizes[@]}"; do
   steps=$(( n / 1000 )); [ "$steps" -lt 1 ] && steps=1
@@ -42,21 +46,25 @@ for n in "${sizes[@]}"; do
     args=(--pairs 1000 --verify) label=""
   fi
   rc=0
+  start_cpu=$(awk '{print $14 + $15 + $16 + $17}' /proc/$$/stat)
   "$laguerre" simulate "$dir/g$n.txt" -N "$steps" "${args[@]}" --json > "$dir/r$n.json" || rc=$?
+  # Children's user + system time (cutime + cstime, fields 16 and 17 of /proc/PID/stat, in clock ticks).
+  cpu=$(awk -v t0="$start_cpu" -v hz="$(getconf CLK_TCK)" '{printf "%.2f", ($14 + $15 + $16 + $17 - t0) / hz}' /proc/$$/stat)
   # Exit status 3: not converged (expected when capped); anything else is a real failure.
   if [ "$rc" -ne 0 ] && [ "$rc" -ne 3 ]; then
     echo "protocol.sh: laguerre simulate failed on $n nodes (exit status $rc)" >&2
     exit "$rc"
   fi
   [ -z "$label" ] && label=$([ "$rc" -eq 0 ] && echo converged || echo "NOT converged")
-  python3 - "$dir/r$n.json" "$n" "$steps" "$label" <<'PY'
+  python3 - "$dir/r$n.json" "$n" "$steps" "$label" "$cpu" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
-n, steps, label = int(sys.argv[2]), sys.argv[3], sys.argv[4]
+n, steps, label, cpu = int(sys.argv[2]), sys.argv[3], sys.argv[4], float(sys.argv[5])
 v = d.get("verify")
 verify = "n/a (capped)" if v is None else ("bit-exact" if "identical" in v else v)
-print(f"{n:>8} {steps:>4} {d['iterations']:>10} {d['rounds']:>6} {label:>13} {d['wall_seconds']:>9.2f} "
+print(f"{n:>8} {steps:>4} {d['iterations']:>10} {d['rounds']:>6} {label:>13} {d['wall_seconds']:>9.2f} {cpu:>8.2f} "
       f"{d['events_per_second']:>10.3g} {d['messages_per_node_mean']:>10.1f} {d['bytes_per_node_mean']:>11.0f} "
       f"{d['peak_memory_bytes'] / 2**20:>10.1f} {d['peak_memory_bytes'] / 1024 / n:>13.2f} {verify:>12}")
 PY
 done
+echo "load after: $(uptime)"

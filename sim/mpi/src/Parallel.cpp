@@ -355,8 +355,7 @@ ParallelReport ParallelRun::run(const RunLimits& limits) {
       const int count = static_cast<int>(std::min(chunk, table.size() - at));
       check(MPI_Allreduce(table.data() + at, sum.data() + at, count, MPI_UINT64_T, MPI_SUM, comm_), "MPI_Allreduce");
     }
-    report.traffic.at(0, phase);  // creates the phase even if node 0 never used it
-    for (NodeIndex v = 0; v < nodes; ++v) report.traffic.at(v, phase) = counters_of(sum.data() + v * counter_fields);
+    for (NodeIndex v = 0; v < nodes; ++v) report.traffic.add(v, phase, counters_of(sum.data() + v * counter_fields));
   }
   report.run.wall_seconds = seconds_since(start);
   report.run.events_per_second =

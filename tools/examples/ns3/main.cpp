@@ -62,9 +62,7 @@ struct Args {
 // Counts every message a node sends under its phase, as the simulator does.
 lh::SendObserver count_into(laguerre::sim::TrafficMetrics& traffic, lc::Vertex v) {
   return [&traffic, v](lp::NodeId, std::span<const std::byte> bytes) {
-    auto& c = traffic.at(static_cast<std::uint32_t>(v), ls::traffic_phase(bytes));
-    ++c.messages_sent;
-    c.bytes_sent += bytes.size();
+    traffic.add_sent(static_cast<std::uint32_t>(v), ls::traffic_phase(bytes), bytes.size());
   };
 }
 

@@ -131,8 +131,9 @@ private:
 /// Four tiers, by the offset of an event's time from `year_start_`:
 ///  - `bottom_`: every pending event before the first live fine bucket (including any before
 ///    `year_start_`), sorted latest-first (popped from the back in O(1); the usual case, a bucket
-///    holds a few dozen events at most) or, once it grows past `sorted_limit`, a binary heap (so no
-///    input makes insertion quadratic);
+///    holds a few dozen events at most; also a bucket of any size that was filled in firing order,
+///    such as a synchronous round at one time) or, once it grows past `sorted_limit`, a binary heap
+///    (so no input makes insertion quadratic);
 ///  - the fine rung `fine_[f]`, next_fine_ ≤ f < 2^rung_bits_: the sub-buckets of width 2^shift_
 ///    of the coarse bucket being consumed (number next_coarse_ − 1), unsorted;
 ///  - the coarse rung `coarse_[c]`, next_coarse_ ≤ c < coarse_count_: unsorted events whose offset
@@ -253,6 +254,13 @@ private:
   /// Moves a bucket's events into the (empty) bottom tier and orders them.
   void take(std::vector<Event>& bucket) {
     bottom_.swap(bucket);  // the bucket inherits bottom_'s empty capacity
+    // A bucket filled in firing order (e.g. a synchronous round: one time, increasing seq) stays a
+    // sorted array whatever its size: reversed in O(n), then popped and peeked from the back.
+    if (std::is_sorted(bottom_.begin(), bottom_.end(), fires_before)) {
+      std::reverse(bottom_.begin(), bottom_.end());
+      heap_mode_ = false;
+      return;
+    }
     heap_mode_ = bottom_.size() > sorted_limit;
     if (heap_mode_) {
       std::make_heap(bottom_.begin(), bottom_.end(), Later{});

@@ -84,6 +84,18 @@ public:
     h.prefetch_stride = stride;
   }
 
+  /// A prefetch hook: starts loading (with __builtin_prefetch) the state the handler of `event`
+  /// will touch; it must only read state that stays valid while `event` is pending.
+  using PrefetchFn = void (*)(const void* context, const Event& event);
+  /// Like set_prefetch(id, base, stride), for state that is not one record per target (e.g. found
+  /// through the payload): the loop calls `fn(context, event)` a few events ahead. A pure
+  /// performance hint, like the other form; `fn` nullptr clears it.
+  void set_prefetch(HandlerId id, PrefetchFn fn, const void* context) {
+    Handler& h = handlers_.at(id);
+    h.prefetch_fn = fn;
+    h.prefetch_context = context;
+  }
+
   /// The name a handler was registered with.
   const std::string& handler_name(HandlerId id) const { return handlers_.at(id).name; }
 
@@ -165,6 +177,8 @@ private:
     std::string name;
     const char* prefetch_base = nullptr;  // see set_prefetch
     std::size_t prefetch_stride = 0;
+    PrefetchFn prefetch_fn = nullptr;     // see set_prefetch(id, fn, context)
+    const void* prefetch_context = nullptr;
   };
   /// How many events ahead of the one dispatched the loop prefetches (measured with
   /// tools/bench/phold_queues: 2–8 are within noise of each other at 10^5 and 10^6 processes).

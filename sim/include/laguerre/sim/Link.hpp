@@ -53,6 +53,11 @@ struct LinkModel {
 
   /// Throws core::InternalError (a broken precondition) (a full sentence) for probabilities outside [0, 1] or a bad latency.
   void validate() const;
+  /// Whether every message gets the same fate, whatever its random stream: a constant latency, no
+  /// loss, no duplication (`decide` then returns {false, latency.base, false, …} for any stream).
+  bool is_deterministic() const {
+    return latency.kind == LatencyKind::constant && loss == 0 && duplication == 0;
+  }
 };
 
 /// The fate of one message on a link: up to two copies, each lost or delivered after a latency.

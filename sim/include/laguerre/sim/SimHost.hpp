@@ -13,6 +13,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -52,6 +53,16 @@ public:
 
 private:
   class NodeRuntime;
+  /// One link of a node, keyed by the user id of the neighbour it leads to.
+  struct IdLink {
+    protocols::NodeId id;
+    LinkIndex link;
+  };
+
+  /// The link from `v` to its neighbour with user id `to`, if `to` is one.
+  std::optional<LinkIndex> link_to(NodeIndex v, protocols::NodeId to) const;
+  /// Counts a send from `v` to `to`, which is not a neighbour of `v`, and throws core::InternalError.
+  [[noreturn]] void reject(NodeIndex v, protocols::NodeId to);
 
   Phase phase(std::span<const std::byte> bytes) const;
   void on_start(Simulator& sim, NodeIndex v) override;
@@ -59,10 +70,12 @@ private:
                   std::span<const std::byte> bytes) override;
   void on_timer(Simulator& sim, NodeIndex v, std::uint64_t timer) override;
   void on_recover(Simulator& sim, NodeIndex v) override;
+  void prefetch(NodeIndex v) const override;
 
   Simulator simulator_;
   PhaseOf phase_of_;
-  std::vector<std::unique_ptr<NodeRuntime>> runtimes_;
+  std::vector<IdLink> links_by_id_;  // CSR order of the network's rows, each row sorted by id
+  std::unique_ptr<NodeRuntime[]> runtimes_;
   std::vector<std::unique_ptr<protocols::Node>> nodes_;
   std::uint64_t bad_destinations_ = 0;
 };

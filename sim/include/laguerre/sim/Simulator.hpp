@@ -57,6 +57,9 @@ public:
   virtual void on_timer(Simulator& sim, NodeIndex v, std::uint64_t timer) = 0;
   /// Node `v` came back after a crash (only if it had started before).
   virtual void on_recover(Simulator& /*sim*/, NodeIndex /*v*/) {}
+  /// A hint: a message for `v` is a few events ahead; start loading (__builtin_prefetch) the state
+  /// on_message will touch. Must not change anything. The default does nothing.
+  virtual void prefetch(NodeIndex /*v*/) const {}
 };
 
 /// Receives the copies that a partitioned Simulator addresses to nodes it does not own (see
@@ -96,6 +99,10 @@ public:
   /// Sends `bytes` from `from` to its neighbour `to`, tagged with `phase`. Throws
   /// core::InternalError (a broken precondition) if `to` is not a neighbour of `from`.
   void send(NodeIndex from, NodeIndex to, std::span<const std::byte> bytes, Phase phase = 0);
+  /// Sends `bytes` on the directed link `link` (from its source to its target), tagged with `phase`:
+  /// `send` without the neighbour lookup, for hosts that resolved the link once. Requires
+  /// `link` < network().link_count().
+  void send_on_link(LinkIndex link, std::span<const std::byte> bytes, Phase phase = 0);
   /// Sends `bytes` from `from` to each of its neighbours (one copy of the bytes is stored).
   void broadcast(NodeIndex from, std::span<const std::byte> bytes, Phase phase = 0);
   /// Schedules NodeHandler::on_timer(v, timer) after `after` ≥ 0 ns. Throws core::InternalError (a broken precondition)
@@ -139,24 +146,42 @@ public:
   const Kernel& kernel() const { return kernel_; }
 
 private:
-  /// One stored message, shared by every copy in flight (reference-counted, recycled).
-  struct Message {
-    std::vector<std::byte> bytes;
+  /// Bytes a message slot holds inline; longer messages spill to a per-slot buffer.
+  static constexpr std::size_t inline_bytes = 48;
+  /// Slots per chunk of the message pool (chunks never move, so a delivered span stays valid while
+  /// its handler sends and the pool grows).
+  static constexpr std::size_t chunk_slots = 1024;
+  /// One stored message, shared by every copy in flight (reference-counted, recycled): one cache
+  /// line, with the bytes inline when they fit.
+  struct alignas(64) Message {
     NodeIndex from = 0;
-    Phase phase = 0;
+    std::uint32_t size = 0;
     std::uint32_t refs = 0;
-    std::uint64_t digest = 0;
+    Phase phase = 0;
+    std::byte bytes[inline_bytes];
+  };
+  static_assert(sizeof(Message) == 64, "A message slot is one cache line.");
+  /// What the sender side needs per directed link, in one record.
+  struct LinkState {
+    std::uint64_t key = 0;            // stream key of the link
+    std::uint64_t sent = 0;           // messages sent so far on it
+    double length = 0;                // distance between its endpoints
+    const LinkModel* model = nullptr; // its model (in network_, which never changes)
   };
 
+  static void prefetch_delivery(const void* self, const Event& event);
   void on_start_event(Kernel& kernel, const Event& event);
   void on_deliver_event(Kernel& kernel, const Event& event);
   void on_timer_event(Kernel& kernel, const Event& event);
   void on_crash_event(Kernel& kernel, const Event& event);
   void on_recover_event(Kernel& kernel, const Event& event);
+  Message& slot(std::uint32_t message) { return chunks_[message / chunk_slots][message % chunk_slots]; }
+  std::span<const std::byte> bytes_of(std::uint32_t message);
   std::uint32_t store(NodeIndex from, std::span<const std::byte> bytes, Phase phase);
   void release(std::uint32_t message);
-  /// Puts one message on link `link` (the message is already stored; adds its references).
-  void transmit(LinkIndex link, std::uint32_t message, std::uint32_t size);
+  /// Puts one message on link `link` from `from` to `to` (the message is already stored; adds its
+  /// references).
+  void transmit(LinkIndex link, NodeIndex from, NodeIndex to, std::uint32_t message);
 
   Network network_;
   SimConfig config_;
@@ -164,14 +189,14 @@ private:
   Kernel kernel_;
   HandlerId start_id_, deliver_id_, timer_id_, crash_id_, recover_id_;
   std::vector<RandomStream> node_streams_;
-  std::vector<std::uint64_t> link_keys_;      // stream key of each directed link
-  std::vector<std::uint64_t> link_messages_;  // messages sent so far on each link
+  std::vector<LinkState> links_;
   std::vector<std::uint32_t> node_timers_;    // timers set so far by each node (their event keys)
-  std::vector<double> link_lengths_;
   std::vector<std::uint32_t> down_;  // outages in progress per node
   std::vector<std::uint8_t> started_;
-  std::vector<Message> messages_;
+  std::vector<std::unique_ptr<Message[]>> chunks_;
+  std::uint32_t slots_used_ = 0;                  // slots ever handed out
   std::vector<std::uint32_t> free_messages_;
+  std::vector<std::vector<std::byte>> spill_;     // bytes of slot i when longer than inline_bytes
   TrafficMetrics traffic_;
   Trace trace_;
   std::uint64_t timers_dropped_ = 0;

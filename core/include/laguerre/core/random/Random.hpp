@@ -14,7 +14,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <random>
+#if __cplusplus >= 202002L  // tools/bench/phold_ns3 includes this header as C++17 (ns-3 3.37 needs it)
 #include <span>
+#endif
 #include <string_view>
 #include <vector>
 
@@ -57,6 +59,7 @@ private:
 /// The FNV-1a 64 offset basis (the hash of nothing).
 inline constexpr std::uint64_t fnv1a_basis = 0xcbf29ce484222325ULL;
 
+#if __cplusplus >= 202002L
 /// Continues the FNV-1a 64 hash `h` over `bytes`.
 constexpr std::uint64_t fnv1a64(std::span<const std::byte> bytes, std::uint64_t h = fnv1a_basis) {
   for (const std::byte b : bytes) {
@@ -65,6 +68,7 @@ constexpr std::uint64_t fnv1a64(std::span<const std::byte> bytes, std::uint64_t 
   }
   return h;
 }
+#endif
 
 /// Continues the FNV-1a 64 hash `h` over the characters of `text` (as unsigned bytes).
 constexpr std::uint64_t fnv1a64(std::string_view text, std::uint64_t h = fnv1a_basis) {
