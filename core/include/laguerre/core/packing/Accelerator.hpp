@@ -45,9 +45,9 @@ Acceleration parse_acceleration(std::string_view name);
 ///   history with a plain sweep.
 /// In both, no hyperbolic radius may shrink below half its value in one step (X stays in (0, 1)).
 class Accelerator {
-  // (the local kinds are LocalAccelerator's; for them, as for plain, after_sweep changes nothing)
 public:
-  /// An accelerator of the given kind (`plain` never changes anything).
+  /// An accelerator of the given kind (`plain`, `newton` and the local kinds, which are
+  /// LocalAccelerator's, never change anything).
   explicit Accelerator(Acceleration kind = Acceleration::superstep) : kind_(kind) {}
   /// Observes the sweep from `before` (y_k) to `after` (F(y_k)) and may replace `after` by an
   /// accelerated iterate. Returns whether it did.
