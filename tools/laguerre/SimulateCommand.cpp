@@ -143,7 +143,7 @@ Action add_simulate_command(CLI::App& app) {
   add_choice(*c.cmd, "--root", c.args->root, core::root_rule_names, "Layout root election: deepest or smallest-id");
   add_choice(*c.cmd, "--accelerate", c.args->accelerate, core::acceleration_names,
              "Local acceleration each node runs on its own updates (sync mode, bit for bit with core::pack): "
-             "plain (Thurston's Jacobi), chebyshev (adaptive second-order iteration, ~15-20x fewer steps on "
+             "plain (Thurston's Jacobi), chebyshev (adaptive second-order iteration, ~14-17x fewer steps on "
              "500-node uniform maps) or local-superstep (Collins-Stephenson with local ratios); superstep, "
              "anderson and newton need global sums and are refused");
   c.cmd->add_option("--pairs", c.args->pairs, "'all' ordered pairs, or a number sampled with --seed")->capture_default_str();

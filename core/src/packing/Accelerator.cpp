@@ -170,7 +170,10 @@ double LocalAccelerator::next(double h, double f) {
   const bool stable = stable_ratio(d, q);
   double out = f;
   if (kind_ == Acceleration::chebyshev) {
-    if (stable) {
+    // Only a mode clearly outside the circle |μ| = √(ω − 1) tells something: inside it, any ratio
+    // q ≠ μ would give λ > ρ and ratchet ρ towards 1 (and the rate √(ω − 1) towards 1 with it).
+    const double mu = std::sqrt(omega_ - 1);
+    if (stable && q > mu + 0.25 * (1 - mu)) {
       const double lambda = (q * q + omega_ - 1) / (omega_ * q);
       if (lambda > rho_) {
         rho_ = std::min(lambda, max_rho);

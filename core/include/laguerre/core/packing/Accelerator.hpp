@@ -45,9 +45,9 @@ Acceleration parse_acceleration(std::string_view name);
 ///   history with a plain sweep.
 /// In both, no hyperbolic radius may shrink below half its value in one step (X stays in (0, 1)).
 class Accelerator {
-  // (the local kinds are LocalAccelerator's; for them, as for plain, after_sweep changes nothing)
 public:
-  /// An accelerator of the given kind (`plain` never changes anything).
+  /// An accelerator of the given kind (`plain`, `newton` and the local kinds, which are
+  /// LocalAccelerator's, never change anything).
   explicit Accelerator(Acceleration kind = Acceleration::superstep) : kind_(kind) {}
   /// Observes the sweep from `before` (y_k) to `after` (F(y_k)) and may replace `after` by an
   /// accelerated iterate. Returns whether it did.
@@ -82,8 +82,9 @@ private:
 ///   at 0 (ω = 1: plain Thurston) and only grows. The vertex measures its contraction
 ///   q = (d_k / d_{k−4})^{1/4} over its last five residuals when they have one sign; when two successive
 ///   q agree within 4% of 1 − q (a real dominant mode μ = q, which the Perron–Frobenius vector of the
-///   monotone Thurston map shows at every vertex), the Jacobi eigenvalue behind it is
-///   λ = (q² + ω − 1) / (ω q), and ρ ← max(ρ, λ).
+///   monotone Thurston map shows at every vertex), and if q is clearly outside the circle
+///   |μ| = √(ω − 1) (q > μ + (1 − μ)/4; inside it every q ≠ μ would give λ > ρ and ratchet ρ to 1), the
+///   Jacobi eigenvalue behind it is λ = (q² + ω − 1) / (ω q), and ρ ← max(ρ, λ).
 /// - local_superstep: when two successive q ∈ (0, 1) agree as above, jumps to f + min(50, q/(1−q)) d_k
 ///   (the rest of the geometric series at this vertex), then forgets its history.
 ///
