@@ -112,6 +112,17 @@ std::string check_affine_cells(const std::vector<WeightedPoint>& sites, const st
   // Areas relative to a corner of the box: in absolute coordinates their rounding grows with the box's
   // distance from the origin and swamps the areas of a small box far away.
   const Point2 corner{box.xmin, box.ymin};
+  // The vertices are circumcentres rounded to doubles: a bisector's offset z_j − z_i (z = |p|² − w)
+  // carries an error of about ε·(|p|² + |w|), which 1/(2|p_i − p_j|) carries into the vertex; the cells'
+  // areas then err by up to the cells' perimeters times that (large weights on a tiny box make it
+  // dominate the relative bound); and every coordinate is rounded to about ε times the box's distance from
+  // the origin, which bends the turns of thin cells far away.
+  double magnitude = 0, closest = std::numeric_limits<double>::infinity();
+  for (const WeightedPoint& s : sites) magnitude = std::max(magnitude, s.x * s.x + s.y * s.y + std::fabs(s.w));
+  for (const auto& [a, b] : cells.dual) closest = std::min(closest, std::hypot(sites[a].x - sites[b].x, sites[a].y - sites[b].y));
+  const double eps = std::numeric_limits<double>::epsilon();
+  const double far = std::max({std::fabs(box.xmin), std::fabs(box.xmax), std::fabs(box.ymin), std::fabs(box.ymax)});
+  const double vertex_error = 4 * eps * far + (closest > 0 && std::isfinite(closest) ? 16 * eps * magnitude / closest : 0.0);
   double total = 0;
   for (SiteIndex i = 0; i < n; ++i) {
     const Polygon& c = cells.cells[i];
@@ -127,7 +138,8 @@ std::string check_affine_cells(const std::vector<WeightedPoint>& sites, const st
       const Point2 u = c[k], v = c[(k + 1) % c.size()], w = c[(k + 2) % c.size()];
       const double cross = (v.x - u.x) * (w.y - v.y) - (v.y - u.y) * (w.x - v.x);
       const double len = std::hypot(v.x - u.x, v.y - u.y) * std::hypot(w.x - v.x, w.y - v.y);
-      if (cross < -1e-9 * len) return fail("cell " + std::to_string(i) + " is not convex");
+      const double turn_error = 2 * vertex_error * (std::hypot(v.x - u.x, v.y - u.y) + std::hypot(w.x - v.x, w.y - v.y));
+      if (cross < -1e-9 * len - turn_error) return fail("cell " + std::to_string(i) + " is not convex");
     }
     // The centroid lies strictly inside a non-degenerate convex cell: it must locate to i, or to a site
     // at equal power distance (a tie).
@@ -144,15 +156,6 @@ std::string check_affine_cells(const std::vector<WeightedPoint>& sites, const st
   for (const auto& [a, b] : cells.dual)
     if (a >= b || b >= n || hidden[a] || hidden[b])
       return fail("dual edge (" + std::to_string(a) + ", " + std::to_string(b) + ") is malformed");
-  // The vertices are circumcentres rounded to doubles: a bisector's offset z_j − z_i (z = |p|² − w)
-  // carries an error of about ε·(|p|² + |w|), which 1/(2|p_i − p_j|) carries into the vertex; the cells'
-  // areas then err by up to the cells' perimeters times that (large weights on a tiny box make it
-  // dominate the relative bound).
-  double magnitude = 0, closest = std::numeric_limits<double>::infinity();
-  for (const WeightedPoint& s : sites) magnitude = std::max(magnitude, s.x * s.x + s.y * s.y + std::fabs(s.w));
-  for (const auto& [a, b] : cells.dual) closest = std::min(closest, std::hypot(sites[a].x - sites[b].x, sites[a].y - sites[b].y));
-  const double vertex_error = closest > 0 && std::isfinite(closest)
-                                  ? 16 * std::numeric_limits<double>::epsilon() * magnitude / closest : 0.0;
   const double area = box.width() * box.height();
   const double area_slack = 1e-7 * area + 4 * (box.width() + box.height()) * vertex_error * static_cast<double>(cells.dual.size() + 1);
   if (n > 0 && std::fabs(total - area) > area_slack)
