@@ -26,14 +26,7 @@ while [ $# -gt 0 ]; do
 done
 [ ${#sizes[@]} -eq 0 ] && sizes=(50 500 5000)
 
-if [ -n "${LAGUERRE_EXE:-}" ]; then
-  laguerre=$LAGUERRE_EXE
-else
-  tools/bootstrap.sh --preset release >/dev/null
-  laguerre=build/release/tools/laguerre
-fi
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
+. tools/bench/common.sh
 echo "# $(uptime)"
 seeds_of() {
   local n=$1 s

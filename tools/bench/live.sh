@@ -24,14 +24,7 @@ while [ $# -gt 0 ]; do
 done
 [ ${#sizes[@]} -eq 0 ] && sizes=(100 1000)
 
-if [ -n "${LAGUERRE_EXE:-}" ]; then
-  laguerre=$LAGUERRE_EXE
-else
-  tools/bootstrap.sh --preset release >/dev/null
-  laguerre=build/release/tools/laguerre
-fi
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
+. tools/bench/common.sh
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores"
 printf '%7s %-10s %10s %9s %12s %10s %11s %12s %9s %8s %10s\n' nodes run iterations wall_s datagrams/s msgs/node \
   bytes/node wire_B/node peak_MiB vs_sim verify

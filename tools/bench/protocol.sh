@@ -26,14 +26,7 @@ while [ $# -gt 0 ]; do
 done
 [ ${#sizes[@]} -eq 0 ] && sizes=(1000 10000 100000)
 
-if [ -n "${LAGUERRE_EXE:-}" ]; then
-  laguerre=$LAGUERRE_EXE
-else
-  tools/bootstrap.sh --preset release >/dev/null
-  laguerre=build/release/tools/laguerre
-fi
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
+. tools/bench/common.sh
 echo "load before: $(uptime)"
 printf '%8s %4s %10s %6s %13s %9s %8s %10s %10s %11s %10s %13s %12s\n' nodes N iterations rounds status wall_s cpu_s \
   events/s msgs/node bytes/node peak_MiB peak_KiB/node verify
