@@ -41,4 +41,4 @@ timed "tools/run-example.sh" tools/run-example.sh
 timed "tools/test.sh" tools/test.sh
 touch "$touch_file"
 timed "tools/test.sh (touched $(basename "$touch_file"))" tools/test.sh
-[ "$keep" -eq 1 ] && echo "kept $work"
+if [ "$keep" -eq 1 ]; then echo "kept $work"; fi
