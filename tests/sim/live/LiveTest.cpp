@@ -8,16 +8,13 @@
 
 #include <gtest/gtest.h>
 
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <boost/asio/io_context.hpp>
 #include <chrono>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "../../support/BusyUdpPort.hpp"
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/GraphIO.hpp"
 #include "laguerre/core/graph/GraphKind.hpp"
@@ -116,16 +113,10 @@ TEST(LiveRun, InducedLossIsMaskedByTheReliabilityLayer) {
 }
 
 TEST(LiveRun, APortInUseIsABadInputError) {
-  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
-  socklen_t len = sizeof addr;
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
+  const laguerre::testing::BusyUdpPort busy;
   const Graph gr = load("delaunay-60.txt");
   scenarios::LiveSetup live = live_setup(1);
-  live.base_port = ntohs(addr.sin_port);
+  live.base_port = busy.port();
   try {
     scenarios::run_live(gr.g, gr.positions, {}, live, {}, {});
     ADD_FAILURE() << "no error for a port in use";
@@ -133,7 +124,6 @@ TEST(LiveRun, APortInUseIsABadInputError) {
     EXPECT_NE(std::string(e.what()).find("127.0.0.1:" + std::to_string(live.base_port) + " is in use"), std::string::npos)
         << e.what();
   }
-  ::close(fd);
 }
 
 TEST(LiveRun, ADeadWorkerEndsTheRunWithAClearError) {

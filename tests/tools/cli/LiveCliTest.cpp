@@ -7,12 +7,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <string>
 
+#include "../../support/BusyUdpPort.hpp"
 #include "CliRunner.hpp"
 
 namespace {
@@ -53,18 +50,13 @@ TEST(CliLive, TheQuickStartScenarioOnFourProcessesVerifies) {
 }
 
 TEST(CliLive, APortInUseAndBadProcessCountsAreBadInput) {
-  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
-  socklen_t len = sizeof addr;
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
-  const std::string port = std::to_string(ntohs(addr.sin_port));
-  const Outcome busy = run("live " + graph3 + " --base-port " + port + " --timeout 10");
-  EXPECT_EQ(busy.status, 2) << busy.out;
-  EXPECT_NE(busy.out.find("127.0.0.1:" + port + " is in use"), std::string::npos) << busy.out;
-  ::close(fd);
+  {
+    const laguerre::testing::BusyUdpPort held;
+    const std::string port = std::to_string(held.port());
+    const Outcome busy = run("live " + graph3 + " --base-port " + port + " --timeout 10");
+    EXPECT_EQ(busy.status, 2) << busy.out;
+    EXPECT_NE(busy.out.find("127.0.0.1:" + port + " is in use"), std::string::npos) << busy.out;
+  }
   const Outcome many = run("live " + graph3 + " --processes 100 --timeout 10");
   EXPECT_EQ(many.status, 2) << many.out;
   EXPECT_NE(many.out.find("--processes"), std::string::npos) << many.out;
