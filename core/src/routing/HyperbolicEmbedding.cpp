@@ -1,0 +1,395 @@
+// Kleinberg's hyperbolic greedy embedding of a BFS tree (see the header and docs/hyperbolic-baseline.md).
+//
+// Model: the upper half-plane, isometries as SL(2, R) matrices. The root's tile is the regular ideal
+// q-gon centred at i; its side 0 is the half circle |z| = h, h = cot(π/(2q)), at distance D/2 from i,
+// D = 2 artanh cos(π/q) (the inradius of the ideal q-gon: tanh(D/2) = cos(π/q)). With
+//   H   = [[0, −h], [1/h, 0]]        the half turn about ih (z ↦ −h²/z), swapping the tile with its
+//                                     neighbour across side 0 and mapping i to ih²;
+//   R_j = [[cos jθ, sin jθ], [−sin jθ, cos jθ]], θ = π/q, the rotation by 2jπ/q about i,
+// the neighbour across side j is G_j(tile) with G_j = R_j·H. A node v with tree word (j1, …, jk) from
+// the root carries the isometry M_v = G_j1 ⋯ G_jk and sits at M_v(i); its parent is across side 0 of
+// its own tile (M_v·H(i) = M_parent(i)), so its children use sides 1..q−1 and the root's 0..q−1.
+//
+// Distances: for A ∈ SL(2, R), 2·cosh d(i, A·i) = ‖A‖_F² (a² + b² + c² + d²). Hence
+// 2·cosh d(M_a(i), M_b(i)) = ‖M_a⁻¹ M_b‖_F², and M_a⁻¹ M_b is the product along the tree path from a
+// to b once the common prefix of the two words is cancelled — symbolically, so nothing near the
+// boundary is ever rounded. The product is evaluated in double interval arithmetic (CGAL::Interval_nt,
+// directed rounding) and rescaled by a power of two after every factor (the entries grow like
+// e^{length·D/2}, which would overflow doubles beyond ~700/D·2 hops), so the norm is an enclosure
+// m·4^e. Generator entries are enclosed from a 256-bit MPFR evaluation widened by one ulp.
+
+#include "laguerre/core/routing/HyperbolicEmbedding.hpp"
+
+#include <mpfr.h>
+
+#include <CGAL/Interval_nt.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <string>
+
+#include "laguerre/core/Error.hpp"
+
+namespace laguerre::core {
+
+namespace {
+
+using I = CGAL::Interval_nt<false>;
+
+// Enclosure of an MPFR value computed with error far below a double ulp: round both ways, widen by one ulp.
+void enclose(const mpfr_t x, double& lo, double& hi) {
+  lo = std::nextafter(mpfr_get_d(x, MPFR_RNDD), -std::numeric_limits<double>::infinity());
+  hi = std::nextafter(mpfr_get_d(x, MPFR_RNDU), std::numeric_limits<double>::infinity());
+}
+
+// 2×2 matrix product in MPFR (out may not alias x or y).
+void mpfr_mul2(mpfr_t* out, mpfr_t* x, mpfr_t* y, mpfr_t tmp) {
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 2; ++c) {
+      mpfr_mul(out[2 * r + c], x[2 * r], y[c], MPFR_RNDN);
+      mpfr_mul(tmp, x[2 * r + 1], y[2 + c], MPFR_RNDN);
+      mpfr_add(out[2 * r + c], out[2 * r + c], tmp, MPFR_RNDN);
+    }
+}
+
+// The matrices of the evaluation, as (lo, hi) enclosures of 4 entries (8 doubles each): for m in
+// [1, q), P_m = C⁻¹·G_m·C (slot m), nonnegative; slot 0 holds H·C and slot q holds C⁻¹.
+std::vector<double> evaluation_matrices(std::uint32_t q) {
+  std::vector<double> out(8 * (static_cast<std::size_t>(q) + 1));
+  mpfr_t pi, t, co, si, h, tmp;
+  mpfr_inits2(256, pi, t, co, si, h, tmp, static_cast<mpfr_ptr>(nullptr));
+  mpfr_t cm[4], ci[4], g[4], gc[4], pm[4];
+  for (auto* m : {cm, ci, g, gc, pm})
+    for (int k = 0; k < 4; ++k) mpfr_init2(m[k], 256);
+  mpfr_const_pi(pi, MPFR_RNDN);
+  mpfr_div_ui(t, pi, 2 * q, MPFR_RNDN);  // π/(2q)
+  mpfr_cot(h, t, MPFR_RNDN);
+  // C = [[h, −h], [1, 1]] maps [0, ∞] onto J = [−h, h]; C⁻¹ = [[1, h], [−1, h]] / (2h).
+  mpfr_set(cm[0], h, MPFR_RNDN);
+  mpfr_neg(cm[1], h, MPFR_RNDN);
+  mpfr_set_ui(cm[2], 1, MPFR_RNDN);
+  mpfr_set_ui(cm[3], 1, MPFR_RNDN);
+  mpfr_mul_ui(tmp, h, 2, MPFR_RNDN);
+  mpfr_ui_div(ci[0], 1, tmp, MPFR_RNDN);
+  mpfr_set_d(ci[1], 0.5, MPFR_RNDN);
+  mpfr_neg(ci[2], ci[0], MPFR_RNDN);
+  mpfr_set_d(ci[3], 0.5, MPFR_RNDN);
+  auto store = [&](std::size_t slot, mpfr_t* m) {
+    for (int k = 0; k < 4; ++k) enclose(m[k], out[8 * slot + 2 * k], out[8 * slot + 2 * k + 1]);
+  };
+  // H·C = [[0, −h], [1/h, 0]]·C = [[−h, −h], [1, −1]].
+  mpfr_neg(pm[0], h, MPFR_RNDN);
+  mpfr_neg(pm[1], h, MPFR_RNDN);
+  mpfr_set_ui(pm[2], 1, MPFR_RNDN);
+  mpfr_set_si(pm[3], -1, MPFR_RNDN);
+  store(0, pm);
+  store(q, ci);
+  for (std::uint32_t m = 1; m < q; ++m) {
+    mpfr_mul_ui(t, pi, m, MPFR_RNDN);
+    mpfr_div_ui(t, t, q, MPFR_RNDN);  // mπ/q
+    mpfr_sin_cos(si, co, t, MPFR_RNDN);
+    // G_m = R_m·H = [[s/h, −c·h], [c/h, s·h]].
+    mpfr_div(g[0], si, h, MPFR_RNDN);
+    mpfr_mul(g[1], co, h, MPFR_RNDN);
+    mpfr_neg(g[1], g[1], MPFR_RNDN);
+    mpfr_div(g[2], co, h, MPFR_RNDN);
+    mpfr_mul(g[3], si, h, MPFR_RNDN);
+    mpfr_t* gp = g;
+    mpfr_t* cp = cm;
+    mpfr_t* cip = ci;
+    mpfr_mul2(gc, gp, cp, tmp);
+    mpfr_mul2(pm, cip, gc, tmp);
+    // G_m maps J into its arc A_m ⊂ J, so P_m maps [0, ∞] into itself: its entries share one sign
+    // (PSL: fix it to +). Entries that are 0 in exact arithmetic come out as ±tiny: clamp at 0.
+    mpfr_add(tmp, pm[0], pm[3], MPFR_RNDN);
+    const bool negate = mpfr_sgn(tmp) < 0;
+    for (int k = 0; k < 4; ++k) {
+      if (negate) mpfr_neg(pm[k], pm[k], MPFR_RNDN);
+      double lo = 0, hi = 0;
+      enclose(pm[k], lo, hi);
+      if (lo < -1e-60) throw InternalError("hyperbolic embedding: a conjugated generator has a negative entry");
+      out[8 * m + 2 * k] = std::max(lo, 0.0);
+      out[8 * m + 2 * k + 1] = std::max(hi, 0.0);
+    }
+  }
+  for (auto* m : {cm, ci, g, gc, pm})
+    for (int k = 0; k < 4; ++k) mpfr_clear(m[k]);
+  mpfr_clears(pi, t, co, si, h, tmp, static_cast<mpfr_ptr>(nullptr));
+  mpfr_free_cache();
+  return out;
+}
+
+// 2^e · [[a, b], [c, d]] with interval entries.
+struct ScaledMatrix {
+  I a{1}, b{0}, c{0}, d{1};
+  int e = 0;
+};
+
+// M ← M·G (G as 8 doubles), then rescaled so the largest |entry| bound lies in [1/2, 1).
+void multiply(ScaledMatrix& m, const double* g) {
+  const I ga(g[0], g[1]), gb(g[2], g[3]), gc(g[4], g[5]), gd(g[6], g[7]);
+  const I a = m.a * ga + m.b * gc, b = m.a * gb + m.b * gd;
+  const I c = m.c * ga + m.d * gc, d = m.c * gb + m.d * gd;
+  const double top = std::max({std::abs(a.inf()), std::abs(a.sup()), std::abs(b.inf()), std::abs(b.sup()),
+                               std::abs(c.inf()), std::abs(c.sup()), std::abs(d.inf()), std::abs(d.sup())});
+  int k = 0;
+  if (std::isfinite(top) && top > 0) std::frexp(top, &k);
+  const I scale(std::ldexp(1.0, -k));  // an exact power of two
+  m.a = a * scale;
+  m.b = b * scale;
+  m.c = c * scale;
+  m.d = d * scale;
+  m.e += k;
+}
+
+// Sign of x − y for two scaled norms, or nothing.
+std::optional<Sign> compare_norms(const HyperbolicTreeEmbedding::Norm& x, const HyperbolicTreeEmbedding::Norm& y) {
+  CGAL::Protect_FPU_rounding<true> guard;
+  // Bring both to the smaller exponent; a difference beyond 250 (4^250 = 2^500) is capped: the
+  // normalised mantissas are ≤ 4, so the capped comparison still decides whenever the larger one's
+  // lower bound is not tiny, and says "undecided" otherwise.
+  const int diff = std::clamp(x.exp - y.exp, -250, 250);
+  I mx(x.lo, x.hi), my(y.lo, y.hi);
+  if (diff > 0) mx = mx * I(std::ldexp(1.0, 2 * diff));
+  else if (diff < 0) my = my * I(std::ldexp(1.0, -2 * diff));
+  if (mx.inf() > my.sup()) return Sign::positive;
+  if (mx.sup() < my.inf()) return Sign::negative;
+  if (x.exp == y.exp && x.lo == x.hi && y.lo == y.hi && x.lo == y.lo) return Sign::zero;
+  return std::nullopt;
+}
+
+// BFS from `from` over CSR adjacency: distances and parents (neighbour order = adjacency order).
+void bfs(const std::vector<std::uint32_t>& off, const std::vector<Vertex>& tgt, Vertex from,
+         std::vector<std::uint32_t>& dist, std::vector<Vertex>& parent) {
+  const std::size_t n = off.size() - 1;
+  dist.assign(n, std::numeric_limits<std::uint32_t>::max());
+  parent.assign(n, none);
+  std::vector<Vertex> queue{from};
+  queue.reserve(n);
+  dist[from] = 0;
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const Vertex v = queue[head];
+    for (std::uint32_t k = off[v]; k < off[v + 1]; ++k) {
+      const Vertex u = tgt[k];
+      if (dist[u] != std::numeric_limits<std::uint32_t>::max()) continue;
+      dist[u] = dist[v] + 1;
+      parent[u] = v;
+      queue.push_back(u);
+    }
+  }
+}
+
+Vertex farthest(const std::vector<std::uint32_t>& dist) {
+  Vertex best = 0;
+  for (Vertex v = 1; v < dist.size(); ++v)
+    if (dist[v] > dist[best]) best = v;  // smallest index among ties
+  return best;
+}
+
+}  // namespace
+
+HyperbolicTreeEmbedding::HyperbolicTreeEmbedding(const PlanarGraph& g, const HyperbolicOptions& options) {
+  std::vector<std::uint32_t> off{0};
+  std::vector<Vertex> tgt;
+  for (Vertex v = 0; v < g.num_vertices(); ++v) {
+    for (const Vertex u : g.neighbours(v)) tgt.push_back(u);
+    off.push_back(static_cast<std::uint32_t>(tgt.size()));
+  }
+  build(off, tgt, options);
+}
+
+HyperbolicTreeEmbedding::HyperbolicTreeEmbedding(const std::vector<std::vector<Vertex>>& adjacency,
+                                                 const HyperbolicOptions& options) {
+  std::vector<std::uint32_t> off{0};
+  std::vector<Vertex> tgt;
+  for (const auto& list : adjacency) {
+    for (const Vertex u : list) {
+      if (u >= adjacency.size())
+        throw InputError("adjacency", 0, "found neighbour " + std::to_string(u) + ", expected a vertex index below " +
+                                             std::to_string(adjacency.size()));
+      tgt.push_back(u);
+    }
+    off.push_back(static_cast<std::uint32_t>(tgt.size()));
+  }
+  build(off, tgt, options);
+}
+
+void HyperbolicTreeEmbedding::build(const std::vector<std::uint32_t>& off, const std::vector<Vertex>& tgt,
+                                    const HyperbolicOptions& o) {
+  const std::size_t n = off.size() - 1;
+  if (n == 0) throw InputError("graph", 0, "found no vertex, expected a connected graph to embed");
+  std::vector<std::uint32_t> dist;
+  std::vector<Vertex> par;
+  if (o.root != none && o.root >= n)
+    throw InputError("root", 0, "found vertex " + std::to_string(o.root) + ", expected an index below " + std::to_string(n));
+  Vertex root = o.root;
+  if (root == none) {
+    // Double sweep: the middle of a long shortest path approximates a centre, halving the depth
+    // (hence the address length) compared with an arbitrary root.
+    bfs(off, tgt, 0, dist, par);
+    for (Vertex v = 0; v < n; ++v)
+      if (dist[v] == std::numeric_limits<std::uint32_t>::max())
+        throw InputError("graph", 0, "vertex " + std::to_string(v) + " is not connected to vertex 0, expected a connected graph");
+    const Vertex a = farthest(dist);
+    bfs(off, tgt, a, dist, par);
+    Vertex b = farthest(dist);
+    for (std::uint32_t steps = dist[b] / 2; steps > 0; --steps) b = par[b];
+    root = b;
+  }
+  bfs(off, tgt, root, dist, par);
+  for (Vertex v = 0; v < n; ++v)
+    if (dist[v] == std::numeric_limits<std::uint32_t>::max())
+      throw InputError("graph", 0, "vertex " + std::to_string(v) + " is not connected to the root " +
+                                       std::to_string(root) + ", expected a connected graph");
+  root_ = root;
+  parent_ = par;
+  depth_ = dist;
+  // q: every node needs one side per tree neighbour (the root's children use sides 0..q−1, the
+  // others' 1..q−1, side 0 facing the parent).
+  std::vector<std::uint32_t> children(n, 0);
+  for (Vertex v = 0; v < n; ++v)
+    if (v != root) ++children[par[v]];
+  std::uint32_t needed = 3;
+  max_depth_ = 0;
+  for (Vertex v = 0; v < n; ++v) {
+    needed = std::max(needed, children[v] + (v == root ? 0 : 1));
+    max_depth_ = std::max(max_depth_, dist[v]);
+  }
+  if (o.tiling_degree != 0 && o.tiling_degree < needed)
+    throw InputError("tiling_degree", 0, "found " + std::to_string(o.tiling_degree) + ", expected at least " +
+                                             std::to_string(needed) + " (3 and the spanning tree's maximum degree)");
+  q_ = o.tiling_degree != 0 ? o.tiling_degree : needed;
+  // Children take sides spread evenly over the free ones, in adjacency order: an only child sits
+  // opposite its parent, so long chains run along geodesics rather than around an ideal vertex. For
+  // odd q there are two middle sides; the spread is mirrored (j ↦ q − j) below odd-depth parents so
+  // that a chain alternates between them (a zig-zag along a geodesic, not a horocycle).
+  index_.assign(n, 0);
+  for (Vertex v = 0; v < n; ++v) {
+    std::uint64_t i = 0;  // 1-based rank of the child among v's (simple graph: each listed once)
+    for (std::uint32_t k = off[v]; k < off[v + 1]; ++k) {
+      const Vertex u = tgt[k];
+      if (u == root || par[u] != v) continue;
+      ++i;
+      const std::uint64_t kids = children[v];
+      if (v == root) {
+        index_[u] = static_cast<std::uint32_t>((i - 1) * q_ / kids);
+      } else {
+        const auto side = static_cast<std::uint32_t>(1 + (2 * i - 1) * (q_ - 1) / (2 * kids));
+        index_[u] = dist[v] % 2 == 1 ? q_ - side : side;
+      }
+    }
+  }
+  gen_ = evaluation_matrices(q_);
+}
+
+double HyperbolicTreeEmbedding::edge_length() const {
+  return 2 * std::atanh(std::cos(std::acos(-1.0) / q_));
+}
+
+HyperbolicTreeEmbedding::Norm HyperbolicTreeEmbedding::norm(Vertex a, Vertex b) const {
+  LAGUERRE_PRECONDITION(a < size() && b < size(), "hyperbolic distance between vertices " + std::to_string(a) +
+                                                      " and " + std::to_string(b) + " of a " +
+                                                      std::to_string(size()) + "-node embedding");
+  if (a == b) return {2, 2, 0};
+  // The sides met from a up to the common ancestor (a's first) and from b up to it (b's first).
+  thread_local std::vector<std::uint32_t> up, down, turns;
+  up.clear();
+  down.clear();
+  turns.clear();
+  Vertex x = a, y = b;
+  while (depth_[x] > depth_[y]) {
+    up.push_back(index_[x]);
+    x = parent_[x];
+  }
+  while (depth_[y] > depth_[x]) {
+    down.push_back(index_[y]);
+    y = parent_[y];
+  }
+  while (x != y) {
+    up.push_back(index_[x]);
+    x = parent_[x];
+    down.push_back(index_[y]);
+    y = parent_[y];
+  }
+  // M_a⁻¹M_b = H R_{−a_k} H ⋯ H R_{−a_1} R_{b_1} H ⋯ R_{b_m} H (H⁻¹ = ±H); rotations are orthogonal,
+  // so the leading/trailing ones drop out of the Frobenius norm and the rest is H·G_{t_1}⋯G_{t_{L−1}}
+  // with every turn t in [1, q) (a reduced path never turns back through the side it came from).
+  const std::size_t k = up.size(), m = down.size();
+  for (std::size_t i = 0; i + 1 < k; ++i) turns.push_back((q_ - up[i]) % q_);
+  if (k > 0 && m > 0) turns.push_back((down[m - 1] + q_ - up[k - 1]) % q_);
+  for (std::size_t i = m; i >= 2; --i) turns.push_back(down[i - 2]);
+  CGAL::Protect_FPU_rounding<true> guard;
+  // G_{t_1}⋯G_{t_{L−1}} = C·(P_{t_1}⋯P_{t_{L−1}})·C⁻¹ with nonnegative P: no cancellation, no
+  // wrapping effect, relative error O(L·ε); only the two end factors can cancel, by a bounded amount.
+  ScaledMatrix p;
+  multiply(p, &gen_[0]);  // H·C
+  for (const std::uint32_t t : turns) {
+    LAGUERRE_ASSERT(t != 0);  // a reduced tree path never turns back
+    multiply(p, &gen_[8 * t]);
+  }
+  multiply(p, &gen_[8 * static_cast<std::size_t>(q_)]);  // C⁻¹
+  const I f = CGAL::square(p.a) + CGAL::square(p.b) + CGAL::square(p.c) + CGAL::square(p.d);
+  return {f.inf(), f.sup(), p.e};
+}
+
+std::optional<Sign> HyperbolicTreeEmbedding::compare_distance(Vertex t, Vertex a, Vertex b) const {
+  if (a == b) return Sign::zero;
+  if (a == t) return Sign::negative;  // positions are distinct: d(t, t) = 0 < d(b, t)
+  if (b == t) return Sign::positive;
+  return compare_norms(norm(a, t), norm(b, t));
+}
+
+double HyperbolicTreeEmbedding::distance(Vertex a, Vertex b) const {
+  if (a == b) return 0;
+  const Norm f = norm(a, b);
+  const double ln_f = std::log(0.5 * (f.lo + f.hi)) + f.exp * std::log(4.0);
+  return ln_f > 30 ? ln_f : std::acosh(0.5 * std::exp(ln_f));  // acosh(F/2) = ln F − O(F⁻²)
+}
+
+std::size_t HyperbolicTreeEmbedding::address_bits(Vertex v) const {
+  std::size_t per_level = 0;
+  while ((std::size_t{1} << per_level) < q_) ++per_level;
+  return depth_[v] * per_level;
+}
+
+std::size_t HyperbolicTreeEmbedding::disc_coordinate_bits(Vertex v) const {
+  return 2 * (static_cast<std::size_t>(std::ceil(distance(root_, v) / std::log(2.0))) + 53);
+}
+
+HyperbolicHop hyperbolic_hop(const HyperbolicTreeEmbedding& e, std::span<const Vertex> neighbours, Vertex at,
+                             Vertex target) {
+  const std::size_t deg = neighbours.size();
+  for (std::size_t i = 0; i < deg; ++i)
+    if (neighbours[i] == target) return {i, true};
+  thread_local std::vector<HyperbolicTreeEmbedding::Norm> norms;
+  norms.resize(deg);
+  const HyperbolicTreeEmbedding::Norm own = e.norm(at, target);
+  // The candidate that may be least: the smallest upper bound (in the common scale of the comparison).
+  std::size_t least = deg;
+  for (std::size_t i = 0; i < deg; ++i) {
+    norms[i] = e.norm(neighbours[i], target);
+    if (least == deg || compare_norms(norms[i], norms[least]) == Sign::negative) least = i;
+  }
+  if (least == deg) return {deg, true};
+  // Among those the enclosures cannot place above `least` (it included), the smallest index that is
+  // certified strictly closer than the holder.
+  std::size_t best = deg;
+  bool any_undecided = false;
+  for (std::size_t i = 0; i < deg; ++i) {
+    if (i != least && compare_norms(norms[i], norms[least]) == Sign::positive) continue;
+    const auto vs_own = compare_norms(norms[i], own);
+    if (vs_own == Sign::negative) {
+      if (best == deg || neighbours[i] < neighbours[best]) best = i;
+    } else if (!vs_own) {
+      any_undecided = true;
+    }
+  }
+  if (best != deg) return {best, true};
+  // Otherwise every possible minimiser is provably no closer than the holder, and every other
+  // neighbour is above one of them: a certified dead end, unless some comparison was undecided.
+  return {deg, !any_undecided};
+}
+
+}  // namespace laguerre::core
