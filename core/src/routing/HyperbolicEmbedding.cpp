@@ -235,6 +235,7 @@ void HyperbolicTreeEmbedding::build(const std::vector<std::uint32_t>& off, const
     const Vertex a = farthest(dist);
     bfs(off, tgt, a, dist, par);
     Vertex b = farthest(dist);
+    sweep_length_ = dist[b];
     for (std::uint32_t steps = dist[b] / 2; steps > 0; --steps) b = par[b];
     root = b;
   }
@@ -356,6 +357,22 @@ std::size_t HyperbolicTreeEmbedding::address_bits(Vertex v) const {
 
 std::size_t HyperbolicTreeEmbedding::disc_coordinate_bits(Vertex v) const {
   return 2 * (static_cast<std::size_t>(std::ceil(distance(root_, v) / std::log(2.0))) + 53);
+}
+
+HyperbolicSetupCost hyperbolic_setup_cost(const HyperbolicTreeEmbedding& e, std::size_t edges) {
+  HyperbolicSetupCost c;
+  const std::uint64_t n = e.size(), m = edges;
+  const bool swept = e.sweep_length() > 0 || n == 1;
+  c.messages = (swept ? 3 : 1) * 2 * m + (swept ? 3 : 1) * (n - 1) + (e.sweep_length() + 1) / 2 + (n - 1);
+  double sum = 0;
+  for (Vertex v = 0; v < n; ++v) {
+    const std::size_t bits = e.address_bits(v);
+    sum += static_cast<double>(bits);
+    c.address_bits_max = std::max(c.address_bits_max, bits);
+    c.disc_bits_max = std::max(c.disc_bits_max, e.disc_coordinate_bits(v));
+  }
+  c.address_bits_mean = sum / static_cast<double>(n);
+  return c;
 }
 
 HyperbolicHop hyperbolic_hop(const HyperbolicTreeEmbedding& e, std::span<const Vertex> neighbours, Vertex at,

@@ -50,6 +50,8 @@ public:
   Vertex parent(Vertex v) const { return parent_[v]; } ///< tree parent (none at the root)
   std::uint32_t depth(Vertex v) const { return depth_[v]; }  ///< hops from the root in the tree
   std::uint32_t max_depth() const { return max_depth_; }     ///< the tree's height
+  /// Length of the double sweep's second BFS path (0 when the root was given).
+  std::uint32_t sweep_length() const { return sweep_length_; }
   /// The side of the parent's tile v's tile is glued to: in [0, q) at depth 1, [1, q) deeper.
   std::uint32_t child_index(Vertex v) const { return index_[v]; }
   /// D = 2 artanh cos(π/q), the hyperbolic distance between a parent and a child.
@@ -82,9 +84,25 @@ private:
   std::vector<Vertex> parent_;
   std::vector<std::uint32_t> depth_, index_;
   Vertex root_ = none;
-  std::uint32_t q_ = 3, max_depth_ = 0;
+  std::uint32_t q_ = 3, max_depth_ = 0, sweep_length_ = 0;
   std::vector<double> gen_;  // per j: G_j enclosure, 8 doubles (lo, hi of a, b, c, d)
 };
+
+/// What setting the embedding up costs in a distributed run (counted, not simulated: each node sends
+/// one message per neighbour per flood and one to its parent per echo, unicast), and what a node holds.
+struct HyperbolicSetupCost {
+  /// 3 floods (the two sweeps of the root choice and the tree's BFS) of 2|E| messages, 3 echoes of
+  /// |V| − 1 (each sweep's farthest node; the tree's children with their subtree's degree, for q),
+  /// ⌈sweep length / 2⌉ to hand the root role to the middle, and |V| − 1 coordinate messages (parent
+  /// to child: q and the child's address).
+  std::uint64_t messages = 0;
+  double address_bits_mean = 0;  ///< a node's own coordinate (its address), mean over nodes
+  std::size_t address_bits_max = 0;  ///< and largest
+  std::size_t disc_bits_max = 0;     ///< largest disc_coordinate_bits, for comparison
+};
+
+/// The setup cost of `e` on a graph with `edges` edges.
+HyperbolicSetupCost hyperbolic_setup_cost(const HyperbolicTreeEmbedding& e, std::size_t edges);
 
 /// One greedy forwarding decision by hyperbolic distance.
 struct HyperbolicHop {
