@@ -44,13 +44,13 @@ void enclose(const mpfr_t x, double& lo, double& hi) {
   hi = std::nextafter(mpfr_get_d(x, MPFR_RNDU), std::numeric_limits<double>::infinity());
 }
 
-// 2×2 matrix product in MPFR (out may not alias x or y).
-void mpfr_mul2(mpfr_t* out, mpfr_t* x, mpfr_t* y, mpfr_t tmp) {
+// 2×2 matrix product in MPFR, each matrix 4 consecutive numbers (out may not alias x or y).
+void mpfr_mul2(mpfr_ptr out, mpfr_srcptr x, mpfr_srcptr y, mpfr_ptr tmp) {
   for (int r = 0; r < 2; ++r)
     for (int c = 0; c < 2; ++c) {
-      mpfr_mul(out[2 * r + c], x[2 * r], y[c], MPFR_RNDN);
-      mpfr_mul(tmp, x[2 * r + 1], y[2 + c], MPFR_RNDN);
-      mpfr_add(out[2 * r + c], out[2 * r + c], tmp, MPFR_RNDN);
+      mpfr_mul(out + 2 * r + c, x + 2 * r, y + c, MPFR_RNDN);
+      mpfr_mul(tmp, x + 2 * r + 1, y + 2 + c, MPFR_RNDN);
+      mpfr_add(out + 2 * r + c, out + 2 * r + c, tmp, MPFR_RNDN);
     }
 }
 
@@ -96,11 +96,8 @@ std::vector<double> evaluation_matrices(std::uint32_t q) {
     mpfr_neg(g[1], g[1], MPFR_RNDN);
     mpfr_div(g[2], co, h, MPFR_RNDN);
     mpfr_mul(g[3], si, h, MPFR_RNDN);
-    mpfr_t* gp = g;
-    mpfr_t* cp = cm;
-    mpfr_t* cip = ci;
-    mpfr_mul2(gc, gp, cp, tmp);
-    mpfr_mul2(pm, cip, gc, tmp);
+    mpfr_mul2(gc[0], g[0], cm[0], tmp);
+    mpfr_mul2(pm[0], ci[0], gc[0], tmp);
     // G_m maps J into its arc A_m ⊂ J, so P_m maps [0, ∞] into itself: its entries share one sign
     // (PSL: fix it to +). Entries that are 0 in exact arithmetic come out as ±tiny: clamp at 0.
     mpfr_add(tmp, pm[0], pm[3], MPFR_RNDN);
@@ -186,6 +183,71 @@ Vertex farthest(const std::vector<std::uint32_t>& dist) {
   for (Vertex v = 1; v < dist.size(); ++v)
     if (dist[v] > dist[best]) best = v;  // smallest index among ties
   return best;
+}
+
+// The classical coordinates: every node's Poincaré-disc point M_v(i) ↦ (z − i)/(z + i), with M_v the
+// product of the un-conjugated G_j = R_j·H from the root, in MPFR at a precision far beyond what the
+// depth needs, then enclosed in double boxes (what a node holding two doubles knows of its point).
+std::vector<double> disc_boxes(const HyperbolicTreeEmbedding& e, const std::vector<std::uint32_t>& depth,
+                               const std::vector<Vertex>& parent) {
+  const std::size_t n = e.size();
+  const std::uint32_t q = e.tiling_degree();
+  const auto bits = static_cast<mpfr_prec_t>(128 + 3 * std::ceil(e.max_depth() * e.edge_length() / std::log(2.0)));
+  std::vector<__mpfr_struct> gen(4 * static_cast<std::size_t>(q)), mat(4 * n);
+  mpfr_t pi, t, h, c, s, tmp, x, y, den;
+  mpfr_inits2(bits, pi, t, h, c, s, tmp, x, y, den, static_cast<mpfr_ptr>(nullptr));
+  for (auto& v : gen) mpfr_init2(&v, bits);
+  for (auto& v : mat) mpfr_init2(&v, bits);
+  mpfr_const_pi(pi, MPFR_RNDN);
+  mpfr_div_ui(t, pi, 2 * q, MPFR_RNDN);
+  mpfr_cot(h, t, MPFR_RNDN);
+  for (std::uint32_t j = 0; j < q; ++j) {
+    mpfr_mul_ui(t, pi, j, MPFR_RNDN);
+    mpfr_div_ui(t, t, q, MPFR_RNDN);
+    mpfr_sin_cos(s, c, t, MPFR_RNDN);
+    mpfr_ptr g = &gen[4 * static_cast<std::size_t>(j)];
+    mpfr_div(g, s, h, MPFR_RNDN);
+    mpfr_mul(g + 1, c, h, MPFR_RNDN);
+    mpfr_neg(g + 1, g + 1, MPFR_RNDN);
+    mpfr_div(g + 2, c, h, MPFR_RNDN);
+    mpfr_mul(g + 3, s, h, MPFR_RNDN);
+  }
+  std::vector<Vertex> order(n);
+  for (Vertex v = 0; v < n; ++v) order[v] = v;
+  std::stable_sort(order.begin(), order.end(), [&](Vertex a, Vertex b) { return depth[a] < depth[b]; });
+  std::vector<double> out(4 * n);
+  for (const Vertex v : order) {
+    const mpfr_ptr m = &mat[4 * static_cast<std::size_t>(v)];
+    if (parent[v] == none) {
+      for (int k = 0; k < 4; ++k) mpfr_set_ui(m + k, k == 0 || k == 3 ? 1 : 0, MPFR_RNDN);
+    } else {
+      mpfr_mul2(m, &mat[4 * static_cast<std::size_t>(parent[v])], &gen[4 * static_cast<std::size_t>(e.child_index(v))], tmp);
+    }
+    // z = x + iy = M(i): x = (ac + bd)/(c² + d²), y = 1/(c² + d²); w = (x² + y² − 1 − 2ix)/(x² + (y + 1)²).
+    mpfr_mul(tmp, m + 2, m + 2, MPFR_RNDN);
+    mpfr_fma(tmp, m + 3, m + 3, tmp, MPFR_RNDN);
+    mpfr_ui_div(y, 1, tmp, MPFR_RNDN);
+    mpfr_mul(x, m, m + 2, MPFR_RNDN);
+    mpfr_fma(x, m + 1, m + 3, x, MPFR_RNDN);
+    mpfr_mul(x, x, y, MPFR_RNDN);
+    mpfr_add_ui(tmp, y, 1, MPFR_RNDN);
+    mpfr_sqr(den, tmp, MPFR_RNDN);
+    mpfr_fma(den, x, x, den, MPFR_RNDN);  // x² + (y + 1)²
+    mpfr_sqr(tmp, y, MPFR_RNDN);
+    mpfr_fma(tmp, x, x, tmp, MPFR_RNDN);
+    mpfr_sub_ui(tmp, tmp, 1, MPFR_RNDN);
+    mpfr_div(tmp, tmp, den, MPFR_RNDN);  // Re w
+    double* box = &out[4 * static_cast<std::size_t>(v)];
+    enclose(tmp, box[0], box[1]);
+    mpfr_mul_si(tmp, x, -2, MPFR_RNDN);
+    mpfr_div(tmp, tmp, den, MPFR_RNDN);  // Im w
+    enclose(tmp, box[2], box[3]);
+  }
+  for (auto& v : gen) mpfr_clear(&v);
+  for (auto& v : mat) mpfr_clear(&v);
+  mpfr_clears(pi, t, h, c, s, tmp, x, y, den, static_cast<mpfr_ptr>(nullptr));
+  mpfr_free_cache();
+  return out;
 }
 
 }  // namespace
@@ -283,6 +345,7 @@ void HyperbolicTreeEmbedding::build(const std::vector<std::uint32_t>& off, const
     }
   }
   gen_ = evaluation_matrices(q_);
+  if (o.coordinates == HyperbolicCoordinates::disc_double) disc_ = disc_boxes(*this, dist, par);
 }
 
 double HyperbolicTreeEmbedding::edge_length() const {
@@ -290,6 +353,30 @@ double HyperbolicTreeEmbedding::edge_length() const {
 }
 
 HyperbolicTreeEmbedding::Norm HyperbolicTreeEmbedding::norm(Vertex a, Vertex b) const {
+  if (disc_.empty()) return address_norm(a, b);
+  LAGUERRE_PRECONDITION(a < size() && b < size(), "hyperbolic distance between vertices " + std::to_string(a) +
+                                                      " and " + std::to_string(b) + " of a " +
+                                                      std::to_string(size()) + "-node embedding");
+  if (a == b) return {2, 2, 0};
+  // 2·cosh d = 2 + 4|w_a − w_b|² / ((1 − |w_a|²)(1 − |w_b|²)) on the boxes; a factor that may vanish
+  // (a box touching the unit circle) makes the quotient unbounded, hence every comparison undecided.
+  CGAL::Protect_FPU_rounding<true> guard;
+  const double* pa = &disc_[4 * static_cast<std::size_t>(a)];
+  const double* pb = &disc_[4 * static_cast<std::size_t>(b)];
+  const I xa(pa[0], pa[1]), ya(pa[2], pa[3]), xb(pb[0], pb[1]), yb(pb[2], pb[3]);
+  const I num = CGAL::square(xa - xb) + CGAL::square(ya - yb);
+  const I den = (I(1) - CGAL::square(xa) - CGAL::square(ya)) * (I(1) - CGAL::square(xb) - CGAL::square(yb));
+  if (!(den.inf() > 0)) return {2, std::numeric_limits<double>::infinity(), 0};
+  const I f = I(2) + I(4) * num / den;
+  return {f.inf(), f.sup(), 0};
+}
+
+std::span<const double> HyperbolicTreeEmbedding::disc_box(Vertex v) const {
+  if (disc_.empty()) return {};
+  return {&disc_[4 * static_cast<std::size_t>(v)], 4};
+}
+
+HyperbolicTreeEmbedding::Norm HyperbolicTreeEmbedding::address_norm(Vertex a, Vertex b) const {
   LAGUERRE_PRECONDITION(a < size() && b < size(), "hyperbolic distance between vertices " + std::to_string(a) +
                                                       " and " + std::to_string(b) + " of a " +
                                                       std::to_string(size()) + "-node embedding");
@@ -344,7 +431,7 @@ std::optional<Sign> HyperbolicTreeEmbedding::compare_distance(Vertex t, Vertex a
 
 double HyperbolicTreeEmbedding::distance(Vertex a, Vertex b) const {
   if (a == b) return 0;
-  const Norm f = norm(a, b);
+  const Norm f = address_norm(a, b);
   const double ln_f = std::log(0.5 * (f.lo + f.hi)) + f.exp * std::log(4.0);
   return ln_f > 30 ? ln_f : std::acosh(0.5 * std::exp(ln_f));  // acosh(F/2) = ln F − O(F⁻²)
 }

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "laguerre/core/Error.hpp"
@@ -304,6 +305,59 @@ TEST(HyperbolicEmbedding, DeepPathIsRoutedExactlyWhereDiscCoordinatesWouldNeedTh
     ASSERT_TRUE(hop.certified) << v;
     EXPECT_EQ(adj[v][hop.next], v + 1);
   }
+}
+
+namespace {
+/// Greedy hops from s to t with hyperbolic_hop: "delivered", "uncertified" or "dead_end", checking
+/// with the (exact) address evaluation that every hop taken strictly decreases the distance.
+std::string walk(const HyperbolicTreeEmbedding& e, const Adjacency& adj, const HyperbolicTreeEmbedding& exact, Vertex s,
+                 Vertex t) {
+  for (Vertex v = s; v != t;) {
+    const HyperbolicHop hop = hyperbolic_hop(e, adj[v], v, t);
+    if (hop.next == adj[v].size()) return hop.certified ? "dead_end" : "uncertified";
+    const Vertex u = adj[v][hop.next];
+    EXPECT_EQ(exact.compare_distance(t, u, v), Sign::negative) << "a hop that does not get closer: " << v << " -> " << u;
+    v = u;
+  }
+  return "delivered";
+}
+}  // namespace
+
+TEST(HyperbolicEmbedding, DiscCoordinatesInDoublesFailDetectablyOnADeepPath) {
+  // The classical representation: each node holds its Poincaré-disc point in two doubles. Its boxes
+  // reach the unit circle once d(root, v) exceeds ~37 (1 − |w|² ≈ 4e^{−d} below the doubles' spacing
+  // near 1), from where comparisons are undecided: routes are reported `uncertified`, never
+  // delivered on a guess. The address representation delivers the same pairs.
+  const std::size_t n = 401;
+  const Adjacency adj = path(n);
+  HyperbolicOptions o;
+  o.coordinates = HyperbolicCoordinates::disc_double;
+  const HyperbolicTreeEmbedding disc(adj, o), exact(adj);
+  ASSERT_EQ(disc.root(), 200u);
+  ASSERT_EQ(disc.disc_box(0).size(), 4u);
+  EXPECT_TRUE(exact.disc_box(0).empty());
+  // Where both decide, they agree: the enclosures of 2·cosh d overlap.
+  for (Vertex v = 190; v <= 210; ++v) {
+    const auto a = disc.norm(v, 200), b = exact.address_norm(v, 200);
+    if (v == 200) continue;
+    EXPECT_LE(std::max(a.lo, b.lo * std::ldexp(1.0, 2 * b.exp)), std::min(a.hi, b.hi * std::ldexp(1.0, 2 * b.exp))) << v;
+  }
+  // Near the root the double coordinates still route; from the ends they cannot, and say so.
+  EXPECT_EQ(walk(disc, adj, exact, 195, 205), "delivered");
+  EXPECT_EQ(walk(disc, adj, exact, 0, 400), "uncertified");
+  EXPECT_EQ(walk(disc, adj, exact, 400, 0), "uncertified");
+  EXPECT_EQ(walk(exact, adj, exact, 0, 400), "delivered");
+  EXPECT_EQ(walk(exact, adj, exact, 400, 0), "delivered");
+  std::size_t uncertified = 0, delivered = 0;
+  for (Vertex s = 140; s <= 260; s += 10)
+    for (Vertex t = 140; t <= 260; t += 10) {
+      if (s == t) continue;
+      const std::string r = walk(disc, adj, exact, s, t);
+      EXPECT_NE(r, "dead_end");
+      (r == "delivered" ? delivered : uncertified) += 1;
+    }
+  EXPECT_GT(uncertified, 0u);
+  EXPECT_GT(delivered, 0u);
 }
 
 TEST(HyperbolicEmbedding, RejectsBadInput) {

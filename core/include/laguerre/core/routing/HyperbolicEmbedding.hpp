@@ -29,10 +29,18 @@
 
 namespace laguerre::core {
 
+/// What a node holds as its coordinate, and so what the distance comparisons are evaluated from.
+enum class HyperbolicCoordinates {
+  address,      ///< its tree address: exact; distances along the reduced tree path (the default)
+  disc_double,  ///< its Poincaré-disc point rounded to two doubles (the classical representation):
+                ///< comparisons from the rounding boxes, undecided once the boxes reach the boundary
+};
+
 /// Options of the embedding.
 struct HyperbolicOptions {
   Vertex root = none;              ///< the tree's root; none: the middle of a double BFS sweep's path
   std::uint32_t tiling_degree = 0; ///< q; 0: max(3, max tree degree); else at least that (InputError)
+  HyperbolicCoordinates coordinates = HyperbolicCoordinates::address;  ///< what nodes hold
 };
 
 /// The embedding of one connected graph. Deterministic: a function of the adjacency order and options.
@@ -60,7 +68,8 @@ public:
   /// Sign of d(a, t) − d(b, t) in the exact embedding, or nothing when the interval evaluation cannot
   /// decide it (an exact tie, or the numbers' limit).
   std::optional<Sign> compare_distance(Vertex t, Vertex a, Vertex b) const;
-  /// d(a, b), approximately (double, from the same evaluation): for tests and statistics only.
+  /// d(a, b), approximately (double, from the address evaluation whatever the coordinates): for tests
+  /// and statistics only.
   double distance(Vertex a, Vertex b) const;
 
   /// Bits of v's address: ⌈log2 q⌉ per tree level (what a node stores and a coordinate message
@@ -75,8 +84,12 @@ public:
     double lo = 0, hi = 0;  ///< enclosure of the mantissa
     int exp = 0;            ///< value = mantissa · 4^exp
   };
-  /// 2·cosh d(a, b), enclosed.
+  /// 2·cosh d(a, b), enclosed, from the nodes' coordinates (HyperbolicOptions::coordinates).
   Norm norm(Vertex a, Vertex b) const;
+  /// The same from the addresses, whatever the coordinates.
+  Norm address_norm(Vertex a, Vertex b) const;
+  /// The disc_double coordinates of v as enclosing boxes (x_lo, x_hi, y_lo, y_hi); empty otherwise.
+  std::span<const double> disc_box(Vertex v) const;
 
 private:
   void build(const std::vector<std::uint32_t>& offsets, const std::vector<Vertex>& targets, const HyperbolicOptions& o);
@@ -85,7 +98,8 @@ private:
   std::vector<std::uint32_t> depth_, index_;
   Vertex root_ = none;
   std::uint32_t q_ = 3, max_depth_ = 0, sweep_length_ = 0;
-  std::vector<double> gen_;  // per j: G_j enclosure, 8 doubles (lo, hi of a, b, c, d)
+  std::vector<double> gen_;   // evaluation matrices (see the .cpp), 8 doubles each
+  std::vector<double> disc_;  // disc_double: 4 doubles per node
 };
 
 /// What setting the embedding up costs in a distributed run (counted, not simulated: each node sends
