@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "laguerre/core/routing/HyperbolicEmbedding.hpp"
@@ -61,10 +62,12 @@ TEST(HyperbolicBaseline, BundledScenarioDeliversEveryPairOnFieldsWithHoles) {
 }
 
 TEST(HyperbolicBaseline, DoubleDiscCoordinatesAreReportedUncertifiedOnTheField) {
-  // One 500-sensor deployment of the bundled scenario: the addresses deliver every sampled pair;
-  // the classical double disc coordinates leave some undecided and never take a hop that is not
-  // strictly closer (checked against the address evaluation).
-  const Scenario s = small(500, 1);
+  // One deployment of the bundled scenario (500 sensors; LAGUERRE_HYPERBOLIC_FIELD_N=5000 for the
+  // other size): the addresses deliver every sampled pair; the classical double disc coordinates
+  // leave some undecided and never take a hop that is not strictly closer (checked against the
+  // address evaluation).
+  const char* env = std::getenv("LAGUERRE_HYPERBOLIC_FIELD_N");
+  const Scenario s = small(env ? std::stoul(env) : 500, 1);
   const auto plan = plan_runs(s).at(0);
   const Topology topo = build_topology(s.points[0].config.topology.generator, s.points[0].config.topology.params,
                                        plan.topology_seed, 0);
