@@ -13,10 +13,13 @@
 // Distances: for A ∈ SL(2, R), 2·cosh d(i, A·i) = ‖A‖_F² (a² + b² + c² + d²). Hence
 // 2·cosh d(M_a(i), M_b(i)) = ‖M_a⁻¹ M_b‖_F², and M_a⁻¹ M_b is the product along the tree path from a
 // to b once the common prefix of the two words is cancelled — symbolically, so nothing near the
-// boundary is ever rounded. The product is evaluated in double interval arithmetic (CGAL::Interval_nt,
-// directed rounding) and rescaled by a power of two after every factor (the entries grow like
-// e^{length·D/2}, which would overflow doubles beyond ~700/D·2 hops), so the norm is an enclosure
-// m·4^e. Generator entries are enclosed from a 256-bit MPFR evaluation widened by one ulp.
+// boundary is ever rounded. Up to rotations (orthogonal: they leave the norm alone) it is
+// H·G_{t1}⋯G_{t(L−1)} with every turn t in [1, q), evaluated as (H·C)·P_{t1}⋯P_{t(L−1)}·C⁻¹ where
+// P_t = C⁻¹G_tC has nonnegative entries (C maps [0, ∞] onto the arc [−h, h] that every G_t maps into
+// itself): no cancellation and no wrapping effect inside the product. Double interval arithmetic
+// (CGAL::Interval_nt, directed rounding), rescaled by a power of two after every factor (the entries
+// grow like e^{length·D/2}), gives an enclosure m·4^e. Matrix entries are enclosed from a 256-bit MPFR
+// evaluation widened by one ulp. docs/hyperbolic-baseline.md has the derivation and the measurements.
 
 #include "laguerre/core/routing/HyperbolicEmbedding.hpp"
 
