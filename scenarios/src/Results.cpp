@@ -58,7 +58,10 @@ std::string results_json(const Scenario& scenario, const std::vector<RunRecord>&
                                         {"stretch_p95", num(s.stretch_p95)},
                                         {"stretch_max", num(s.stretch_max)},
                                         {"hops_mean", num(s.hops_mean)},
-                                        {"positions", s.positions}};
+                                        {"positions", s.positions},
+                                        {"setup_messages_per_node", num(s.setup_messages_per_node)},
+                                        {"coordinate_bits_mean", num(s.coordinate_bits_mean)},
+                                        {"coordinate_bits_max", num(s.coordinate_bits_max)}};
     nlohmann::ordered_json run = {{"point", r.plan.point},
                           {"repetition", r.plan.repetition},
                           {"seed", r.plan.seed},

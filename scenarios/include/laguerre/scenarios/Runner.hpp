@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -78,7 +79,12 @@ struct SchemeResult {
   double stretch_p95 = 0;                            ///< 95th percentile (nearest rank)
   double stretch_max = 0;                            ///< largest
   double hops_mean = 0;                              ///< mean hops of delivered pairs
-  std::string positions;                             ///< "packing" or "physical"
+  std::string positions;                             ///< "packing", "physical" or "tree" (hyperbolic)
+  /// Schemes with their own setup (hyperbolic): messages per node to set it up, and the bits of a
+  /// node's coordinate (mean, max); NaN for the others, whose setup is the run's protocol.
+  double setup_messages_per_node = std::numeric_limits<double>::quiet_NaN();
+  double coordinate_bits_mean = std::numeric_limits<double>::quiet_NaN();
+  double coordinate_bits_max = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The result of one run.
