@@ -156,6 +156,7 @@ LiveOutcome run_live(const core::PlanarGraph& g, const std::vector<core::Point2>
 
   sim::LiveConfig config;
   config.processes = live.processes;
+  config.process_of = live.process_of;
   config.base_port = live.base_port;
   config.timeout_seconds = live.timeout_seconds;
   config.fail_worker = live.fail_worker;

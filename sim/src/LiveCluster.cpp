@@ -253,7 +253,7 @@ private:
 struct LiveCluster::Worker {
   pid_t pid = -1;
   int fd = -1;
-  std::size_t first = 0, end = 0;
+  std::size_t nodes = 0, first = 0;  // how many vertices it hosts, the smallest
   std::uint16_t port = 0;
   std::vector<std::byte> in;
   bool reaped = false;
@@ -297,16 +297,32 @@ LiveCluster::LiveCluster(const core::PlanarGraph& g, LiveConfig config, LiveProg
   deadline_ = start + static_cast<std::int64_t>(config_.timeout_seconds * 1e9);
   config_.host.epoch = start;
   config_.host.run_tag = static_cast<std::uint32_t>(std::random_device{}());
-  const std::vector<std::size_t> ends = partition_blocks(n, config_.processes);
-  std::vector<std::size_t> process_of(n);
-  for (std::size_t k = 0, v = 0; k < ends.size(); ++k)
-    for (; v < ends[k]; ++v) process_of[v] = k;
-  std::fflush(nullptr);  // nothing buffered is written twice by the children
+  std::vector<std::size_t> process_of = config_.process_of;
+  if (process_of.empty()) {
+    const std::vector<std::size_t> ends = partition_blocks(n, config_.processes);
+    process_of.resize(n);
+    for (std::size_t k = 0, v = 0; k < ends.size(); ++k)
+      for (; v < ends[k]; ++v) process_of[v] = k;
+  }
+  if (process_of.size() != n)
+    throw core::InputError("--partition", 0,
+                           "one worker per vertex (" + std::to_string(n) + "), found " + std::to_string(process_of.size()));
   workers_.resize(config_.processes);
+  for (std::size_t v = n; v-- > 0;) {
+    if (process_of[v] >= config_.processes)
+      throw core::InputError("--partition", 0,
+                             "workers 0.." + std::to_string(config_.processes - 1) + ", found worker " +
+                                 std::to_string(process_of[v]) + " for vertex " + std::to_string(v));
+    Worker& w = workers_[process_of[v]];
+    ++w.nodes;
+    w.first = v;
+  }
+  for (std::size_t k = 0; k < workers_.size(); ++k)
+    if (workers_[k].nodes == 0)
+      throw core::InputError("--partition", 0, "every worker hosting a vertex, found none for worker " + std::to_string(k));
+  std::fflush(nullptr);  // nothing buffered is written twice by the children
   for (std::size_t k = 0; k < config_.processes; ++k) {
     Worker& w = workers_[k];
-    w.first = k == 0 ? 0 : ends[k - 1];
-    w.end = ends[k];
     int sv[2];
     if (::socketpair(AF_UNIX, SOCK_STREAM, 0, sv) != 0)
       fail("cannot create the control channel of worker " + std::to_string(k) + ": " + std::strerror(errno));
@@ -403,8 +419,8 @@ LiveCluster::Message LiveCluster::wait_message(std::size_t& from, int max_wait_m
       if (m.type == msg_error) {
         const bool input = !m.body.empty() && m.body[0] == std::byte{2};
         const std::string text(reinterpret_cast<const char*>(m.body.data()) + 1, m.body.size() - (m.body.empty() ? 0 : 1));
-        fail("worker " + std::to_string(k) + " (nodes " + std::to_string(workers_[k].first) + ".." +
-                 std::to_string(workers_[k].end - 1) + "): " + text,
+        fail("worker " + std::to_string(k) + " (" + std::to_string(workers_[k].nodes) + " nodes from vertex " +
+                 std::to_string(workers_[k].first) + "): " + text,
              input);
       }
       return m;
@@ -438,7 +454,7 @@ LiveCluster::Message LiveCluster::wait_message(std::size_t& from, int max_wait_m
         }
         ::wait4(w.pid, &w.status, 0, &w.usage);
         w.reaped = true;
-        fail("worker " + std::to_string(k) + " (nodes " + std::to_string(w.first) + ".." + std::to_string(w.end - 1) +
+        fail("worker " + std::to_string(k) + " (" + std::to_string(w.nodes) + " nodes from vertex " + std::to_string(w.first) +
              ", port " + std::to_string(w.port) + ") " + describe_status(w.status) +
              " during phase " + std::to_string(phase_) + "; the other workers were stopped");
       }
@@ -541,8 +557,8 @@ std::vector<WorkerReport> LiveCluster::finish() {
     Worker& w = workers_[k];
     ::wait4(w.pid, &w.status, 0, &w.usage);
     w.reaped = true;
+    reports[k].nodes = w.nodes;
     reports[k].first = w.first;
-    reports[k].end = w.end;
     reports[k].port = w.port;
     reports[k].peak_memory_bytes = static_cast<std::uint64_t>(w.usage.ru_maxrss) * 1024;
     reports[k].cpu_seconds = static_cast<double>(w.usage.ru_utime.tv_sec + w.usage.ru_stime.tv_sec) +

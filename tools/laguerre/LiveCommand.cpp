@@ -8,6 +8,7 @@
 
 #include "Commands.hpp"
 #include "Common.hpp"
+#include "Parallel.hpp"
 #include "ProtocolSummary.hpp"
 #include "ScenarioCli.hpp"
 #include "laguerre/core/packing/PackingNames.hpp"
@@ -23,8 +24,9 @@ namespace {
 constexpr CommandHelp live_help{
     "live",
     "Run the packing protocol and forwarding over UDP on 127.0.0.1, the nodes spread over processes.",
-    "The launcher forks --processes workers; worker k hosts a contiguous block of the nodes (by index)\n"
-    "on one UDP socket (127.0.0.1, port --base-port + k, or free ports with 0), messages between nodes\n"
+    "The launcher forks --processes workers; worker k hosts a part of the nodes (--partition blocks:\n"
+    "a contiguous block of indices; metis: a METIS k-way partition, as under mpirun, which cuts fewer\n"
+    "links and so sends fewer datagrams) on one UDP socket (127.0.0.1, port --base-port + k, or free ports with 0), messages between nodes\n"
     "of one worker stay in memory. Packing runs first, then every selected pair sends a packet per\n"
     "--scheme, forwarded hop by hop. In sync mode the result is core::pack's bit for bit (--verify),\n"
     "whatever the timing; --loss drops messages at the sender and turns the reliability layer on,\n"
@@ -41,6 +43,7 @@ constexpr CommandHelp live_help{
 struct LiveArgs {
   GraphArgs graph;
   std::size_t processes = 1;
+  std::string partition = "blocks";
   std::uint16_t base_port = 0;
   double loss = 0;
   bool reliable = false;
@@ -110,6 +113,8 @@ int run_live(const LiveArgs& a) {
   const LoadedGraph loaded = load_graph_or_scenario(a.graph);
   const core::PlanarGraph& g = loaded.input.graph;
   const auto pairs = core::select_pairs(g.num_vertices(), selection);
+  if (core::parse_name(scenarios::live_partition_names, a.partition, "--partition") == scenarios::LivePartition::metis)
+    live.process_of = metis_workers(g, a.processes);
   const scenarios::LiveOutcome out = scenarios::run_live(g, loaded.input.positions, setup, live, schemes, pairs);
   const std::string verify = a.verify ? scenarios::verify_against_core(g, loaded.kind, setup, out.packing) : "";
 
@@ -128,8 +133,8 @@ int run_live(const LiveArgs& a) {
                 static_cast<unsigned long long>(c.local_deliveries), static_cast<double>(peak) / (1024.0 * 1024.0));
   nlohmann::json workers = nlohmann::json::array();
   for (const sim::WorkerReport& w : out.workers)
-    workers.push_back({{"first_node", w.first},
-                       {"nodes", w.end - w.first},
+    workers.push_back({{"nodes", w.nodes},
+                       {"first_node", w.first},
                        {"port", w.port},
                        {"datagrams_sent", w.counters.datagrams_sent},
                        {"datagrams_received", w.counters.datagrams_received},
@@ -174,8 +179,10 @@ Action add_live_command(CLI::App& app) {
   const auto c = add_command<LiveArgs>(app, live_help);
   add_graph_options(*c.cmd, c.args->graph, "graph", "Graph file (edge list, coords or planar_code) or scenario file (.yaml)");
   add_outer_option(*c.cmd, c.args->graph);
-  c.cmd->add_option("--processes,-P", c.args->processes, "Worker processes (each hosts a block of nodes)")
+  c.cmd->add_option("--processes,-P", c.args->processes, "Worker processes (each hosts a part of the nodes)")
       ->check(CLI::Range(1, 256))->capture_default_str();
+  add_choice(*c.cmd, "--partition", c.args->partition, scenarios::live_partition_names,
+             "Nodes per worker: blocks of indices, or metis (needs the MPI build's METIS)");
   c.cmd->add_option("--base-port", c.args->base_port, "Worker k binds 127.0.0.1:BASE+k (0: free ports)")
       ->capture_default_str();
   c.cmd->add_option("--loss", c.args->loss, "Loss probability per message, at the sender (turns the reliability layer on)")

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <memory>
 
+#include "laguerre/core/Error.hpp"
+
 #ifdef LAGUERRE_WITH_MPI
 #include "laguerre/sim/mpi/Parallel.hpp"
 #endif
@@ -53,6 +55,17 @@ ParallelContext::~ParallelContext() = default;
 #endif
 
 sim::HostRunner* host_runner() { return runner.get(); }
+
+std::vector<std::size_t> metis_workers(const core::PlanarGraph& g, std::size_t parts) {
+#ifdef LAGUERRE_WITH_MPI
+  const std::vector<int> owner = sim::mpi::metis_partition(sim::network_of(g), static_cast<int>(parts));
+  return {owner.begin(), owner.end()};
+#else
+  (void)g, (void)parts;
+  throw core::InputError("--partition", 0, "blocks: this build has no METIS (sim/mpi was not built; install libopenmpi-dev "
+                                           "and libmetis-dev), found metis");
+#endif
+}
 
 int mpi_ranks() { return world_ranks; }
 

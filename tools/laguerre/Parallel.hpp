@@ -6,6 +6,10 @@
 /// the parallel kernel (same results as sequentially; see sim/mpi). Otherwise it is sequential and
 /// host_runner() is null.
 
+#include <cstddef>
+#include <vector>
+
+#include "laguerre/core/graph/PlanarGraph.hpp"
 #include "laguerre/sim/HostRunner.hpp"
 
 namespace laguerre::tools {
@@ -32,5 +36,9 @@ int mpi_ranks();
 
 /// The runner the simulation commands use: the MPI one on more than one rank, else nullptr.
 sim::HostRunner* host_runner();
+
+/// The worker of each vertex of `g` over `parts` workers by sim/mpi's METIS partition (what
+/// `live --partition metis` uses). Throws core::InputError when the program was built without MPI.
+std::vector<std::size_t> metis_workers(const core::PlanarGraph& g, std::size_t parts);
 
 }  // namespace laguerre::tools

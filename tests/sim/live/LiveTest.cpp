@@ -78,7 +78,7 @@ TEST(LiveRun, OneTwoAndFourProcessesGiveCorePackAndTheSimulatorsForwarding) {
     const scenarios::LiveOutcome out = scenarios::run_live(gr.g, gr.positions, setup, live_setup(p), schemes, pairs);
     expect_core_pack(gr, setup, out);
     ASSERT_EQ(out.workers.size(), p);
-    EXPECT_EQ(out.workers.back().end, gr.g.num_vertices());
+    EXPECT_EQ(out.workers.back().first + out.workers.back().nodes, gr.g.num_vertices());
     EXPECT_EQ(out.packing.rounds, sim.rounds);
     // One process never touches the socket; several do, and nothing is lost on the way.
     EXPECT_EQ(out.total.datagrams_sent == 0, p == 1);
@@ -93,6 +93,33 @@ TEST(LiveRun, OneTwoAndFourProcessesGiveCorePackAndTheSimulatorsForwarding) {
       EXPECT_EQ(out.forwarding[s].stretch_max, sim_fwd[s].stretch_max);
     }
   }
+}
+
+TEST(LiveRun, AnyPartitionGivesTheSameResult) {
+  // Nodes dealt round-robin over three workers (every link but a few crosses processes, the worst
+  // partition): still core::pack bit for bit and the simulator's forwarding.
+  const Graph gr = load("delaunay-60.txt");
+  scenarios::ProtocolSetup setup;
+  const auto pairs = core::select_pairs(gr.g.num_vertices(), core::PairSelection{100, 3});
+  const std::vector<core::Scheme> schemes{core::Scheme::greedy_power};
+  const scenarios::ProtocolOutcome sim = scenarios::run_packing_protocol(gr.g, gr.positions, setup);
+  const auto sim_fwd = scenarios::run_forwarding(gr.g, sim.circles, gr.positions, setup.link, setup.seed, schemes, pairs);
+  scenarios::LiveSetup live = live_setup(3);
+  for (std::size_t v = 0; v < gr.g.num_vertices(); ++v) live.process_of.push_back(v % 3);
+  const scenarios::LiveOutcome out = scenarios::run_live(gr.g, gr.positions, setup, live, schemes, pairs);
+  expect_core_pack(gr, setup, out);
+  ASSERT_EQ(out.workers.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(out.workers[k].nodes, 20u);
+    EXPECT_EQ(out.workers[k].first, k);
+  }
+  EXPECT_EQ(out.forwarding[0].delivered, sim_fwd[0].delivered);
+  EXPECT_EQ(out.forwarding[0].hops_mean, sim_fwd[0].hops_mean);
+  // A partition that leaves a worker empty, or does not cover the vertices, is refused before forking.
+  live.process_of.assign(gr.g.num_vertices(), 0);
+  EXPECT_THROW(scenarios::run_live(gr.g, gr.positions, setup, live, schemes, pairs), core::InputError);
+  live.process_of.assign(5, 0);
+  EXPECT_THROW(scenarios::run_live(gr.g, gr.positions, setup, live, schemes, pairs), core::InputError);
 }
 
 TEST(LiveRun, InducedLossIsMaskedByTheReliabilityLayer) {
@@ -136,7 +163,7 @@ TEST(LiveRun, ADeadWorkerEndsTheRunWithAClearError) {
     ADD_FAILURE() << "no error for a dead worker";
   } catch (const std::runtime_error& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("worker 1 (nodes 20..39"), std::string::npos) << what;
+    EXPECT_NE(what.find("worker 1 (20 nodes from vertex 20"), std::string::npos) << what;
     EXPECT_NE(what.find("exited with status 70"), std::string::npos) << what;
   }
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));

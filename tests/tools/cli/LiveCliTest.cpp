@@ -30,7 +30,21 @@ TEST(CliLive, TwoProcessesGiveTheSimulatorsResultBitForBit) {
   EXPECT_EQ(live["live"]["processes"], 2);
   ASSERT_EQ(live["live"]["workers"].size(), 2u);
   EXPECT_EQ(live["live"]["workers"][1]["first_node"], 30);
+  EXPECT_EQ(live["live"]["workers"][1]["nodes"], 30);
   EXPECT_GT(live["live"]["datagrams"].get<std::uint64_t>(), 0u);
+}
+
+TEST(CliLive, MetisPartitionGivesTheSameResult) {
+  const nlohmann::json sim = run_json("simulate " + graph3 + " --pairs 100 --json");
+  const nlohmann::json live =
+      run_json("live " + graph3 + " --processes 3 --partition metis --pairs 100 --verify --timeout 30 --json");
+  ASSERT_TRUE(live.is_object());
+  EXPECT_EQ(live["verify"], "identical to core::pack, bit for bit");
+  for (const char* key : {"iterations", "rounds", "converged_nodes", "delivered", "hops_mean"}) EXPECT_EQ(live[key], sim[key]) << key;
+  std::uint64_t nodes = 0;
+  for (const auto& w : live["live"]["workers"]) nodes += w["nodes"].get<std::uint64_t>();
+  EXPECT_EQ(nodes, 60u);
+  EXPECT_EQ(run("live " + graph3 + " --partition halves").status, 2);
 }
 
 TEST(CliLive, TextSummaryHasSimulatesLinesAndTheLiveLine) {

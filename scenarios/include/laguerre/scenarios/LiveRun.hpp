@@ -12,14 +12,24 @@
 #include <utility>
 #include <vector>
 
+#include "laguerre/core/EnumNames.hpp"
 #include "laguerre/scenarios/ProtocolRun.hpp"
 #include "laguerre/sim/LiveCluster.hpp"
 
 namespace laguerre::scenarios {
 
 /// How to run live (the protocol itself is described by a ProtocolSetup).
+/// How `laguerre live` spreads the nodes over its workers.
+enum class LivePartition {
+  blocks,  ///< contiguous blocks of vertex indices (sim::LiveCluster::partition_blocks)
+  metis,   ///< METIS k-way, as the MPI kernel partitions (fewer links between workers)
+};
+inline constexpr core::EnumNames<LivePartition, 2> live_partition_names{
+    {{LivePartition::blocks, "blocks"}, {LivePartition::metis, "metis"}}};
+
 struct LiveSetup {
   std::size_t processes = 1;              ///< worker processes
+  std::vector<std::size_t> process_of;    ///< worker of each vertex (sim::LiveConfig::process_of); empty: blocks
   std::uint16_t base_port = 0;            ///< worker k binds base_port + k; 0: free ports
   double timeout_seconds = 60;            ///< bound on the whole run
   int socket_buffer = 4 << 20;            ///< SO_RCVBUF / SO_SNDBUF requested

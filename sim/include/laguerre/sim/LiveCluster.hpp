@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// Several live processes on 127.0.0.1: a launcher forks P workers, each hosting a contiguous block of
-/// the graph's vertices on its own UdpHost, and drives them through phases (e.g. packing, then
+/// Several live processes on 127.0.0.1: a launcher forks P workers, each hosting a part of the graph's
+/// vertices (a contiguous block, or a given partition) on its own UdpHost, and drives them through phases (e.g. packing, then
 /// forwarding). Each worker talks to the launcher over a Unix socket pair (control messages and
 /// results); nodes talk over UDP only.
 ///
@@ -58,6 +58,9 @@ T read_bytes(std::span<const std::byte> in, std::size_t& at) {
 /// How a live cluster runs.
 struct LiveConfig {
   std::size_t processes = 1;        ///< worker processes (≥ 1, ≤ vertices)
+  /// The worker of each vertex (e.g. a METIS partition); empty: contiguous blocks (partition_blocks).
+  /// Every worker must host at least one vertex.
+  std::vector<std::size_t> process_of;
   std::uint16_t base_port = 0;      ///< worker k binds base_port + k; 0: ports the kernel picks
   UdpHostConfig host;               ///< seed, loss, buffers, datagram size (port, tag, epoch: set per worker)
   double timeout_seconds = 60;      ///< the whole run, from the fork to the last result
@@ -84,8 +87,8 @@ public:
 
 /// One worker, after the run.
 struct WorkerReport {
-  std::size_t first = 0;                 ///< first vertex it hosted
-  std::size_t end = 0;                   ///< one past the last
+  std::size_t nodes = 0;                 ///< vertices it hosted
+  std::size_t first = 0;                 ///< the smallest of them
   std::uint16_t port = 0;                ///< its UDP port
   UdpCounters counters;                  ///< its host's counters (kernel drops read at the end)
   std::uint64_t peak_memory_bytes = 0;   ///< its peak resident set size (wait4)
@@ -95,8 +98,8 @@ struct WorkerReport {
 /// The launcher's side of P worker processes.
 class LiveCluster {
 public:
-  /// Forks the workers (worker k hosts the vertex block partition_blocks(n, P)[k]) and waits until
-  /// each has bound its port; `program` is copied into each worker by fork. Throws core::InputError
+  /// Forks the workers (worker k hosts the vertices v with process_of[v] == k, by default the block
+  /// partition_blocks(n, P)[k]) and waits until each has bound its port; `program` is copied into each worker by fork. Throws core::InputError
   /// for a bad configuration or a port in use, std::runtime_error if a process cannot start or a
   /// worker fails.
   LiveCluster(const core::PlanarGraph& g, LiveConfig config, LiveProgram& program, UdpHost::PhaseOf phase_of = {});
