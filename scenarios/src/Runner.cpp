@@ -14,6 +14,7 @@
 #include "laguerre/core/routing/HyperbolicEmbedding.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/scenarios/ProtocolRun.hpp"
+#include "laguerre/sim/LiveCluster.hpp"  // append_bytes, read_bytes
 
 namespace laguerre::scenarios {
 
@@ -229,6 +230,71 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
   return finish();
 }
 
+namespace {
+void put_text(std::vector<std::byte>& out, const std::string& text) {
+  sim::append_bytes(out, static_cast<std::uint64_t>(text.size()));
+  for (const char c : text) out.push_back(static_cast<std::byte>(c));
+}
+std::string get_text(std::span<const std::byte> in, std::size_t& at) {
+  const auto size = sim::read_bytes<std::uint64_t>(in, at);
+  LAGUERRE_PRECONDITION(size <= in.size() - at, "A run record's text runs past the end of its bytes.");
+  std::string text(reinterpret_cast<const char*>(in.data() + at), size);
+  at += size;
+  return text;
+}
+}  // namespace
+
+// The fields in declaration order (Runner.hpp); RunnerTest's round trip compares results_json and the
+// per-scheme fields of a decoded sweep with the original's.
+void encode_record(const RunRecord& r, std::vector<std::byte>& out) {
+  using sim::append_bytes;
+  append_bytes(out, r.plan);
+  append_bytes(out, r.status);
+  for (const std::string* t : {&r.message, &r.family, &r.topology, &r.topology_note, &r.kind}) put_text(out, *t);
+  append_bytes(out, r.nodes), append_bytes(out, r.edges), append_bytes(out, r.iterations), append_bytes(out, r.rounds);
+  append_bytes(out, r.holds_nodes), append_bytes(out, r.messages), append_bytes(out, r.bytes);
+  append_bytes(out, r.messages_per_node), append_bytes(out, r.max_node_messages), append_bytes(out, r.retransmissions);
+  append_bytes(out, r.simulated_seconds), append_bytes(out, r.events), append_bytes(out, r.exact_iterations);
+  append_bytes(out, r.core_lpd_iterations);
+  append_bytes(out, static_cast<std::uint64_t>(r.routing.size()));
+  for (const SchemeResult& x : r.routing) {
+    append_bytes(out, x.scheme), append_bytes(out, x.pairs), append_bytes(out, x.delivered);
+    append_bytes(out, x.delivery_rate), append_bytes(out, x.stretch_mean), append_bytes(out, x.stretch_p95);
+    append_bytes(out, x.stretch_max), append_bytes(out, x.hops_mean);
+    put_text(out, x.positions);
+    append_bytes(out, x.setup_messages_per_node), append_bytes(out, x.coordinate_bits_mean);
+    append_bytes(out, x.coordinate_bits_max);
+  }
+  append_bytes(out, r.wall_seconds);
+}
+
+RunRecord decode_record(std::span<const std::byte> in, std::size_t& at) {
+  using sim::read_bytes;
+  RunRecord r;
+  r.plan = read_bytes<RunPlan>(in, at);
+  r.status = read_bytes<RunStatus>(in, at);
+  for (std::string* t : {&r.message, &r.family, &r.topology, &r.topology_note, &r.kind}) *t = get_text(in, at);
+  r.nodes = read_bytes<std::size_t>(in, at), r.edges = read_bytes<std::size_t>(in, at);
+  r.iterations = read_bytes<std::uint32_t>(in, at), r.rounds = read_bytes<std::uint32_t>(in, at);
+  r.holds_nodes = read_bytes<std::size_t>(in, at), r.messages = read_bytes<std::uint64_t>(in, at);
+  r.bytes = read_bytes<std::uint64_t>(in, at), r.messages_per_node = read_bytes<double>(in, at);
+  r.max_node_messages = read_bytes<std::uint64_t>(in, at), r.retransmissions = read_bytes<std::uint64_t>(in, at);
+  r.simulated_seconds = read_bytes<double>(in, at), r.events = read_bytes<std::uint64_t>(in, at);
+  r.exact_iterations = read_bytes<int>(in, at), r.core_lpd_iterations = read_bytes<int>(in, at);
+  r.routing.resize(read_bytes<std::uint64_t>(in, at));
+  for (SchemeResult& x : r.routing) {
+    x.scheme = read_bytes<core::Scheme>(in, at), x.pairs = read_bytes<std::size_t>(in, at);
+    x.delivered = read_bytes<std::size_t>(in, at), x.delivery_rate = read_bytes<double>(in, at);
+    x.stretch_mean = read_bytes<double>(in, at), x.stretch_p95 = read_bytes<double>(in, at);
+    x.stretch_max = read_bytes<double>(in, at), x.hops_mean = read_bytes<double>(in, at);
+    x.positions = get_text(in, at);
+    x.setup_messages_per_node = read_bytes<double>(in, at), x.coordinate_bits_mean = read_bytes<double>(in, at);
+    x.coordinate_bits_max = read_bytes<double>(in, at);
+  }
+  r.wall_seconds = read_bytes<double>(in, at);
+  return r;
+}
+
 ScenarioResults run_scenario(const Scenario& scenario, const RunnerOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<RunPlan> plans = plan_runs(scenario);
@@ -238,11 +304,22 @@ ScenarioResults run_scenario(const Scenario& scenario, const RunnerOptions& opti
   unsigned jobs = options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
   jobs = static_cast<unsigned>(std::min<std::size_t>(jobs, std::max<std::size_t>(1, plans.size())));
   if (options.host_runner != nullptr) jobs = 1;  // its collective calls must come in plan order
+  LAGUERRE_PRECONDITION(options.split == nullptr || options.host_runner == nullptr,
+                        "Runs shared between processes run in each process (no host_runner).");
+  // The runs this process executes, in plan order: all, or its share of a RunSplit.
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0, dealt = 0; i < plans.size(); ++i) {
+    const bool keep = options.keep_artifacts && options.keep_artifacts(plans[i]);
+    const std::size_t owner = options.split == nullptr ? 0 : keep ? 0 : dealt++ % options.split->size();
+    if (options.split == nullptr || owner == options.split->rank()) mine.push_back(i);
+  }
+  if (options.split != nullptr) jobs = 1;
   std::atomic<std::size_t> next{0};
   std::size_t done = 0;
   std::mutex lock;
   auto worker = [&] {
-    for (std::size_t i = next++; i < plans.size(); i = next++) {
+    for (std::size_t k = next++; k < mine.size(); k = next++) {
+      const std::size_t i = mine[k];
       const bool keep = options.keep_artifacts && options.keep_artifacts(plans[i]);
       RunArtifacts art;
       RunRecord rec = execute_run(scenario, plans[i], keep ? &art : nullptr, options.host_runner);
@@ -252,7 +329,7 @@ ScenarioResults run_scenario(const Scenario& scenario, const RunnerOptions& opti
       if (has) out.artifacts[i] = std::move(art);
       ++done;
       if (options.on_progress)
-        options.on_progress({done, plans.size(),
+        options.on_progress({done, mine.size(),
                              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
     }
   };
@@ -262,6 +339,22 @@ ScenarioResults run_scenario(const Scenario& scenario, const RunnerOptions& opti
     std::vector<std::thread> threads;
     for (unsigned j = 0; j < jobs; ++j) threads.emplace_back(worker);
     for (auto& t : threads) t.join();
+  }
+  if (options.split != nullptr) {
+    std::vector<std::byte> bytes;
+    sim::append_bytes(bytes, static_cast<std::uint64_t>(mine.size()));
+    for (const std::size_t i : mine) sim::append_bytes(bytes, static_cast<std::uint64_t>(i)), encode_record(out.records[i], bytes);
+    const std::vector<std::byte> all = options.split->all_gather(bytes);
+    std::size_t at = 0, received = 0;
+    for (std::size_t rank = 0; rank < options.split->size(); ++rank)
+      for (auto count = sim::read_bytes<std::uint64_t>(all, at); count > 0; --count, ++received) {
+        const auto i = sim::read_bytes<std::uint64_t>(all, at);
+        LAGUERRE_PRECONDITION(i < plans.size(), "A shared run's index is not a planned run.");
+        out.records[i] = decode_record(all, at);
+      }
+    LAGUERRE_PRECONDITION(received == plans.size() && at == all.size(),
+                          "The processes sharing the runs returned " + std::to_string(received) + " records for " +
+                              std::to_string(plans.size()) + " runs.");
   }
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

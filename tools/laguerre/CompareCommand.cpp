@@ -33,12 +33,14 @@ int run_compare(const CompareArgs& a) {
   const std::string dir =
       a.run.out.empty() ? (fs::path("out") / (loaded->size() == 1 ? loaded->front().name + "-compare" : "compare")).string()
                         : a.run.out;
-  prepare_output_dir(dir, a.run.force, {"comparison.csv", "comparison.json"});
+  const bool writes = writes_outputs();  // under mpirun, rank 0 (see `run`)
+  if (writes) prepare_output_dir(dir, a.run.force, {"comparison.csv", "comparison.json"});
   std::vector<scenarios::ComparisonRow> rows;
   for (const scenarios::Scenario& s : *loaded) {
     Progress progress(s.name);
     scenarios::RunnerOptions options;
     options.jobs = a.run.jobs;
+    set_parallel(a.run, s, options);
     options.on_progress = [&](const scenarios::RunProgress& p) { progress.update(p); };
     const scenarios::ScenarioResults results = scenarios::run_scenario(s, options);
     progress.finish();
@@ -55,6 +57,7 @@ int run_compare(const CompareArgs& a) {
   }
   std::printf("\n");
   std::fputs(scenarios::comparison_table(rows).c_str(), stdout);
+  if (!writes) return 0;
   write_text_file((fs::path(dir) / "comparison.csv").string(), scenarios::comparison_csv(rows));
   write_text_file((fs::path(dir) / "comparison.json").string(), scenarios::comparison_json(rows));
   std::printf("\nwrote %s, %s", (fs::path(dir) / "comparison.csv").c_str(), (fs::path(dir) / "comparison.json").c_str());

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <memory>
 
 #include "laguerre/core/Error.hpp"
@@ -14,6 +15,7 @@ namespace laguerre::tools {
 
 namespace {
 std::unique_ptr<sim::HostRunner> runner;
+std::unique_ptr<scenarios::RunSplit> split;
 int world_ranks = 1;
 
 bool launched_by_mpi() {
@@ -23,6 +25,40 @@ bool launched_by_mpi() {
 }  // namespace
 
 #ifdef LAGUERRE_WITH_MPI
+namespace {
+/// RunSplit over MPI_COMM_WORLD: the sizes, then the bytes, gathered by every rank.
+class MpiRunSplit final : public scenarios::RunSplit {
+public:
+  MpiRunSplit() {
+    int r = 0, n = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &r);
+    MPI_Comm_size(MPI_COMM_WORLD, &n);
+    rank_ = static_cast<std::size_t>(r), size_ = static_cast<std::size_t>(n);
+  }
+  std::size_t rank() const override { return rank_; }
+  std::size_t size() const override { return size_; }
+  std::vector<std::byte> all_gather(std::span<const std::byte> mine) override {
+    if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+      throw core::InternalError("a rank's run records exceed 2 GiB");
+    const int count = static_cast<int>(mine.size());
+    std::vector<int> counts(size_), offsets(size_);
+    MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    long long total = 0;
+    for (std::size_t k = 0; k < size_; ++k) {
+      offsets[k] = static_cast<int>(total);
+      total += counts[k];
+      if (total > std::numeric_limits<int>::max()) throw core::InternalError("the run records exceed 2 GiB");
+    }
+    std::vector<std::byte> all(static_cast<std::size_t>(total));
+    MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, MPI_COMM_WORLD);
+    return all;
+  }
+
+private:
+  std::size_t rank_ = 0, size_ = 1;
+};
+}  // namespace
+
 ParallelContext::ParallelContext(int& argc, char**& argv) {
   if (!launched_by_mpi()) return;
   MPI_Init(&argc, &argv);
@@ -36,11 +72,12 @@ ParallelContext::ParallelContext(int& argc, char**& argv) {
     }
   }
   world_ranks = ranks_;
-  if (ranks_ > 1) runner = std::make_unique<sim::mpi::MpiHostRunner>();
+  if (ranks_ > 1) runner = std::make_unique<sim::mpi::MpiHostRunner>(), split = std::make_unique<MpiRunSplit>();
 }
 
 ParallelContext::~ParallelContext() {
   runner.reset();
+  split.reset();
   if (active_) MPI_Finalize();
 }
 #else
@@ -55,6 +92,8 @@ ParallelContext::~ParallelContext() = default;
 #endif
 
 sim::HostRunner* host_runner() { return runner.get(); }
+
+scenarios::RunSplit* run_split() { return split.get(); }
 
 std::vector<std::size_t> metis_workers(const core::PlanarGraph& g, std::size_t parts) {
 #ifdef LAGUERRE_WITH_MPI

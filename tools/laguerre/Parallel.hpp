@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "laguerre/core/graph/PlanarGraph.hpp"
+#include "laguerre/scenarios/Runner.hpp"
 #include "laguerre/sim/HostRunner.hpp"
 
 namespace laguerre::tools {
@@ -36,6 +37,10 @@ int mpi_ranks();
 
 /// The runner the simulation commands use: the MPI one on more than one rank, else nullptr.
 sim::HostRunner* host_runner();
+
+/// The sharing of a sweep's runs among the ranks (`run`, `compare`): every rank runs its share, each
+/// run sequentially, and all get every record (scenarios::RunSplit); nullptr on one rank.
+scenarios::RunSplit* run_split();
 
 /// The worker of each vertex of `g` over `parts` workers by sim/mpi's METIS partition (what
 /// `live --partition metis` uses). Throws core::InputError when the program was built without MPI.

@@ -34,15 +34,15 @@ int run_run(const RunArgs& a) {
   if (!loaded) return 2;
   const scenarios::Scenario& s = loaded->front();
   const std::string dir = a.run.out.empty() ? (fs::path("out") / s.name).string() : a.run.out;
-  // Under mpirun every rank runs the scenario (the protocol simulations on the parallel kernel);
-  // rank 0 alone prepares the folder and writes.
-  const bool writes = host_runner() == nullptr || host_runner()->is_root();
+  // Under mpirun every rank runs the scenario (its share of the runs, or every simulation on the
+  // parallel kernel: --mpi-split); rank 0 alone prepares the folder and writes.
+  const bool writes = writes_outputs();
   if (writes) prepare_output_dir(dir, a.run.force, {"results.json", "results.csv"});
   const scenarios::OutputSpec& outputs = s.points.front().config.outputs;
   Progress progress(s.name);
   scenarios::RunnerOptions options;
   options.jobs = a.run.jobs;
-  options.host_runner = host_runner();
+  set_parallel(a.run, s, options);
   options.on_progress = [&](const scenarios::RunProgress& p) { progress.update(p); };
   options.keep_artifacts = [&](const scenarios::RunPlan& p) {
     return p.repetition == 0 && s.points[p.point].config.outputs.pictures;

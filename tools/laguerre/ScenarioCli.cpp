@@ -8,6 +8,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "Parallel.hpp"
 #include "laguerre/core/Error.hpp"
 #include "laguerre/scenarios/ScenarioLoader.hpp"
 
@@ -24,7 +25,24 @@ void add_scenario_run_options(CLI::App& cmd, ScenarioRunArgs& args, const std::s
   cmd.add_option("--jobs,-j", args.jobs, "Worker threads (default: hardware threads)")->check(CLI::Range(1, 4096));
   cmd.add_flag("--force", args.force, "Replace the results in an existing result folder");
   cmd.add_option("--set", args.overrides, set_help);
+  cmd.add_option("--mpi-split", args.mpi_split,
+                 "Under mpirun: share the runs among the ranks (runs), or run each simulation on the parallel "
+                 "kernel (network); auto: runs when there are several")
+      ->check(CLI::IsMember({"auto", "runs", "network"}))
+      ->capture_default_str();
 }
+
+void set_parallel(const ScenarioRunArgs& args, const scenarios::Scenario& scenario, scenarios::RunnerOptions& options) {
+  if (mpi_ranks() <= 1) return;
+  const bool runs = args.mpi_split == "runs" ||
+                    (args.mpi_split == "auto" && scenario.points.size() * scenario.repetitions > 1);
+  if (runs)
+    options.split = run_split();
+  else
+    options.host_runner = host_runner();
+}
+
+bool writes_outputs() { return host_runner() == nullptr || host_runner()->is_root(); }
 
 std::optional<std::vector<scenarios::Scenario>> load_scenarios(const std::vector<std::string>& files,
                                                               const std::vector<std::string>& overrides) {

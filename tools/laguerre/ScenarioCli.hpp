@@ -22,7 +22,17 @@ struct ScenarioRunArgs {
   unsigned jobs = 0;                   ///< --jobs (0: hardware threads)
   bool force = false;                  ///< --force: replace the results in an existing folder
   std::vector<std::string> overrides;  ///< --set KEY=VALUE, repeatable
+  std::string mpi_split = "auto";      ///< --mpi-split: auto, runs or network (under mpirun)
 };
+
+/// Under mpirun (more than one rank), how `options` spreads the work (`--mpi-split`): `runs` shares the
+/// scenario's runs among the ranks (RunnerOptions::split, each run sequential), `network` runs every
+/// simulation on the parallel kernel (RunnerOptions::host_runner); `auto` is runs when `scenario` has
+/// more than one run. Nothing on one rank.
+void set_parallel(const ScenarioRunArgs& args, const scenarios::Scenario& scenario, scenarios::RunnerOptions& options);
+
+/// Whether this process writes results: always, except on the MPI ranks other than 0.
+bool writes_outputs();
 
 /// Registers the positional scenario file(s) (`name`, at most one unless `several`), -o (described by
 /// `out_help`), --jobs, --force and --set (described by `set_help`).

@@ -25,8 +25,9 @@ int main(int argc, char** argv) {
   Action diagram = add_diagram_command(app);
   Action mesh = add_mesh_command(app);
   return run_program(app, argc, argv, "laguerre", [&] {
-    if (parallel.ranks() > 1 && !app.got_subcommand("simulate") && !app.got_subcommand("run")) {
-      std::cerr << "laguerre: only 'simulate' and 'run' run across MPI ranks so far; run '"
+    if (parallel.ranks() > 1 && !app.got_subcommand("simulate") && !app.got_subcommand("run") &&
+        !app.got_subcommand("compare")) {
+      std::cerr << "laguerre: only 'simulate', 'run' and 'compare' run across MPI ranks so far; run '"
                 << app.get_subcommands().front()->get_name() << "' without mpirun (or with -np 1)\n";
       return 2;
     }

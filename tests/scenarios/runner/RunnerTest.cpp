@@ -1,9 +1,11 @@
 // The scenario runner: seed derivation, run planning, determinism across --jobs, outcomes.
 #include <gtest/gtest.h>
 
+#include <barrier>
 #include <cmath>
 #include <set>
 #include <string>
+#include <thread>
 
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
@@ -156,6 +158,89 @@ TEST(Runner, ResultsDoNotDependOnJobs) {
   }
   // The tables written from them are identical too (they hold no wall times but results.json's).
   EXPECT_EQ(results_csv(s, a.records), results_csv(s, b.records));
+}
+
+namespace {
+/// `size` processes sharing runs, played by threads: all_gather waits for every one's bytes.
+struct ThreadSplits {
+  explicit ThreadSplits(std::size_t size) : parts(size), sync(static_cast<std::ptrdiff_t>(size)) {}
+  struct One final : RunSplit {
+    ThreadSplits* all = nullptr;
+    std::size_t me = 0;
+    std::size_t rank() const override { return me; }
+    std::size_t size() const override { return all->parts.size(); }
+    std::vector<std::byte> all_gather(std::span<const std::byte> mine) override {
+      all->parts[me].assign(mine.begin(), mine.end());
+      all->sync.arrive_and_wait();
+      std::vector<std::byte> out;
+      for (const auto& p : all->parts) out.insert(out.end(), p.begin(), p.end());
+      all->sync.arrive_and_wait();  // nobody returns (and may run again) before all have read
+      return out;
+    }
+  };
+  std::vector<std::vector<std::byte>> parts;
+  std::barrier<> sync;
+};
+}  // namespace
+
+TEST(Runner, RunsSharedBetweenProcessesGiveTheSingleProcessResults) {
+  // good-sweep.yaml (16 runs: lossy, crashing and asynchronous points) shared by 3 processes: every
+  // process ends with every record, equal to a single process's in everything but wall times, and
+  // the runs that keep artifacts ran on process 0.
+  const Scenario s = load_scenario(data_dir + "/good-sweep.yaml");
+  RunnerOptions seq;
+  seq.jobs = 1;
+  const auto keep = [](const RunPlan& p) { return p.point == 1 && p.repetition == 0; };
+  seq.keep_artifacts = keep;
+  const ScenarioResults a = run_scenario(s, seq);
+  ThreadSplits splits(3);
+  std::vector<ThreadSplits::One> one(3);
+  std::vector<ScenarioResults> b(3);
+  std::vector<std::size_t> executed(3, 0);
+  std::vector<std::thread> threads;
+  for (std::size_t k = 0; k < 3; ++k) {
+    one[k].all = &splits, one[k].me = k;
+    threads.emplace_back([&, k] {
+      RunnerOptions o;
+      o.split = &one[k];
+      o.keep_artifacts = keep;
+      o.on_progress = [&, k](const RunProgress& p) { executed[k] = p.total; };
+      b[k] = run_scenario(s, o);
+    });
+  }
+  for (auto& t : threads) t.join();
+  EXPECT_EQ(executed[0] + executed[1] + executed[2], a.records.size());  // each run ran once, somewhere
+  EXPECT_EQ(executed[1], executed[2]);                                   // dealt round-robin after the kept one
+  const std::string expected = results_csv(s, a.records);
+  for (std::size_t k = 0; k < 3; ++k) {
+    SCOPED_TRACE("process " + std::to_string(k));
+    ASSERT_EQ(b[k].records.size(), a.records.size());
+    EXPECT_EQ(results_csv(s, b[k].records), expected);
+    for (std::size_t i = 0; i < a.records.size(); ++i) {
+      EXPECT_EQ(b[k].records[i].plan.seed, a.records[i].plan.seed);
+      EXPECT_EQ(b[k].artifacts[i].has_value(), k == 0 && a.artifacts[i].has_value()) << "run " << i;
+    }
+  }
+}
+
+TEST(Runner, RecordsRoundTripThroughTheirBytes) {
+  // Every run of a sweep with every scheme (hyperbolic too): decode(encode(r)) writes the same
+  // results.json as r (every field users see, wall times included), and the bytes are used up.
+  const Scenario s = from_text(
+      "name: x\nrepetitions: 2\ntopology: {generator: delaunay, n: 20}\n"
+      "routing: {schemes: [greedy-power, greedy-euclid, compass, gfg, hyperbolic], pairs: 50}\n"
+      "sweep:\n  network.loss: [0, 0.2]\n");
+  RunnerOptions o;
+  o.jobs = 1;
+  const ScenarioResults a = run_scenario(s, o);
+  std::vector<std::byte> bytes;
+  for (const RunRecord& r : a.records) encode_record(r, bytes);
+  std::vector<RunRecord> back;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < a.records.size(); ++i) back.push_back(decode_record(bytes, at));
+  EXPECT_EQ(at, bytes.size());
+  EXPECT_EQ(results_json(s, back), results_json(s, a.records));
+  EXPECT_EQ(results_csv(s, back), results_csv(s, a.records));
 }
 
 // On a packing that converged to LPD/GLPD greedy power routing delivers every pair (thesis Th. 5.2.5

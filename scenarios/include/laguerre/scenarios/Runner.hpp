@@ -21,6 +21,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -131,6 +132,28 @@ struct RunProgress {
   double elapsed_seconds = 0;     ///< since the start
 };
 
+/// Several processes sharing the runs of a sweep (e.g. MPI ranks: tools/laguerre/Parallel.cpp), every
+/// one calling run_scenario with the same scenario: each executes the runs it owns, one at a time (the
+/// runs that keep artifacts on process 0, the others dealt round-robin in plan order), and all_gather
+/// gives every process the records of all, so each ends with the ScenarioResults of a single process
+/// (artifacts on process 0 only).
+class RunSplit {
+public:
+  virtual ~RunSplit() = default;
+  /// This process, in [0, size()).
+  virtual std::size_t rank() const = 0;
+  /// The processes.
+  virtual std::size_t size() const = 0;
+  /// Called once by every process with its bytes; returns every process's, concatenated in rank order.
+  virtual std::vector<std::byte> all_gather(std::span<const std::byte> mine) = 0;
+};
+
+/// The bytes of `record` appended to `out`, and the record read back at `at` (advanced): how
+/// RunSplit moves records between processes of one build. decode_record(encode_record(r)) has every
+/// field of r.
+void encode_record(const RunRecord& record, std::vector<std::byte>& out);
+RunRecord decode_record(std::span<const std::byte> in, std::size_t& at);
+
 /// Options of run_scenario.
 struct RunnerOptions {
   unsigned jobs = 0;                                        ///< worker threads (0 = hardware threads)
@@ -139,6 +162,9 @@ struct RunnerOptions {
   /// How the protocol simulations run (nullptr: in this process). With one (e.g. sim/mpi's, every MPI
   /// rank making the same calls), runs go one at a time in plan order and `jobs` is ignored.
   sim::HostRunner* host_runner = nullptr;
+  /// Runs shared with other processes (nullptr: every run here); excludes host_runner, and runs go
+  /// one at a time (`jobs` is ignored).
+  RunSplit* split = nullptr;
 };
 
 /// Results in plan order.
