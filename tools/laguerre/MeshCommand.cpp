@@ -31,6 +31,7 @@ struct MeshArgs {
   core::StarMeshOptions options;
   double shape_bound = 1.0;  ///< B of the voronoi algorithm
   bool corner_shells = true;  ///< voronoi: concentric shells at acute input corners
+  bool rebuild_diagram = false;  ///< voronoi: the whole diagram every round (the former path)
   CLI::Option* max_vertices_option = nullptr;
   bool force = false;
   bool json = false;
@@ -130,6 +131,7 @@ MeshOutcome run_voronoi(const core::Domain& domain, const core::MetricField& fie
   v.shape_bound = a.shape_bound;
   v.size_bound = a.options.size_bound;
   v.corner_shells = a.corner_shells;
+  v.rebuild_diagram = a.rebuild_diagram;
   // The star mesher's default cap (10⁶) is far beyond what whole-diagram rounds reach in minutes.
   v.max_vertices = a.max_vertices_option && a.max_vertices_option->count() ? a.options.max_vertices : 20000;
   if (tty)
@@ -151,6 +153,7 @@ MeshOutcome run_voronoi(const core::Domain& domain, const core::MetricField& fie
   o.rules_line = line;
   o.options = {{"shape_bound", v.shape_bound},     {"size_bound", v.size_bound},
                {"corner_shells", v.corner_shells}, {"max_vertices", v.max_vertices},
+               {"rebuild_diagram", v.rebuild_diagram},
                {"status", core::to_string(r.status)}};
   double worst = 0;
   for (double b : r.shape) worst = std::max(worst, b);
@@ -274,6 +277,9 @@ Action add_mesh_command(CLI::App& app) {
   cmd->add_option("-o,--out", args->out, "Output path stem (default out/mesh/<domain>)");
   cmd->add_flag("!--no-corner-shells", args->corner_shells,
                 "voronoi: split at breakpoints also at acute input corners (the thesis rule, which cascades there)");
+  cmd->add_flag("--rebuild-diagram", args->rebuild_diagram,
+                "voronoi: recompute the whole anisotropic diagram every round instead of updating it (same mesh, "
+                "slower; for benchmarks and checks)");
   cmd->add_flag("--force", args->force, "Overwrite existing outputs");
   cmd->add_flag("--json", args->json, "Print the JSON report instead of the table");
   cmd->add_flag("!--no-picture", args->picture, "Skip the SVG/PNG picture");
