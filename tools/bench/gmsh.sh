@@ -64,7 +64,7 @@ runs=("square|$thick|1|stars voronoi gmsh"
       "$domains/square-with-holes.txt|thesis:0.15:4:0.2:0.5|1|stars voronoi gmsh")
 ((quick)) || runs+=("square|$shock|0.08|stars gmsh")
 echo "gmsh $(gmsh --version 2>&1 | tail -1), laguerre $("$laguerre" --version | awk '{print $2}'); $(nproc) cores, load: $(uptime | sed 's/.*load average: //')"
-printf '%-26s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' row tool vertices triangles wall_s cpu_s \
+printf '%-30s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' row tool vertices triangles wall_s cpu_s \
   min_ang p5_ang max_rho min_len max_len status
 for run in "${runs[@]}"; do
   IFS='|' read -r domain field bound tools <<<"$run"
@@ -121,18 +121,30 @@ def point(p):
         geo.append('Point(%d) = {%.17g, %.17g, 0};' % (points[p], p[0], p[1]))
     return points[p]
 lines = 0
+# A constraint endpoint on another constraint (a wall ending on the boundary) splits it there, as
+# Domain::constraint_pieces does for laguerre.
+ends = {p for loop in loops for p in loop} | {p for seg in segments for p in seg}
+def pieces(p, q):
+    inner = [r for r in ends if r not in (p, q) and (q[0] - p[0]) * (r[1] - p[1]) == (q[1] - p[1]) * (r[0] - p[0])
+             and min(p[0], q[0]) <= r[0] <= max(p[0], q[0]) and min(p[1], q[1]) <= r[1] <= max(p[1], q[1])]
+    inner.sort(key=lambda r: abs(r[0] - p[0]) + abs(r[1] - p[1]))
+    chain = [p] + inner + [q]
+    return list(zip(chain, chain[1:]))
 def line(p, q):
     global lines
-    lines += 1
-    geo.append('Line(%d) = {%d, %d};' % (lines, point(p), point(q)))
-    return lines
+    ids = []
+    for a, b in pieces(p, q):
+        lines += 1
+        geo.append('Line(%d) = {%d, %d};' % (lines, point(a), point(b)))
+        ids.append(lines)
+    return ids
 curve_loops = []
 for k, loop in enumerate(loops):
-    ids = [line(loop[i], loop[(i + 1) % len(loop)]) for i in range(len(loop))]
+    ids = [i for j in range(len(loop)) for i in line(loop[j], loop[(j + 1) % len(loop)])]
     geo.append('Curve Loop(%d) = {%s};' % (k + 1, ', '.join(map(str, ids))))
     curve_loops.append(k + 1)
 geo.append('Plane Surface(1) = {%s};' % ', '.join(map(str, curve_loops)))
-embedded = [line(p, q) for p, q in segments]
+embedded = [i for p, q in segments for i in line(p, q)]
 if embedded: geo.append('Line{%s} In Surface{1};' % ', '.join(map(str, embedded)))
 geo += ['Merge "%s.pos";' % stem, 'Background Mesh View[0];', 'Mesh.Algorithm = 7;', 'Mesh.AnisoMax = 1e6;',
         'Mesh.MeshSizeExtendFromBoundary = 0;', 'Mesh.MeshSizeFromPoints = 0;', 'Mesh.MeshSizeFromCurvature = 0;']
@@ -148,12 +160,12 @@ PY
     read -r wall user sys < <(tail -1 "$stem.time" | grep -E '^[0-9.]+ [0-9.]+ [0-9.]+$' || echo "- 0 0")
     cpu=$(python3 -c "print(f'{$user + $sys:.2f}')")
     if ((status == 124)); then
-      printf '%-26s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' "$label" "$tool" - - "$wall" "$cpu" - - - - - "timeout (${timeout_s} s)"
+      printf '%-30s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' "$label" "$tool" - - "$wall" "$cpu" - - - - - "timeout (${timeout_s} s)"
       continue
     fi
     if [[ $tool == gmsh ]]; then
       if [[ ! -s $stem.mesh ]]; then
-        printf '%-26s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' "$label" "$tool" - - "$wall" "$cpu" - - - - - "failed ($status): $(grep -m1 Error "$stem.out" "$stem.err" || true)"
+        printf '%-30s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' "$label" "$tool" - - "$wall" "$cpu" - - - - - "failed ($status): $(grep -m1 Error "$stem.out" "$stem.err" || true)"
         continue
       fi
       "$laguerre" mesh-quality "$stem.mesh" --metric "$field" --domain "$domain" --json > "$stem.json" || true
@@ -165,7 +177,7 @@ import json, sys
 d = json.load(open(sys.argv[1])); q = d['quality']
 state = ('converged, ' if d.get('converged') else ('' if 'converged' not in d else 'not converged, ')) + \
         ('valid' if d['valid_triangulation'] else 'INVALID: ' + d['validation'])
-print(f"{sys.argv[2]:<26} {sys.argv[3]:<8} {d['vertices']:>8} {d['triangles']:>9} {sys.argv[4]:>8} {sys.argv[5]:>8} "
+print(f"{sys.argv[2]:<30} {sys.argv[3]:<8} {d['vertices']:>8} {d['triangles']:>9} {sys.argv[4]:>8} {sys.argv[5]:>8} "
       f"{q['smallest_angle_degrees']['min']:>8.2f} {q['smallest_angle_degrees']['p5']:>8.2f} {q['radius_edge']['max']:>8.3f} "
       f"{q['edge_length']['min']:>8.3f} {q['edge_length']['max']:>8.3f}  {state}")
 PY
