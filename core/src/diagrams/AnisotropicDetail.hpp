@@ -25,7 +25,7 @@ RegularComplex regular_complex(const std::vector<AnisotropicSite>& sites, const 
 /// The same regular triangulation kept alive while sites are added. CGAL perturbs degenerate
 /// configurations symbolically (by a lexicographic order of the lifted points), so the triangulation of
 /// a set of points does not depend on the order in which they were inserted: after any sequence of
-/// insert() calls, star() describes regular_complex() of all the sites so far.
+/// insert() calls, neighbours() and triangles_of() describe regular_complex() of all the sites so far.
 class LiftedTriangulation {
 public:
   LiftedTriangulation();
@@ -41,9 +41,10 @@ public:
 
   /// The dimension of the triangulation (−1 when empty).
   int dimension() const;
-  /// The regular-complex neighbours of site s, increasing (empty when s is hidden or not inserted), and
-  /// the triangles that have s as a vertex (increasing labels, sorted, unique).
-  void star(SiteIndex s, std::vector<SiteIndex>& neighbours, std::vector<std::array<SiteIndex, 3>>& triangles) const;
+  /// The regular-complex neighbours of site s, increasing (empty when s is hidden or not inserted).
+  std::vector<SiteIndex> neighbours(SiteIndex s) const;
+  /// Appends the regular-complex triangles that have s as a vertex (increasing labels; may repeat).
+  void triangles_of(SiteIndex s, std::vector<std::array<SiteIndex, 3>>& out) const;
 
 private:
   struct Impl;

@@ -423,20 +423,20 @@ void AnisotropicDiagramUpdater::add(const std::vector<AnisotropicSite>& sites) {
   const std::vector<SiteIndex> changed = m.lifted.insert(d.sites, added, all);
   const std::size_t stamp = ++m.adds;
   std::vector<char> dirty(d.sites.size(), 0);
-  std::vector<std::vector<std::array<SiteIndex, 3>>> around(changed.size());
-  for (std::size_t k = 0; k < changed.size(); ++k) {
-    dirty[changed[k]] = 1;
-    m.lifted.star(changed[k], m.neighbours[changed[k]], around[k]);
-  }
+  for (SiteIndex s : changed) dirty[s] = 1, m.neighbours[s] = m.lifted.neighbours(s);
   if (all)
     for (SiteIndex s = 0; s < d.sites.size(); ++s)
       if (!dirty[s]) m.neighbours[s].clear();  // hidden in the regular triangulation
   // The triangles with a changed site, and only those, are new, gone or have new neighbours to filter
   // with; each is listed once, by its smallest changed site.
+  std::vector<std::array<SiteIndex, 3>> around;
   m.filtered = m.intersected = 0;
-  for (std::size_t k = 0; k < changed.size(); ++k) {
-    const SiteIndex s = changed[k];
-    for (const auto& t : around[k]) {
+  for (SiteIndex s : changed) {
+    around.clear();
+    m.lifted.triangles_of(s, around);
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    for (const auto& t : around) {
       if (std::any_of(t.begin(), t.end(), [&](SiteIndex k) { return k < s && dirty[k]; })) continue;
       const auto [it, fresh] = m.triangles.try_emplace(t);
       Impl::Triangle& tri = it->second;

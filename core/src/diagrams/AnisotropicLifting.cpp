@@ -161,28 +161,32 @@ std::vector<SiteIndex> LiftedTriangulation::insert(const std::vector<Anisotropic
   return changed;
 }
 
-void LiftedTriangulation::star(SiteIndex s, std::vector<SiteIndex>& neighbours,
-                               std::vector<std::array<SiteIndex, 3>>& triangles) const {
-  neighbours.clear();
-  triangles.clear();
+std::vector<SiteIndex> LiftedTriangulation::neighbours(SiteIndex s) const {
+  std::vector<SiteIndex> out;
   const int d = impl_->rt.current_dimension();
+  for (Rt::Full_cell_handle c : impl_->finite_cells(s))
+    for (int k = 0; k <= d; ++k)
+      if (c->vertex(k)->data() != s) out.push_back(c->vertex(k)->data());
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+void LiftedTriangulation::triangles_of(SiteIndex s, std::vector<std::array<SiteIndex, 3>>& out) const {
+  const int d = impl_->rt.current_dimension();
+  if (d < 2) return;
   std::vector<SiteIndex> others;
   for (Rt::Full_cell_handle c : impl_->finite_cells(s)) {
     others.clear();
     for (int k = 0; k <= d; ++k)
       if (c->vertex(k)->data() != s) others.push_back(c->vertex(k)->data());
-    neighbours.insert(neighbours.end(), others.begin(), others.end());
     for (std::size_t p = 0; p < others.size(); ++p)
       for (std::size_t q = p + 1; q < others.size(); ++q) {
         std::array<SiteIndex, 3> t{s, others[p], others[q]};
         std::sort(t.begin(), t.end());
-        triangles.push_back(t);
+        out.push_back(t);
       }
   }
-  std::sort(neighbours.begin(), neighbours.end());
-  neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
-  std::sort(triangles.begin(), triangles.end());
-  triangles.erase(std::unique(triangles.begin(), triangles.end()), triangles.end());
 }
 
 }  // namespace laguerre::core::detail
