@@ -31,5 +31,7 @@ Action add_compare_command(CLI::App& app);
 Action add_diagram_command(CLI::App& app);
 /// `laguerre mesh DOMAIN …`: anisotropic meshing under a metric field.
 Action add_mesh_command(CLI::App& app);
+/// `laguerre mesh-quality MESH --metric …`: the quality report of `mesh` for any Medit mesh.
+Action add_mesh_quality_command(CLI::App& app);
 
 }  // namespace laguerre::tools

@@ -31,6 +31,7 @@ struct MeshArgs {
   core::StarMeshOptions options;
   double shape_bound = 1.0;  ///< B of the voronoi algorithm
   bool corner_shells = true;  ///< voronoi: concentric shells at acute input corners
+  bool rebuild_diagram = false;  ///< voronoi: the whole diagram every round (the former path)
   CLI::Option* max_vertices_option = nullptr;
   bool force = false;
   bool json = false;
@@ -41,6 +42,31 @@ nlohmann::json summary_json(const core::QualitySummary& s) {
   return {{"count", s.count}, {"min", s.min},           {"mean", s.mean},           {"max", s.max},
           {"p5", s.p5},       {"p95", s.p95},           {"bin_start", s.bin_start}, {"bin_width", s.bin_width},
           {"histogram", s.histogram}};
+}
+
+/// The domain file `name`, or the unit square for "square".
+core::Domain domain_named(const std::string& name) {
+  return name == "square" ? core::Domain::unit_square() : core::read_domain(name);
+}
+
+/// The quality report in JSON (the "quality" object of `mesh` and `mesh-quality`).
+nlohmann::json quality_json(const core::MeshQuality& q) {
+  return {{"radius_edge", summary_json(q.radius_edge)},
+          {"smallest_angle_degrees", summary_json(q.smallest_angle)},
+          {"distortion", summary_json(q.distortion)},
+          {"edge_length", summary_json(q.edge_length)}};
+}
+
+/// The quality table of `mesh` and `mesh-quality`.
+void print_quality(const core::MeshQuality& q) {
+  std::printf("quality      %-16s %8s %8s %8s %8s %8s\n", "(in the metric)", "min", "p5", "mean", "p95", "max");
+  auto row = [](const char* name, const core::QualitySummary& s) {
+    std::printf("             %-16s %8.3f %8.3f %8.3f %8.3f %8.3f\n", name, s.min, s.p5, s.mean, s.p95, s.max);
+  };
+  row("smallest angle", q.smallest_angle);
+  row("radius-edge", q.radius_edge);
+  row("edge length", q.edge_length);
+  row("distortion", q.distortion);
 }
 
 /// The mesh, triangles coloured by their smallest angle in the metric (red < 20°, green ≥ 40°).
@@ -130,6 +156,7 @@ MeshOutcome run_voronoi(const core::Domain& domain, const core::MetricField& fie
   v.shape_bound = a.shape_bound;
   v.size_bound = a.options.size_bound;
   v.corner_shells = a.corner_shells;
+  v.rebuild_diagram = a.rebuild_diagram;
   // The star mesher's default cap (10⁶) is far beyond what whole-diagram rounds reach in minutes.
   v.max_vertices = a.max_vertices_option && a.max_vertices_option->count() ? a.options.max_vertices : 20000;
   if (tty)
@@ -151,6 +178,7 @@ MeshOutcome run_voronoi(const core::Domain& domain, const core::MetricField& fie
   o.rules_line = line;
   o.options = {{"shape_bound", v.shape_bound},     {"size_bound", v.size_bound},
                {"corner_shells", v.corner_shells}, {"max_vertices", v.max_vertices},
+               {"rebuild_diagram", v.rebuild_diagram},
                {"status", core::to_string(r.status)}};
   double worst = 0;
   for (double b : r.shape) worst = std::max(worst, b);
@@ -161,7 +189,7 @@ MeshOutcome run_voronoi(const core::Domain& domain, const core::MetricField& fie
 }
 
 int run_mesh(MeshArgs& a) {
-  const core::Domain domain = a.domain == "square" ? core::Domain::unit_square() : core::read_domain(a.domain);
+  const core::Domain domain = domain_named(a.domain);
   const auto field = core::parse_metric_field(a.metric);
   const std::string stem = a.out.empty() ? "out/mesh/" + (a.domain == "square" ? "square" : file_stem(a.domain)) : a.out;
   std::vector<std::string> outputs = {stem + ".mesh", stem + ".sol", stem + ".vtk", stem + ".json"};
@@ -196,11 +224,7 @@ int run_mesh(MeshArgs& a) {
       {"vertices_per_second", static_cast<double>(r.mesh.points.size()) / seconds},
       {"options", r.options},
       {"rules", r.rules},
-      {"quality",
-       {{"radius_edge", summary_json(q.radius_edge)},
-        {"smallest_angle_degrees", summary_json(q.smallest_angle)},
-        {"distortion", summary_json(q.distortion)},
-        {"edge_length", summary_json(q.edge_length)}}},
+      {"quality", quality_json(q)},
   };
   std::ofstream(stem + ".json") << j.dump(2) << '\n';
   if (a.picture)
@@ -219,20 +243,65 @@ int run_mesh(MeshArgs& a) {
     std::printf("size         %zu vertices, %zu triangles in %.2f s (%.0f vertices/s)\n", r.mesh.points.size(),
                 r.mesh.triangles.size(), seconds, static_cast<double>(r.mesh.points.size()) / seconds);
     std::printf("rules        %s\n", r.rules_line.c_str());
-    std::printf("quality      %-16s %8s %8s %8s %8s %8s\n", "(in the metric)", "min", "p5", "mean", "p95", "max");
-    auto row = [](const char* name, const core::QualitySummary& s) {
-      std::printf("             %-16s %8.3f %8.3f %8.3f %8.3f %8.3f\n", name, s.min, s.p5, s.mean, s.p95, s.max);
-    };
-    row("smallest angle", q.smallest_angle);
-    row("radius-edge", q.radius_edge);
-    row("edge length", q.edge_length);
-    row("distortion", q.distortion);
+    print_quality(q);
     std::printf("wrote        %s.{mesh,sol,vtk,json%s}\n", stem.c_str(), a.picture ? ",svg,png" : "");
   }
   return r.converged && valid.empty() ? 0 : 3;
 }
 
+struct MeshQualityArgs {
+  std::string mesh;
+  std::string metric;
+  std::string domain;
+  bool json = false;
+};
+
+/// `mesh-quality`: another mesher's output measured like `mesh` measures its own.
+int run_mesh_quality(const MeshQualityArgs& a) {
+  const core::TriangleMesh mesh = core::read_medit_mesh(a.mesh);
+  const auto field = core::parse_metric_field(a.metric);
+  std::vector<core::Metric> metrics;
+  metrics.reserve(mesh.points.size());
+  for (const auto& p : mesh.points) metrics.push_back(field->at(p[0], p[1]));
+  const core::MeshQuality q = core::measure_quality(mesh, metrics);
+  const bool checked = !a.domain.empty();
+  const std::string valid = checked ? core::check_triangulation(mesh, domain_named(a.domain)) : "";
+  if (a.json) {
+    nlohmann::json j = {{"mesh", a.mesh},
+                        {"metric", field->describe()},
+                        {"vertices", mesh.points.size()},
+                        {"triangles", mesh.triangles.size()},
+                        {"quality", quality_json(q)}};
+    if (checked) j.update({{"domain", a.domain}, {"valid_triangulation", valid.empty()}, {"validation", valid}});
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::printf("mesh         %s, metric %s\n", a.mesh.c_str(), field->describe().c_str());
+    std::printf("size         %zu vertices, %zu triangles\n", mesh.points.size(), mesh.triangles.size());
+    if (checked)
+      std::printf("domain       %s: %s\n", a.domain.c_str(), valid.empty() ? "valid triangulation of the domain" : valid.c_str());
+    print_quality(q);
+  }
+  return valid.empty() ? 0 : 3;
+}
+
 }  // namespace
+
+Action add_mesh_quality_command(CLI::App& app) {
+  auto args = std::make_shared<MeshQualityArgs>();
+  CLI::App* cmd = app.add_subcommand("mesh-quality", "Quality of a triangle mesh (e.g. another mesher's) in a metric field.");
+  cmd->footer(
+      "MESH is an ASCII Medit .mesh file (Dimension 2, or Dimension 3 with z = 0 as gmsh writes it).\n"
+      "The metric field (the specifications of 'laguerre mesh --help') is evaluated at every vertex and the\n"
+      "report is the one 'laguerre mesh' prints: per triangle the worst over its vertices' metrics of the\n"
+      "smallest angle and radius-edge ratio, edge lengths in each endpoint's metric, distortion.\n"
+      "With --domain, also checks that the mesh triangulates that domain.\n"
+      "Exit status: 0, 3 when --domain is given and the mesh is not a valid triangulation of it, 2 bad input.");
+  cmd->add_option("mesh", args->mesh, "Medit .mesh file")->required();
+  cmd->add_option("--metric", args->metric, "Metric field specification")->required();
+  cmd->add_option("--domain", args->domain, "Domain file, or 'square': check the mesh triangulates it");
+  cmd->add_flag("--json", args->json, "Print the JSON report instead of the table");
+  return [args] { return run_mesh_quality(*args); };
+}
 
 Action add_mesh_command(CLI::App& app) {
   auto args = std::make_shared<MeshArgs>();
@@ -274,6 +343,9 @@ Action add_mesh_command(CLI::App& app) {
   cmd->add_option("-o,--out", args->out, "Output path stem (default out/mesh/<domain>)");
   cmd->add_flag("!--no-corner-shells", args->corner_shells,
                 "voronoi: split at breakpoints also at acute input corners (the thesis rule, which cascades there)");
+  cmd->add_flag("--rebuild-diagram", args->rebuild_diagram,
+                "voronoi: recompute the whole anisotropic diagram every round instead of updating it (same mesh, "
+                "slower; for benchmarks and checks)");
   cmd->add_flag("--force", args->force, "Overwrite existing outputs");
   cmd->add_flag("--json", args->json, "Print the JSON report instead of the table");
   cmd->add_flag("!--no-picture", args->picture, "Skip the SVG/PNG picture");

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   Action compare = add_compare_command(app);
   Action diagram = add_diagram_command(app);
   Action mesh = add_mesh_command(app);
+  Action mesh_quality = add_mesh_quality_command(app);
   return run_program(app, argc, argv, "laguerre", [&] {
     if (parallel.ranks() > 1 && !app.got_subcommand("simulate") && !app.got_subcommand("run") &&
         !app.got_subcommand("compare")) {
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("compare")) return compare();
     if (app.got_subcommand("diagram")) return diagram();
     if (app.got_subcommand("mesh")) return mesh();
+    if (app.got_subcommand("mesh-quality")) return mesh_quality();
     return 0;
   });
 }

@@ -127,6 +127,82 @@ std::vector<double> real_roots(const Poly& p, bool& zero) {
   return roots;
 }
 
+
+/// The order of AnisotropicDiagram::vertices: by label, then position.
+bool vertex_order(const AnisotropicVertex& a, const AnisotropicVertex& b) {
+  if (a.sites != b.sites) return a.sites < b.sites;
+  return a.position.x != b.position.x ? a.position.x < b.position.x : a.position.y < b.position.y;
+}
+
+/// A point of C_ab ∩ C_bc equidistant from a, b and c (step 2 of the file comment), with the distance
+/// and tolerance of the filter.
+struct Candidate {
+  Point2 position;
+  double distance, tolerance;
+};
+
+/// Step (2) for the triangle t: its candidate points.
+std::vector<Candidate> triangle_candidates(const std::vector<AnisotropicSite>& sites, const std::array<SiteIndex, 3>& t,
+                                           const AnisotropicOptions& options) {
+  std::vector<Candidate> out;
+  const AnisotropicSite &sa = sites[t[0]], &sb = sites[t[1]], &sc = sites[t[2]];
+  const Point2 centre{(sa.x + sb.x + sc.x) / 3, (sa.y + sb.y + sc.y) / 3};
+  double scale = 0;
+  for (const AnisotropicSite* s : {&sa, &sb, &sc}) scale = std::max(scale, std::hypot(s->x - centre.x, s->y - centre.y));
+  if (!(scale > 0)) return out;
+  for (Point2 x : intersect_conics(bisector_conic(sa, sb), bisector_conic(sb, sc), centre, scale)) {
+    const double da = anisotropic_distance(x, sa), db = anisotropic_distance(x, sb), dc = anisotropic_distance(x, sc);
+    const double dist = (da + db + dc) / 3, tol = options.tolerance * std::max(dist, 1e-300);
+    if (std::abs(da - db) > 1e3 * tol + 1e-9 * dist || std::abs(db - dc) > 1e3 * tol + 1e-9 * dist) continue;
+    out.push_back({x, dist, tol});
+  }
+  return out;
+}
+
+/// Step (3): appends to `out` the candidates of t that no regular-complex neighbour of its sites is
+/// strictly closer to.
+void keep_nearest(const std::vector<AnisotropicSite>& sites, const std::array<SiteIndex, 3>& t,
+                  const std::vector<Candidate>& candidates, const std::vector<std::vector<SiteIndex>>& neighbours,
+                  std::vector<AnisotropicVertex>& out) {
+  for (const Candidate& x : candidates) {
+    bool ok = true;
+    for (SiteIndex s : t) {
+      for (SiteIndex k : neighbours[s]) {
+        if (k == t[0] || k == t[1] || k == t[2]) continue;
+        if (anisotropic_distance(x.position, sites[k]) < x.distance - x.tolerance) {
+          ok = false;
+          break;
+        }
+      }
+      if (!ok) break;
+    }
+    if (ok) out.push_back({t, x.position, x.distance});
+  }
+}
+
+/// The dual triangles and edges of d.vertices (sorted by vertex_order).
+void finish_dual(AnisotropicDiagram& d) {
+  d.dual_triangles.clear();
+  d.dual_edges.clear();
+  for (const AnisotropicVertex& v : d.vertices) {
+    if (d.dual_triangles.empty() || d.dual_triangles.back() != v.sites) d.dual_triangles.push_back(v.sites);
+    d.dual_edges.emplace_back(v.sites[0], v.sites[1]);
+    d.dual_edges.emplace_back(v.sites[0], v.sites[2]);
+    d.dual_edges.emplace_back(v.sites[1], v.sites[2]);
+  }
+  std::sort(d.dual_edges.begin(), d.dual_edges.end());
+  d.dual_edges.erase(std::unique(d.dual_edges.begin(), d.dual_edges.end()), d.dual_edges.end());
+}
+
+/// Throws InputError unless site i is finite with a positive definite matrix.
+void check_site(const AnisotropicSite& s, SiteIndex i) {
+  for (double v : {s.x, s.y, s.a, s.b, s.c})
+    if (!std::isfinite(v)) throw InputError("anisotropic site " + std::to_string(i) + " is not finite.");
+  if (!is_positive_definite(s))
+    throw InputError("anisotropic site " + std::to_string(i) +
+                                ": the matrix [[a, b], [b, c]] is not positive definite (expected a > 0 and ac − b² > 0).");
+}
+
 }  // namespace
 
 Conic bisector_conic(const AnisotropicSite& i, const AnisotropicSite& j) {
@@ -273,11 +349,7 @@ AnisotropicDiagram anisotropic_diagram(const std::vector<AnisotropicSite>& sites
   std::map<std::array<double, 5>, SiteIndex> seen;
   for (SiteIndex i = 0; i < n; ++i) {
     const AnisotropicSite& s = sites[i];
-    for (double v : {s.x, s.y, s.a, s.b, s.c})
-      if (!std::isfinite(v)) throw InputError("anisotropic site " + std::to_string(i) + " is not finite.");
-    if (!is_positive_definite(s))
-      throw InputError("anisotropic site " + std::to_string(i) +
-                                  ": the matrix [[a, b], [b, c]] is not positive definite (expected a > 0 and ac − b² > 0).");
+    check_site(s, i);
     if (!seen.emplace(std::array<double, 5>{s.x, s.y, s.a, s.b, s.c}, i).second) keep[i] = 0, d.hidden.push_back(i);
   }
   std::vector<std::array<SiteIndex, 3>> candidates;
@@ -299,43 +371,92 @@ AnisotropicDiagram anisotropic_diagram(const std::vector<AnisotropicSite>& sites
     d.lifted_dimension = rc.dimension;
   }
   d.candidate_triangles = candidates.size();
-  for (const auto& t : candidates) {
-    const AnisotropicSite &sa = sites[t[0]], &sb = sites[t[1]], &sc = sites[t[2]];
-    const Point2 centre{(sa.x + sb.x + sc.x) / 3, (sa.y + sb.y + sc.y) / 3};
-    double scale = 0;
-    for (const AnisotropicSite* s : {&sa, &sb, &sc}) scale = std::max(scale, std::hypot(s->x - centre.x, s->y - centre.y));
-    if (!(scale > 0)) continue;
-    for (Point2 x : intersect_conics(bisector_conic(sa, sb), bisector_conic(sb, sc), centre, scale)) {
-      const double da = anisotropic_distance(x, sa), db = anisotropic_distance(x, sb), dc = anisotropic_distance(x, sc);
-      const double dist = (da + db + dc) / 3, tol = options.tolerance * std::max(dist, 1e-300);
-      if (std::abs(da - db) > 1e3 * tol + 1e-9 * dist || std::abs(db - dc) > 1e3 * tol + 1e-9 * dist) continue;
-      bool ok = true;
-      for (SiteIndex s : t) {
-        for (SiteIndex k : neighbours[s]) {
-          if (k == t[0] || k == t[1] || k == t[2]) continue;
-          if (anisotropic_distance(x, sites[k]) < dist - tol) {
-            ok = false;
-            break;
-          }
-        }
-        if (!ok) break;
-      }
-      if (ok) d.vertices.push_back({t, x, dist});
+  for (const auto& t : candidates) keep_nearest(sites, t, triangle_candidates(sites, t, options), neighbours, d.vertices);
+  std::sort(d.vertices.begin(), d.vertices.end(), vertex_order);
+  finish_dual(d);
+  return d;
+}
+
+struct AnisotropicDiagramUpdater::Impl {
+  /// A triangle of the regular complex: its candidate points (they depend on its three sites only) and
+  /// those kept by the filter (they depend on the sites' neighbours too).
+  struct Triangle {
+    std::vector<Candidate> candidates;
+    std::vector<AnisotropicVertex> vertices;
+    std::size_t seen = 0;  ///< the last add() that found it in the regular complex
+  };
+  AnisotropicOptions options;
+  detail::LiftedTriangulation lifted;
+  std::map<std::array<double, 5>, SiteIndex> seen;  ///< visible sites by value (equal sites are hidden)
+  std::vector<std::vector<SiteIndex>> neighbours;   ///< per site, its regular-complex neighbours
+  std::map<std::array<SiteIndex, 3>, Triangle> triangles;
+  AnisotropicDiagram diagram;
+  std::size_t adds = 0, filtered = 0, intersected = 0;
+};
+
+AnisotropicDiagramUpdater::AnisotropicDiagramUpdater(const AnisotropicOptions& options) : impl_(std::make_unique<Impl>()) {
+  if (options.all_triples) throw InputError("the anisotropic diagram updater works on the regular complex, not all_triples.");
+  impl_->options = options;
+}
+AnisotropicDiagramUpdater::~AnisotropicDiagramUpdater() = default;
+
+const AnisotropicDiagram& AnisotropicDiagramUpdater::diagram() const { return impl_->diagram; }
+std::size_t AnisotropicDiagramUpdater::filtered_triangles() const { return impl_->filtered; }
+std::size_t AnisotropicDiagramUpdater::intersected_triangles() const { return impl_->intersected; }
+
+void AnisotropicDiagramUpdater::add(const std::vector<AnisotropicSite>& sites) {
+  Impl& m = *impl_;
+  AnisotropicDiagram& d = m.diagram;
+  const SiteIndex first = d.sites.size();
+  for (SiteIndex k = 0; k < sites.size(); ++k) check_site(sites[k], first + k);
+  std::vector<SiteIndex> added;
+  for (const AnisotropicSite& s : sites) {
+    const SiteIndex i = d.sites.size();
+    d.sites.push_back(s);
+    if (m.seen.emplace(std::array<double, 5>{s.x, s.y, s.a, s.b, s.c}, i).second)
+      added.push_back(i);
+    else
+      d.hidden.push_back(i);
+  }
+  m.neighbours.resize(d.sites.size());
+  bool all = false;
+  const std::vector<SiteIndex> changed = m.lifted.insert(d.sites, added, all);
+  const std::size_t stamp = ++m.adds;
+  std::vector<char> dirty(d.sites.size(), 0);
+  for (SiteIndex s : changed) dirty[s] = 1, m.neighbours[s] = m.lifted.neighbours(s);
+  if (all)
+    for (SiteIndex s = 0; s < d.sites.size(); ++s)
+      if (!dirty[s]) m.neighbours[s].clear();  // hidden in the regular triangulation
+  // The triangles with a changed site, and only those, are new, gone or have new neighbours to filter
+  // with; each is listed once, by its smallest changed site.
+  std::vector<std::array<SiteIndex, 3>> around;
+  m.filtered = m.intersected = 0;
+  for (SiteIndex s : changed) {
+    around.clear();
+    m.lifted.triangles_of(s, around);
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    for (const auto& t : around) {
+      if (std::any_of(t.begin(), t.end(), [&](SiteIndex k) { return k < s && dirty[k]; })) continue;
+      const auto [it, fresh] = m.triangles.try_emplace(t);
+      Impl::Triangle& tri = it->second;
+      if (fresh) tri.candidates = triangle_candidates(d.sites, t, m.options), ++m.intersected;
+      tri.seen = stamp;
+      tri.vertices.clear();
+      keep_nearest(d.sites, t, tri.candidates, m.neighbours, tri.vertices);
+      std::sort(tri.vertices.begin(), tri.vertices.end(), vertex_order);
+      ++m.filtered;
     }
   }
-  std::sort(d.vertices.begin(), d.vertices.end(), [](const AnisotropicVertex& a, const AnisotropicVertex& b) {
-    if (a.sites != b.sites) return a.sites < b.sites;
-    return a.position.x != b.position.x ? a.position.x < b.position.x : a.position.y < b.position.y;
+  std::erase_if(m.triangles, [&](const auto& entry) {
+    const auto& t = entry.first;
+    return entry.second.seen != stamp && (dirty[t[0]] || dirty[t[1]] || dirty[t[2]]);
   });
-  for (const AnisotropicVertex& v : d.vertices) {
-    if (d.dual_triangles.empty() || d.dual_triangles.back() != v.sites) d.dual_triangles.push_back(v.sites);
-    d.dual_edges.emplace_back(v.sites[0], v.sites[1]);
-    d.dual_edges.emplace_back(v.sites[0], v.sites[2]);
-    d.dual_edges.emplace_back(v.sites[1], v.sites[2]);
-  }
-  std::sort(d.dual_edges.begin(), d.dual_edges.end());
-  d.dual_edges.erase(std::unique(d.dual_edges.begin(), d.dual_edges.end()), d.dual_edges.end());
-  return d;
+  d.vertices.clear();
+  for (const auto& [t, tri] : m.triangles) d.vertices.insert(d.vertices.end(), tri.vertices.begin(), tri.vertices.end());
+  d.candidate_triangles = m.triangles.size();
+  d.lifted_dimension = m.lifted.dimension();
+  finish_dual(d);
 }
 
 bool polygon_contains(const Polygon& polygon, Point2 q) {

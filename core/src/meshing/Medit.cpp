@@ -58,15 +58,19 @@ public:
     return key == "End" ? "" : key;
   }
 
-  /// Consumes the records every Medit file may start with (`MeshVersionFormatted V`, `Dimension 2`;
-  /// `note` ends the message for another dimension); false for any other keyword.
-  bool header(const std::string& key, const std::string& note) {
+  /// Consumes the records every Medit file may start with (`MeshVersionFormatted V`, `Dimension 2`, or
+  /// `Dimension 3` when `planar_3d` allows it, setting `dimension`; `note` ends the message for another
+  /// dimension); false for any other keyword.
+  bool header(const std::string& key, const std::string& note, long& dimension, bool planar_3d = false) {
     if (key == "MeshVersionFormatted") {
       integer("a format version");
       return true;
     }
     if (key != "Dimension") return false;
-    if (const long d = integer("a dimension"); d != 2) fail("expected 'Dimension 2', found " + std::to_string(d) + note);
+    dimension = integer("a dimension");
+    if (dimension != 2 && !(planar_3d && dimension == 3))
+      fail(std::string(planar_3d ? "expected 'Dimension 2' or 'Dimension 3', found " : "expected 'Dimension 2', found ") +
+           std::to_string(dimension) + note);
     return true;
   }
 
@@ -129,8 +133,9 @@ TriangleMesh read_medit_mesh(const std::string& path) {
   Tokens t(path, "Medit mesh file");
   TriangleMesh mesh;
   bool have_dimension = false;
+  long dimension = 2;
   for (std::string key = t.keyword(); !key.empty(); key = t.keyword()) {
-    if (t.header(key, " (only planar meshes are read)")) {
+    if (t.header(key, " (only planar meshes are read)", dimension, true)) {
       have_dimension = have_dimension || key == "Dimension";
     } else if (key == "Vertices") {
       const std::size_t n = t.count("a vertex count");
@@ -138,6 +143,10 @@ TriangleMesh read_medit_mesh(const std::string& path) {
       mesh.point_refs.resize(n);
       for (std::size_t i = 0; i < n; ++i) {
         mesh.points[i] = {t.real("a vertex abscissa"), t.real("a vertex ordinate")};
+        if (dimension == 3)
+          if (const double z = t.real("a vertex z"); z != 0)
+            t.fail("vertex " + std::to_string(i + 1) + " has z = " + std::to_string(z) +
+                   "; expected 0 (only planar meshes are read)");
         mesh.point_refs[i] = static_cast<int>(t.integer("a vertex reference"));
       }
     } else if (key == "Triangles") {
@@ -169,7 +178,7 @@ std::vector<Metric> read_medit_sol(const std::string& path, std::size_t vertex_c
   Tokens t(path, "Medit solution file");
   std::vector<Metric> metrics;
   for (std::string key = t.keyword(); !key.empty(); key = t.keyword()) {
-    if (t.header(key, "")) continue;
+    if (long dimension = 0; t.header(key, "", dimension)) continue;
     if (key == "SolAtVertices") {
       const std::size_t n = t.count("a vertex count");
       if (n != vertex_count)

@@ -301,9 +301,14 @@ private:
 
   void compute_diagram() {
     const auto start = Clock::now();
-    AnisotropicOptions o;
-    o.tolerance = options_.diagram_tolerance;
-    AnisotropicDiagram diagram = anisotropic_diagram(sites_, o);
+    AnisotropicDiagram rebuilt;
+    if (options_.rebuild_diagram) {
+      rebuilt = anisotropic_diagram(sites_, diagram_options());
+    } else {
+      updater_.add({sites_.begin() + static_cast<std::ptrdiff_t>(updated_), sites_.end()});
+      updated_ = sites_.size();
+    }
+    const AnisotropicDiagram& diagram = options_.rebuild_diagram ? rebuilt : updater_.diagram();
     stats_.diagram_seconds += std::chrono::duration<double>(Clock::now() - start).count();
     vertices_.clear();
     triangles_.clear();
@@ -714,9 +719,17 @@ private:
     return {};
   }
 
+  AnisotropicOptions diagram_options() const {
+    AnisotropicOptions o;
+    o.tolerance = options_.diagram_tolerance;
+    return o;
+  }
+
   const Domain& domain_;
   const MetricField& field_;
   const VoronoiMeshOptions& options_;
+  AnisotropicDiagramUpdater updater_{diagram_options()};
+  std::size_t updated_ = 0;  ///< sites given to updater_ so far
   std::vector<AnisotropicSite> sites_;
   std::vector<Subsegment> subs_;
   std::vector<std::array<Index, 3>> acute_;  ///< acute input corners: (corner, far end 1, far end 2)

@@ -10,6 +10,7 @@
 #include <random>
 #include <set>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/diagrams/AnisotropicDiagram.hpp"
 #include "laguerre/core/diagrams/MinimizationDiagram.hpp"
 #include "laguerre/core/diagrams/MobiusDiagram.hpp"
@@ -92,6 +93,67 @@ TEST(Anisotropic, RegularComplexFindsEveryVertexOfBruteForce) {
       for (const auto& s : sites) EXPECT_GE(anisotropic_distance(v.position, s), v.distance * (1 - 1e-8));
     }
   }
+}
+
+/// Field-for-field equality of two diagrams, doubles compared exactly.
+void expect_same_diagram(const AnisotropicDiagram& a, const AnisotropicDiagram& b, const std::string& what) {
+  EXPECT_EQ(a.hidden, b.hidden) << what;
+  EXPECT_EQ(a.lifted_dimension, b.lifted_dimension) << what;
+  EXPECT_EQ(a.candidate_triangles, b.candidate_triangles) << what;
+  EXPECT_EQ(a.dual_triangles, b.dual_triangles) << what;
+  EXPECT_EQ(a.dual_edges, b.dual_edges) << what;
+  ASSERT_EQ(a.vertices.size(), b.vertices.size()) << what;
+  for (std::size_t i = 0; i < a.vertices.size(); ++i) {
+    EXPECT_EQ(a.vertices[i].sites, b.vertices[i].sites) << what << ", vertex " << i;
+    EXPECT_EQ(a.vertices[i].position.x, b.vertices[i].position.x) << what << ", vertex " << i;
+    EXPECT_EQ(a.vertices[i].position.y, b.vertices[i].position.y) << what << ", vertex " << i;
+    EXPECT_EQ(a.vertices[i].distance, b.vertices[i].distance) << what << ", vertex " << i;
+  }
+}
+
+TEST(Anisotropic, UpdaterEqualsTheRebuiltDiagramAfterEveryBatch) {
+  // Random metrics (lifted dimension 5), one isotropic metric on a grid (lifted dimension 2, every grid
+  // square cocircular: the degenerate case CGAL's perturbation decides), and repeated sites.
+  std::vector<std::pair<std::string, std::vector<AnisotropicSite>>> inputs;
+  inputs.push_back({"random", random_sites(7, 120, 9.0)});
+  std::vector<AnisotropicSite> grid;
+  for (int i = 0; i < 9; ++i)
+    for (int j = 0; j < 9; ++j) grid.push_back({(i * 5 % 9) / 8.0, (j * 7 % 9) / 8.0, 4, 0, 4});
+  inputs.push_back({"grid", grid});
+  std::vector<AnisotropicSite> repeated = random_sites(8, 40, 4.0);
+  for (std::size_t i = 0; i < 40; i += 3) repeated.push_back(repeated[i]);
+  inputs.push_back({"repeated", repeated});
+  for (const auto& [name, sites] : inputs) {
+    AnisotropicDiagramUpdater updater;
+    std::size_t done = 0;
+    for (std::size_t batch = 1; done < sites.size(); batch = batch * 2 % 13 + 1) {
+      const std::size_t end = std::min(sites.size(), done + batch);
+      updater.add({sites.begin() + static_cast<std::ptrdiff_t>(done), sites.begin() + static_cast<std::ptrdiff_t>(end)});
+      done = end;
+      const std::vector<AnisotropicSite> prefix(sites.begin(), sites.begin() + static_cast<std::ptrdiff_t>(done));
+      expect_same_diagram(updater.diagram(), anisotropic_diagram(prefix), name + " after " + std::to_string(done) + " sites");
+      EXPECT_TRUE(updater.diagram().is_valid(true)) << name;
+    }
+  }
+}
+
+TEST(Anisotropic, UpdaterRecomputesOnlyAroundTheNewSite) {
+  const auto sites = random_sites(9, 301, 4.0);
+  AnisotropicDiagramUpdater updater;
+  updater.add({sites.begin(), sites.end() - 1});
+  EXPECT_EQ(updater.intersected_triangles(), updater.diagram().candidate_triangles);  // the first add: all
+  EXPECT_EQ(updater.filtered_triangles(), updater.diagram().candidate_triangles);
+  updater.add({sites.back()});
+  // The new triangles all have the new site; the filtered ones a site of its star.
+  EXPECT_GT(updater.intersected_triangles(), 0u);
+  EXPECT_LT(updater.intersected_triangles() * 10, updater.diagram().candidate_triangles);
+  EXPECT_LE(updater.intersected_triangles(), updater.filtered_triangles());
+  EXPECT_LT(updater.filtered_triangles(), updater.diagram().candidate_triangles);
+  expect_same_diagram(updater.diagram(), anisotropic_diagram(sites), "one more site");
+  // Bad input is refused before anything changes.
+  EXPECT_THROW(updater.add({{0.5, 0.5, 1, 2, 1}}), InputError);
+  EXPECT_EQ(updater.diagram().sites.size(), sites.size());
+  EXPECT_THROW(AnisotropicDiagramUpdater({true, 1e-9}), InputError);
 }
 
 TEST(Anisotropic, AgreesWithRasterOracle) {

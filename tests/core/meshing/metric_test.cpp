@@ -289,6 +289,40 @@ TEST_F(BackgroundMesh, MalformedFilesNameTheLine) {
   EXPECT_DOUBLE_EQ(sizes[1].a, 16);  // h = 0.25 ⇒ M = I/h²
 }
 
+TEST_F(BackgroundMesh, PlanarMeshesInDimensionThreeAreRead) {
+  // gmsh writes a planar mesh as `Dimension 3` with z = 0; a clockwise triangle is turned around.
+  {
+    std::ofstream out(path("gmsh.mesh"));
+    out << " MeshVersionFormatted 2\n Dimension\n 3\n Vertices\n 3\n 0 0 0 1\n 0 1 0 2\n 1 0 0 3\n"
+           " Triangles\n 1\n 1 2 3 7\n End\n";
+  }
+  const TriangleMesh m = read_medit_mesh(path("gmsh.mesh"));
+  ASSERT_EQ(m.points.size(), 3u);
+  EXPECT_EQ(m.points[1], (std::array<double, 2>{0, 1}));
+  EXPECT_EQ(m.point_refs[2], 3);
+  ASSERT_EQ(m.triangles.size(), 1u);
+  const auto& t = m.triangles[0];
+  const double cross = (m.points[t[1]][0] - m.points[t[0]][0]) * (m.points[t[2]][1] - m.points[t[0]][1]) -
+                       (m.points[t[1]][1] - m.points[t[0]][1]) * (m.points[t[2]][0] - m.points[t[0]][0]);
+  EXPECT_GT(cross, 0);
+  EXPECT_EQ(m.triangle_refs[0], 7);
+  {
+    std::ofstream out(path("lifted.mesh"));
+    out << "MeshVersionFormatted 2\nDimension 3\nVertices\n2\n0 0 0 1\n1 0 0.5 1\nEnd\n";
+  }
+  try {
+    read_medit_mesh(path("lifted.mesh"));
+    FAIL() << "accepted a vertex off the plane";
+  } catch (const MeshInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lifted.mesh:6: vertex 2 has z = 0.5"), std::string::npos) << e.what();
+  }
+  {
+    std::ofstream out(path("three.sol"));
+    out << "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n1\n1 1\n0.5\nEnd\n";
+  }
+  EXPECT_THROW(read_medit_sol(path("three.sol"), 1), MeshInputError);  // solutions stay planar
+}
+
 TEST(MetricField, BoundedDistortionRadius) {
   // Uniform field: the distortion never exceeds 1, the radius is the cap.
   EXPECT_DOUBLE_EQ(bounded_distortion_radius(*parse_metric_field("uniform:1:0.1"), 0.3, 0.3, 1.1, 2.0), 2.0);

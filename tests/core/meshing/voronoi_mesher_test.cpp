@@ -280,6 +280,48 @@ TEST(VoronoiMesher, Deterministic) {
   EXPECT_EQ(a.stats.rounds, b.stats.rounds);
 }
 
+TEST(VoronoiMesher, UpdatedDiagramGivesTheRebuiltMesh) {
+  // The diagram kept across rounds (the default) against the whole diagram rebuilt every round: the
+  // same mesh bit for bit, and the same rounds. Isotropic (degenerate, cocircular sites), anisotropic,
+  // a hole with a sharp corner (shells), the L shape with its wall.
+  struct Case {
+    Domain domain;
+    std::string field;
+    double size_bound;
+  };
+  const std::vector<Case> cases = {
+      {Domain::unit_square(), "uniform:0.2:0.2", 1},
+      {Domain::unit_square(), "thesis:0.15:4:0.2:0.5", 2},
+      {Domain({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{{0.3, 0.4}, {0.7, 0.4}, {0.3, 0.4 + 0.4 * std::tan(20 * M_PI / 180)}}}),
+       "uniform:0.15:0.1:0.3", 1},
+      {Domain({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, {}, {{Point2{0, 1.5}, Point2{0.6, 1.5}}}),
+       "thesis:0.2:4:0.2:1.5", 0},
+  };
+  for (const Case& c : cases) {
+    const auto field = parse_metric_field(c.field);
+    VoronoiMeshOptions o;
+    o.size_bound = c.size_bound;
+    const VoronoiMeshResult updated = mesh_with_voronoi(c.domain, *field, o);
+    o.rebuild_diagram = true;
+    const VoronoiMeshResult rebuilt = mesh_with_voronoi(c.domain, *field, o);
+    EXPECT_GT(updated.mesh.points.size(), 20u) << c.field;
+    EXPECT_EQ(updated.status, rebuilt.status) << c.field;
+    EXPECT_EQ(updated.message, rebuilt.message) << c.field;
+    EXPECT_EQ(updated.mesh.points, rebuilt.mesh.points) << c.field;
+    EXPECT_EQ(updated.mesh.triangles, rebuilt.mesh.triangles) << c.field;
+    EXPECT_EQ(updated.mesh.edges, rebuilt.mesh.edges) << c.field;
+    EXPECT_EQ(updated.shape, rebuilt.shape) << c.field;
+    ASSERT_EQ(updated.centres.size(), rebuilt.centres.size()) << c.field;
+    for (std::size_t i = 0; i < updated.centres.size(); ++i) {
+      EXPECT_EQ(updated.centres[i].x, rebuilt.centres[i].x) << c.field;
+      EXPECT_EQ(updated.centres[i].y, rebuilt.centres[i].y) << c.field;
+    }
+    EXPECT_EQ(updated.stats.rounds, rebuilt.stats.rounds) << c.field;
+    EXPECT_EQ(updated.stats.bad_shape, rebuilt.stats.bad_shape) << c.field;
+    EXPECT_EQ(updated.stats.redirected, rebuilt.stats.redirected) << c.field;
+  }
+}
+
 TEST(VoronoiMesher, StopsAtTheCap) {
   const auto field = parse_metric_field("uniform:0.05:0.05");
   VoronoiMeshOptions o;

@@ -104,6 +104,34 @@ TEST_F(MeshCli, VoronoiAlgorithmOnABundledDomain) {
   EXPECT_NE(cap.out.find("max_vertices"), std::string::npos) << cap.out;
 }
 
+TEST_F(MeshCli, MeshQualityOfAMeshFileIsTheReportOfMesh) {
+  // The report of `mesh-quality` on the .mesh that `mesh` wrote is the one `mesh` printed (the field is
+  // evaluated at the same vertices); --domain checks the triangulation; bad input exits 2.
+  const std::string stem = path("q");
+  const std::string metric = "thesis:0.15:4:0.2:0.5";
+  const MeshRun made = mesh(domains + "square-with-holes.txt --metric " + metric + " --no-picture --json -o " + stem);
+  ASSERT_EQ(made.status, 0) << made.out;
+  const auto mj = nlohmann::json::parse(made.out);
+  const auto measured = laguerre::cli_test::run("mesh-quality " + stem + ".mesh --metric " + metric + " --json --domain " +
+                                                domains + "square-with-holes.txt");
+  ASSERT_EQ(measured.status, 0) << measured.out;
+  const auto qj = nlohmann::json::parse(measured.out);
+  EXPECT_EQ(qj["vertices"], mj["vertices"]);
+  EXPECT_EQ(qj["triangles"], mj["triangles"]);
+  EXPECT_EQ(qj["quality"], mj["quality"]);
+  EXPECT_TRUE(qj["valid_triangulation"].get<bool>()) << qj["validation"];
+  // The same mesh is not a triangulation of the plain square (the holes are not covered).
+  const auto other = laguerre::cli_test::run("mesh-quality " + stem + ".mesh --metric " + metric + " --domain square");
+  EXPECT_EQ(other.status, 3) << other.out;
+  EXPECT_NE(other.out.find("domain       square: "), std::string::npos) << other.out;
+  EXPECT_NE(other.out.find("smallest angle"), std::string::npos) << other.out;
+  const auto missing = laguerre::cli_test::run("mesh-quality " + path("none.mesh") + " --metric " + metric);
+  EXPECT_EQ(missing.status, 2) << missing.out;
+  const auto field = laguerre::cli_test::run("mesh-quality " + stem + ".mesh --metric uniform:0.3");
+  EXPECT_EQ(field.status, 2) << field.out;
+  EXPECT_NE(field.out.find("usage uniform:H1:H2"), std::string::npos) << field.out;
+}
+
 TEST_F(MeshCli, SlantedEdgesAndHoleCornersMeshValidly) {
   // Regression (StarMesher.hpp): the diamond threw "exact predicate orientation: … NaN" (exit 1), and
   // square-with-holes at uniform:0.12:0.06:0 reported "converged" with a hole in the mesh (exit 3).

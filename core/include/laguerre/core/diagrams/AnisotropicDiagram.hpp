@@ -25,6 +25,7 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -91,6 +92,37 @@ struct AnisotropicDiagram {
 /// Builds the diagram (see the file comment). Throws InputError for a non-finite site or a
 /// matrix that is not positive definite.
 AnisotropicDiagram anisotropic_diagram(const std::vector<AnisotropicSite>& sites, const AnisotropicOptions& options = {});
+
+/// The diagram of a growing set of sites, updated instead of rebuilt (the Voronoi mesher's rounds).
+/// The regular triangulation in R⁵ is kept and new sites are inserted into it; a site whose
+/// regular-complex neighbours changed is one of a full cell created by an insertion, and only the
+/// candidate triangles with such a site are filtered again (the others keep their vertices: a
+/// triangle's vertices depend only on its three sites and their neighbours); the conic intersections
+/// are computed once per triangle, when it appears. diagram() equals
+/// anisotropic_diagram(all sites so far, options) field for field: CGAL breaks degenerate
+/// configurations by a symbolic perturbation that does not depend on the insertion order.
+/// options.all_triples is not supported (InputError).
+class AnisotropicDiagramUpdater {
+public:
+  explicit AnisotropicDiagramUpdater(const AnisotropicOptions& options = {});
+  ~AnisotropicDiagramUpdater();
+  AnisotropicDiagramUpdater(const AnisotropicDiagramUpdater&) = delete;
+  AnisotropicDiagramUpdater& operator=(const AnisotropicDiagramUpdater&) = delete;
+
+  /// Appends `sites` (numbered after the previous ones) and updates the diagram. Throws InputError as
+  /// anisotropic_diagram does, before changing anything.
+  void add(const std::vector<AnisotropicSite>& sites);
+  /// The diagram of every site added so far.
+  const AnisotropicDiagram& diagram() const;
+  /// How many candidate triangles the last add() filtered (those with a site whose neighbours changed).
+  std::size_t filtered_triangles() const;
+  /// How many of them were new, their conic intersections computed.
+  std::size_t intersected_triangles() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 /// Nearest site of q by brute force (smallest index among exact ties); no_site when empty.
 SiteIndex anisotropic_nearest(const std::vector<AnisotropicSite>& sites, Point2 q);

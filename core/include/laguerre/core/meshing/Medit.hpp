@@ -3,7 +3,8 @@
 /// Triangle meshes in the Medit formats read by mmg and gmsh: `.mesh` (vertices, triangles, edges)
 /// and `.sol` (one metric per vertex). Used to read background metric fields and to write meshes.
 ///
-/// Reading accepts the ASCII form: the `MeshVersionFormatted` and `Dimension 2` headers, then the
+/// Reading accepts the ASCII form: the `MeshVersionFormatted` and `Dimension 2` headers (or
+/// `Dimension 3` with every vertex at z = 0, as gmsh writes a planar mesh: `x y z ref`), then the
 /// sections `Vertices` (n, then `x y ref` per line), `Triangles` (n, then `i j k ref`, indices from 1),
 /// `Edges` (n, then `i j ref`), optional others (skipped by their counts), and `End`. Keywords and
 /// numbers may be split over lines as Medit allows; `#` starts a comment. A `.sol` file has

@@ -50,6 +50,10 @@
 /// by Theorem 2.7.1 and Lemma 2.7.2 this holds at termination, and a failure (numerically missed
 /// vertices) is reported as status `stuck`, never as converged.
 ///
+/// The diagram is kept across rounds (AnisotropicDiagramUpdater: the R⁵ regular triangulation grows and
+/// only the candidate triangles around the new sites are recomputed), with the same result as
+/// rebuilding it every round (`rebuild_diagram`, kept as the reference the tests compare with).
+///
 /// Batching. Recomputing the diagram after every insertion costs O(n) per insertion. A round computes
 /// the diagram once, finds the first rule that applies, orders its requests (worst first, ties by
 /// position) and accepts a request greedily when it is independent of every request accepted before:
@@ -116,6 +120,7 @@ struct VoronoiMeshOptions {
   double encroachment_tolerance = 1e-10;  ///< relative margin of the encroachment test
   double boundary_tolerance = 1e-9;     ///< a vertex this close to ∂Ω (relative to its radius) counts as on it
   bool corner_shells = true;            ///< acute input corners: shell splits and no rule 3 there (see above)
+  bool rebuild_diagram = false;         ///< recompute the whole diagram every round (the reference for the update)
   std::vector<Point2> extra_sites;      ///< sites added to the initial constraint endpoints (inside Ω)
   std::function<void(const VoronoiRound&)> on_round;  ///< called after every round, optional
 };

@@ -1,0 +1,186 @@
+#!/usr/bin/env bash
+# laguerre (stars, Voronoi) and gmsh's BAMG side by side, in one run, on the same 2D domains under the
+# same metric fields (issue 16 §3). Every mesh, gmsh's included, is measured by laguerre's own report in
+# the prescribed metric (`laguerre mesh-quality`, the report `laguerre mesh` prints).
+#
+#   tools/bench/gmsh.sh [--install] [--quick] [--timeout S] [--gmsh-edge F] [--out DIR]
+#
+#   --install      install Debian's gmsh (apt-get) if it is missing; without it a missing gmsh is an error
+#   --quick        the three small rows only (no 10^5-element row)
+#   --timeout S    wall-time bound per run (default 900); a run stopped by it is reported as "timeout"
+#   --gmsh-edge F  gmsh's target edge length in laguerre's metric, in units of the size bound S (default
+#                  1.732 = sqrt 3: the edge of the equilateral triangle of circumradius S, the largest that
+#                  `--size-bound S` allows)
+#   --out DIR      keep the inputs, meshes, logs and JSON there (default: a scratch folder, removed)
+#
+# Per row (domain, field, size bound S): `laguerre mesh --algorithm stars` and `--algorithm voronoi` with
+# `--size-bound S` (Voronoi only on the small rows: its rounds are O(n) each), then gmsh 2D with
+# `Mesh.Algorithm = 7` (BAMG) and a background tensor view: the stars mesh with the field's metric at each
+# vertex (its .mesh + .sol) written as `TT` triangles of metric M/(F·S)² (gmsh's BAMG aims at unit edges
+# in the tensor it is given, M = I/h² meaning size h, as laguerre's fields), so gmsh sees the field
+# interpolated linearly on that mesh; the domain becomes a .geo (the polygon and holes as lines of one
+# plane surface, constraint segments embedded with `Line{…} In Surface{1}`). gmsh writes Medit .mesh
+# (Dimension 3, z = 0), which `laguerre mesh-quality --metric FIELD --domain DOMAIN` measures with the
+# exact field at gmsh's vertices and checks as a triangulation of the domain.
+# Columns: vertices, triangles, wall and CPU seconds of the whole process (/usr/bin/time: gmsh's include
+# reading the background view), worst and 5th-percentile smallest angle in the metric, worst
+# radius-edge ratio, edge lengths in the metric (min/max), and the status (converged/valid).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+install=0 quick=0 timeout_s=900 edge=1.732 out=""
+while (($#)); do
+  case "$1" in
+    --install) install=1 ;;
+    --quick) quick=1 ;;
+    --timeout) timeout_s=$2; shift ;;
+    --gmsh-edge) edge=$2; shift ;;
+    --out) out=$2; shift ;;
+    -h|--help) sed -n '2,28p' "$0"; exit 0 ;;
+    *) echo "gmsh.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+if ! command -v gmsh >/dev/null; then
+  if ((install)); then
+    apt-get install -y --no-install-recommends gmsh >/dev/null
+  else
+    echo "gmsh.sh: gmsh is not installed (run with --install, or apt-get install gmsh)" >&2
+    exit 2
+  fi
+fi
+source tools/bench/common.sh
+if [[ -n $out ]]; then  # keep the files there instead of common.sh's scratch folder
+  rm -rf "$dir"
+  trap - EXIT
+  mkdir -p "$out"
+  dir=$(cd "$out" && pwd)
+fi
+domains=scenarios/domains
+shock="shock:0.002:0.05:0.03:0.5"
+thick="shock:0.02:0.2:0.1:0.5"
+# domain|field|size bound|algorithms
+runs=("square|$thick|1|stars voronoi gmsh"
+      "$domains/l-shape-with-wall.txt|thesis|1|stars voronoi gmsh"
+      "$domains/square-with-holes.txt|thesis:0.15:4:0.2:0.5|1|stars voronoi gmsh")
+((quick)) || runs+=("square|$shock|0.08|stars gmsh")
+echo "gmsh $(gmsh --version 2>&1 | tail -1), laguerre $("$laguerre" --version | awk '{print $2}'); $(nproc) cores, load: $(uptime | sed 's/.*load average: //')"
+printf '%-30s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' row tool vertices triangles wall_s cpu_s \
+  min_ang p5_ang max_rho min_len max_len status
+for run in "${runs[@]}"; do
+  IFS='|' read -r domain field bound tools <<<"$run"
+  name=$(basename "$domain" .txt)
+  label="$name,${field%%:*},S=$bound"
+  base="$dir/$name-${field%%:*}-$bound"
+  for tool in $tools; do
+    stem="$base-$tool"
+    if [[ $tool == gmsh ]]; then
+      # The background view (from the stars mesh of this row) and the .geo of the domain.
+      python3 - "$domain" "$base-stars.mesh" "$base-stars.sol" "$bound" "$edge" "$stem" <<'PY'
+import sys
+domain, mesh, sol, bound, edge, stem = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), float(sys.argv[5]), sys.argv[6]
+def tokens(path):
+    for line in open(path):
+        yield from line.split('#')[0].split()
+def medit(path):
+    t = tokens(path); sec = {}
+    for w in t:
+        if w in ('MeshVersionFormatted', 'Dimension'): dim = next(t)
+        elif w == 'Vertices':
+            n = int(next(t)); sec['v'] = [(float(next(t)), float(next(t)), next(t))[:2] for _ in range(n)]
+        elif w == 'Triangles':
+            n = int(next(t)); sec['t'] = [(int(next(t)) - 1, int(next(t)) - 1, int(next(t)) - 1, next(t))[:3] for _ in range(n)]
+        elif w == 'Edges':
+            n = int(next(t)); [next(t) for _ in range(3 * n)]
+        elif w == 'SolAtVertices':
+            n = int(next(t)); next(t); next(t); sec['m'] = [tuple(float(next(t)) for _ in range(3)) for _ in range(n)]
+        elif w == 'End': break
+    return sec
+g = medit(mesh); m = medit(sol)['m']; s = 1 / (edge * bound) ** 2
+with open(stem + '.pos', 'w') as f:
+    f.write('View "metric" {\n')
+    for a, b, c in g['t']:
+        xs = ','.join('%.17g,%.17g,0' % g['v'][i] for i in (a, b, c))
+        ms = ','.join('%.17g,%.17g,0,%.17g,%.17g,0,0,0,1' % (s * m[i][0], s * m[i][1], s * m[i][1], s * m[i][2]) for i in (a, b, c))
+        f.write('TT(%s){%s};\n' % (xs, ms))
+    f.write('};\n')
+# The domain: outer polygon, holes, constraint segments (core/meshing/Domain.hpp).
+loops, segments = [], []
+if domain == 'square':
+    loops = [[(0, 0), (1, 0), (1, 1), (0, 1)]]
+else:
+    for line in open(domain):
+        w = line.split('#')[0].split()
+        if not w: continue
+        if w[0] in ('outer', 'hole'): loops.append([])
+        elif w[0] == 'segment': segments.append(((float(w[1]), float(w[2])), (float(w[3]), float(w[4]))))
+        else: loops[-1].append((float(w[0]), float(w[1])))
+points, geo = {}, []
+def point(p):
+    if p not in points:
+        points[p] = len(points) + 1
+        geo.append('Point(%d) = {%.17g, %.17g, 0};' % (points[p], p[0], p[1]))
+    return points[p]
+lines = 0
+# A constraint endpoint on another constraint (a wall ending on the boundary) splits it there, as
+# Domain::constraint_pieces does for laguerre.
+ends = {p for loop in loops for p in loop} | {p for seg in segments for p in seg}
+def pieces(p, q):
+    inner = [r for r in ends if r not in (p, q) and (q[0] - p[0]) * (r[1] - p[1]) == (q[1] - p[1]) * (r[0] - p[0])
+             and min(p[0], q[0]) <= r[0] <= max(p[0], q[0]) and min(p[1], q[1]) <= r[1] <= max(p[1], q[1])]
+    inner.sort(key=lambda r: abs(r[0] - p[0]) + abs(r[1] - p[1]))
+    chain = [p] + inner + [q]
+    return list(zip(chain, chain[1:]))
+def line(p, q):
+    global lines
+    ids = []
+    for a, b in pieces(p, q):
+        lines += 1
+        geo.append('Line(%d) = {%d, %d};' % (lines, point(a), point(b)))
+        ids.append(lines)
+    return ids
+curve_loops = []
+for k, loop in enumerate(loops):
+    ids = [i for j in range(len(loop)) for i in line(loop[j], loop[(j + 1) % len(loop)])]
+    geo.append('Curve Loop(%d) = {%s};' % (k + 1, ', '.join(map(str, ids))))
+    curve_loops.append(k + 1)
+geo.append('Plane Surface(1) = {%s};' % ', '.join(map(str, curve_loops)))
+embedded = [i for p, q in segments for i in line(p, q)]
+if embedded: geo.append('Line{%s} In Surface{1};' % ', '.join(map(str, embedded)))
+geo += ['Merge "%s.pos";' % stem, 'Background Mesh View[0];', 'Mesh.Algorithm = 7;', 'Mesh.AnisoMax = 1e6;',
+        'Mesh.MeshSizeExtendFromBoundary = 0;', 'Mesh.MeshSizeFromPoints = 0;', 'Mesh.MeshSizeFromCurvature = 0;']
+open(stem + '.geo', 'w').write('\n'.join(geo) + '\n')
+PY
+      cmd=(gmsh "$stem.geo" -2 -format mesh -o "$stem.mesh")
+    else
+      cmd=("$laguerre" mesh "$domain" --algorithm "$tool" --metric "$field" --size-bound "$bound" -o "$stem"
+           --force --no-picture --json)
+    fi
+    status=0
+    /usr/bin/time -f "%e %U %S" -o "$stem.time" timeout "$timeout_s" "${cmd[@]}" > "$stem.out" 2> "$stem.err" || status=$?
+    read -r wall user sys < <(tail -1 "$stem.time" | grep -E '^[0-9.]+ [0-9.]+ [0-9.]+$' || echo "- 0 0")
+    cpu=$(python3 -c "print(f'{$user + $sys:.2f}')")
+    if ((status == 124)); then
+      printf '%-30s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' "$label" "$tool" - - "$wall" "$cpu" - - - - - "timeout (${timeout_s} s)"
+      continue
+    fi
+    if [[ $tool == gmsh ]]; then
+      if [[ ! -s $stem.mesh ]]; then
+        printf '%-30s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' "$label" "$tool" - - "$wall" "$cpu" - - - - - "failed ($status): $(grep -m1 Error "$stem.out" "$stem.err" || true)"
+        continue
+      fi
+      "$laguerre" mesh-quality "$stem.mesh" --metric "$field" --domain "$domain" --json > "$stem.json" || true
+    else
+      cp "$stem.out" "$stem.json"
+    fi
+    python3 - "$stem.json" "$label" "$tool" "$wall" "$cpu" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1])); q = d['quality']
+state = ('converged, ' if d.get('converged') else ('' if 'converged' not in d else 'not converged, ')) + \
+        ('valid' if d['valid_triangulation'] else 'INVALID: ' + d['validation'])
+print(f"{sys.argv[2]:<30} {sys.argv[3]:<8} {d['vertices']:>8} {d['triangles']:>9} {sys.argv[4]:>8} {sys.argv[5]:>8} "
+      f"{q['smallest_angle_degrees']['min']:>8.2f} {q['smallest_angle_degrees']['p5']:>8.2f} {q['radius_edge']['max']:>8.3f} "
+      f"{q['edge_length']['min']:>8.3f} {q['edge_length']['max']:>8.3f}  {state}")
+PY
+  done
+done
+echo "load after: $(uptime | sed 's/.*load average: //')"
