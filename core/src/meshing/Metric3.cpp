@@ -63,12 +63,12 @@ Matrix3 square_root(const Metric3& m) {
   return out;
 }
 
-std::array<double, 3> apply(const Matrix3& f, const std::array<double, 3>& v) {
+std::array<double, 3> multiply(const Matrix3& f, const std::array<double, 3>& v) {
   return {f[0] * v[0] + f[1] * v[1] + f[2] * v[2], f[3] * v[0] + f[4] * v[1] + f[5] * v[2],
           f[6] * v[0] + f[7] * v[1] + f[8] * v[2]};
 }
 
-std::array<double, 3> apply_inverse(const Matrix3& f, const std::array<double, 3>& v) {
+std::array<double, 3> solve(const Matrix3& f, const std::array<double, 3>& v) {
   const double c00 = f[4] * f[8] - f[5] * f[7], c01 = f[5] * f[6] - f[3] * f[8], c02 = f[3] * f[7] - f[4] * f[6];
   const double det = f[0] * c00 + f[1] * c01 + f[2] * c02;
   const double c10 = f[2] * f[7] - f[1] * f[8], c11 = f[0] * f[8] - f[2] * f[6], c12 = f[1] * f[6] - f[0] * f[7];

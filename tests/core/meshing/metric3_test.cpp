@@ -55,9 +55,9 @@ TEST(Metric3, SquareRootSquaresToTheMetricAndGivesItsLengths) {
     EXPECT_NEAR(ftf(1, 2), m.yz, 1e-12 * scale);
     EXPECT_NEAR(ftf(2, 2), m.zz, 1e-12 * scale);
     const std::array<double, 3> v{0.3, -0.7, 0.2};
-    const auto fv = apply(f, v);
+    const auto fv = multiply(f, v);
     EXPECT_NEAR(std::sqrt(fv[0] * fv[0] + fv[1] * fv[1] + fv[2] * fv[2]), metric_length(m, v), 1e-12 * std::sqrt(scale));
-    const auto back = apply_inverse(f, fv);
+    const auto back = solve(f, fv);
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(back[static_cast<std::size_t>(k)], v[static_cast<std::size_t>(k)], 1e-9);
   }
 }

@@ -37,10 +37,10 @@ std::array<double, 3> sizes_of(const Metric3& m);
 Matrix3 square_root(const Metric3& m);
 
 /// F·v.
-std::array<double, 3> apply(const Matrix3& f, const std::array<double, 3>& v);
+std::array<double, 3> multiply(const Matrix3& f, const std::array<double, 3>& v);
 
 /// F⁻¹·v (Cramer's rule; F invertible).
-std::array<double, 3> apply_inverse(const Matrix3& f, const std::array<double, 3>& v);
+std::array<double, 3> solve(const Matrix3& f, const std::array<double, 3>& v);
 
 /// ‖v‖_M = √(vᵀ M v).
 double metric_length(const Metric3& m, const std::array<double, 3>& v);
