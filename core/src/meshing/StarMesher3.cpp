@@ -81,6 +81,7 @@ struct Star {
   std::uint32_t version = 0;
   double query_radius = 0;
   bool open = false;  ///< the link of v in the kept tetrahedra is not closed
+  std::size_t open_tet = 0;  ///< then: a kept tetrahedron on an unmatched facet
   P3 lo{1, 1, 1}, hi{0, 0, 0};  ///< registered zone box (empty if lo > hi)
 };
 
@@ -187,10 +188,6 @@ public:
     while (true) {
       if (points_.size() > options_.max_vertices) {
         result.status = "stopped at " + std::to_string(points_.size()) + " vertices (max_vertices)";
-        break;
-      }
-      if (!degenerate_.empty()) {
-        result.status = "stopped: " + degenerate_;
         break;
       }
       if (!crease_queue_.empty()) {
@@ -377,6 +374,7 @@ private:
     std::vector<StarTet> kept;
     std::vector<BoundaryFacet> boundary;
     bool closed = false;
+    std::size_t open_tet = 0;
     double needed = 0;
     while (true) {
       ids.clear();
@@ -407,9 +405,14 @@ private:
         for (std::size_t k = 0; k < raw.size(); ++k) {
           if (side[k] <= 0) continue;
           const Index a = ids[raw[k][0]], b = ids[raw[k][1]], c = ids[raw[k][2]];
+          // Flat on the input points (the stretched points were rounded off a common plane): not a
+          // tetrahedron; the star stays open there and is refined.
+          if (detail::orientation3(p, points_[a], points_[b], points_[c]) <= 0) continue;
           const P3 sa = multiply(f, sub(points_[a], p)), sb = multiply(f, sub(points_[b], p)), sc = multiply(f, sub(points_[c], p));
           const P3 u = tet_circumcentre(sa, sb, sc);
           const double radius = norm(u);
+          // A sliver so thin that its circumcentre overflows: as if flat (the star stays open there).
+          if (!std::isfinite(radius)) continue;
           needed = std::max(needed, 2 * radius);
           const double shortest = std::min({norm(sa), norm(sb), norm(sc), norm(sub(sa, sb)), norm(sub(sb, sc)), norm(sub(sa, sc))});
           const double volume = dot(sa, cross(sb, sc)) / 6;
@@ -423,21 +426,25 @@ private:
           }
         }
         closed = !kept.empty();
+        open_tet = 0;
         for (const auto& [e, n] : count)
-          if (n > 2 || (n == 1 && facet_plane.at(e) < 0)) closed = false;
+          if (n > 2 || (n == 1 && facet_plane.at(e) < 0)) {
+            if (closed)
+              for (std::size_t k = 0; k < kept.size(); ++k)
+                if (edge_key(kept[k].a, kept[k].b) == e || edge_key(kept[k].b, kept[k].c) == e ||
+                    edge_key(kept[k].a, kept[k].c) == e)
+                  open_tet = k;
+            closed = false;
+          }
       }
       const bool certified = everything || (spatial && needed * (1 + 1e-9) <= r);
       if ((certified && closed) || everything) break;
       r *= 1.6;
     }
-    for (const StarTet& t : kept)
-      if (degenerate_.empty() && !(std::isfinite(t.radius) && std::isfinite(t.centre[0]) && std::isfinite(t.centre[1]) &&
-                                   std::isfinite(t.centre[2])))
-        degenerate_ = "a flat tetrahedron (" + std::to_string(v) + ", " + std::to_string(t.a) + ", " + std::to_string(t.b) +
-                      ", " + std::to_string(t.c) + ") in a star has no finite circumcentre";
     star.tets = std::move(kept);
     star.boundary = std::move(boundary);
     star.open = !closed;
+    star.open_tet = open_tet;
     star.query_radius = needed > 0 ? std::min(r, 1.2 * needed) : (std::isfinite(r) ? r : 0);
     ++star.version;
     register_zone(v);
@@ -559,12 +566,11 @@ private:
           requests_.push({6, t.radius, v, t.a, t.b, t.c, stars_[v].version});
           found = true;
         }
-    // An open star (its link does not close up) misses a tetrahedron: refine its largest one.
+    // An open star (its link does not close up) misses a tetrahedron: refine the one at the gap.
     for (Index v = 0; v < stars_.size(); ++v)
       if (stars_[v].open && !stars_[v].tets.empty()) {
-        const auto worst = std::max_element(stars_[v].tets.begin(), stars_[v].tets.end(),
-                                            [](const StarTet& x, const StarTet& y) { return x.radius < y.radius; });
-        requests_.push({6, worst->radius, v, worst->a, worst->b, worst->c, stars_[v].version});
+        const StarTet& t = stars_[v].tets[std::min(stars_[v].open_tet, stars_[v].tets.size() - 1)];
+        requests_.push({6, t.radius, v, t.a, t.b, t.c, stars_[v].version});
         found = true;
       }
     return found;
@@ -785,7 +791,6 @@ private:
   StarMesh3Stats stats_;
   std::size_t sites_at_last_sweep_ = 0;
   int idle_sweeps_ = 0;
-  std::string degenerate_;
 };
 
 }  // namespace

@@ -34,7 +34,7 @@
 ///   5. sliverity: σ = volume / (shortest edge)³ below σ₀ (in M_v);
 ///   6. inconsistency: a tetrahedron of S_v missing from the star of one of its other vertices (the
 ///      thesis's cosphericity rule: by its Lemma 3.3.3 such a tetrahedron is part of a
-///      γ₀-cospherical configuration), or the largest tetrahedron of a star whose link is not closed.
+///      γ₀-cospherical configuration), or a tetrahedron at the gap of a star whose link is not closed.
 /// Rules 2–6 refine τ ∈ S_v by a point picked in its picking region, the M_v-ball of radius δ·R around
 /// its M_v-circumcentre; for rules 5 and 6 up to `picking_tries` picks are drawn and the first one
 /// whose own star (for its metric, among the current sites) has no sliver is taken, else the pick
