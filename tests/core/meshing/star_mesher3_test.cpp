@@ -101,6 +101,21 @@ TEST(StarMesher3, CubeUnderAnisotropicUniformMetricIsACheckedTetrahedralization)
   EXPECT_NEAR(q.distortion.max, 1, 1e-12);
 }
 
+TEST(StarMesher3, BoxWithHoleIsACheckedTetrahedralizationWithNothingInTheHole) {
+  const PolyhedralDomain holed = read_polyhedral_domain(domains + "box-with-hole.off");
+  const auto uniform = parse_metric_field3("uniform:0.3:0.3:0.4");
+  const StarMesh3Result h = mesh_with_stars(holed, *uniform);
+  ASSERT_TRUE(h.converged) << h.status;
+  EXPECT_EQ(check_tetrahedralization(h.mesh, holed), "");
+  expect_locally_delaunay(h);
+  for (const auto& t : h.mesh.tetrahedra) {
+    Point3 g{0, 0, 0};
+    for (std::size_t v : t)
+      for (std::size_t k = 0; k < 3; ++k) g[k] += h.mesh.points[v][k] / 4;
+    EXPECT_EQ(holed.locate(g), DomainSide::inside);
+  }
+}
+
 TEST(StarMesher3, DeterministicAndRoundTripsThroughMedit) {
   const PolyhedralDomain cube = read_polyhedral_domain(domains + "cube.off");
   const auto field = parse_metric_field3("uniform:0.4:0.4:0.25");
