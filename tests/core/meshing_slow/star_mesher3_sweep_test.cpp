@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
+#include <string>
+
 namespace laguerre::core {
 namespace {
 
@@ -41,7 +44,13 @@ TEST_P(StarMesher3Sweep, ConvergesToACheckedLocallyUniformMesh) {
 
 INSTANTIATE_TEST_SUITE_P(BundledDomainsAndFields, StarMesher3Sweep,
                          testing::Combine(testing::Values("cube", "box-with-hole"),
-                                          testing::Values("uniform:0.15:0.15:0.3", "shock:0.2:0.4:0.5:0.5")));
+                                          testing::Values("uniform:0.15:0.15:0.3", "shock:0.2:0.4:0.5:0.5")),
+                         [](const testing::TestParamInfo<StarMesher3Sweep::ParamType>& param_info) {
+                           std::string name = std::string(std::get<0>(param_info.param)) + "_" + std::get<1>(param_info.param);
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
 
 }  // namespace
 }  // namespace laguerre::core
