@@ -3,6 +3,7 @@
 #include <cairo.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -14,8 +15,10 @@
 #include "Common.hpp"
 #include "Render.hpp"
 #include "laguerre/core/meshing/Domain.hpp"
+#include "laguerre/core/meshing/Domain3.hpp"
 #include "laguerre/core/meshing/MeshQuality.hpp"
 #include "laguerre/core/meshing/StarMesher.hpp"
+#include "laguerre/core/meshing/StarMesher3.hpp"
 #include "laguerre/core/meshing/VoronoiMesher.hpp"
 #include "laguerre/core/meshing/Vtk.hpp"
 
@@ -33,6 +36,8 @@ struct MeshArgs {
   bool corner_shells = true;  ///< voronoi: concentric shells at acute input corners
   bool rebuild_diagram = false;  ///< voronoi: the whole diagram every round (the former path)
   CLI::Option* max_vertices_option = nullptr;
+  CLI::Option* radius_edge_option = nullptr;
+  double sliver_bound = core::StarMesh3Options{}.sliver_bound;  ///< 3D: σ₀
   bool force = false;
   bool json = false;
   bool picture = true;
@@ -188,7 +193,172 @@ MeshOutcome run_voronoi(const core::Domain& domain, const core::MetricField& fie
   return o;
 }
 
+/// The intersection of a tetrahedron with the plane x_axis = c, as a polygon in the other two
+/// coordinates (empty if it misses the plane).
+std::vector<std::array<double, 2>> slice(const core::TetMesh& mesh, const std::array<std::size_t, 4>& t, int axis, double c) {
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+  std::vector<std::array<double, 2>> poly;
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t j = i + 1; j < 4; ++j) {
+      const auto& p = mesh.points[t[i]];
+      const auto& q = mesh.points[t[j]];
+      const double a = p[axis] - c, b = q[axis] - c;
+      if ((a < 0 && b > 0) || (a > 0 && b < 0)) {
+        const double s = a / (a - b);
+        poly.push_back({p[u] + s * (q[u] - p[u]), p[w] + s * (q[w] - p[w])});
+      }
+    }
+  if (poly.size() < 3) return {};
+  double cx = 0, cy = 0;
+  for (const auto& p : poly) cx += p[0] / static_cast<double>(poly.size()), cy += p[1] / static_cast<double>(poly.size());
+  std::sort(poly.begin(), poly.end(), [&](const auto& l, const auto& r) {
+    return std::atan2(l[1] - cy, l[0] - cx) < std::atan2(r[1] - cy, r[0] - cx);
+  });
+  return poly;
+}
+
+/// Three axis-aligned slices (x, y, z through the box centre, nudged off the vertices' planes) of a
+/// tetrahedral mesh side by side, the cut tetrahedra coloured by their smallest dihedral angle in the
+/// metric (red < 10°, green ≥ 30°).
+void draw_slices(cairo_t* cr, const core::TetMesh& mesh, const core::MeshQuality& q, const std::array<double, 6>& box,
+                 int panel, const std::string& title) {
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  const char* names[3] = {"x", "y", "z"};
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    const double span = std::max(box[u + 3] - box[u], box[w + 3] - box[w]);
+    const double c = 0.5 * (box[axis] + box[axis + 3]) + 0.0137 * (box[axis + 3] - box[axis]);
+    const double margin = 0.05 * span, scale = panel / (span + 2 * margin);
+    cairo_save(cr);
+    cairo_translate(cr, axis * panel, panel + 30);
+    cairo_scale(cr, scale, -scale);
+    cairo_translate(cr, margin - box[u], margin - box[w]);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    for (std::size_t t = 0; t < mesh.tetrahedra.size(); ++t) {
+      const auto poly = slice(mesh, mesh.tetrahedra[t], axis, c);
+      if (poly.empty()) continue;
+      cairo_move_to(cr, poly[0][0], poly[0][1]);
+      for (std::size_t k = 1; k < poly.size(); ++k) cairo_line_to(cr, poly[k][0], poly[k][1]);
+      cairo_close_path(cr);
+      const double g = std::clamp((q.elements[t].smallest_angle - 10) / 20, 0.0, 1.0);
+      cairo_set_source_rgb(cr, 0.95 - 0.4 * g, 0.55 + 0.35 * g, 0.5);
+      cairo_fill_preserve(cr);
+      cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+      cairo_set_line_width(cr, 0.5 / scale);
+      cairo_stroke(cr);
+    }
+    cairo_restore(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_font_size(cr, 14);
+    cairo_move_to(cr, axis * panel + 10, 48);
+    const std::string label = std::string(names[axis]) + " = " + std::to_string(c).substr(0, 6) + " (" + names[u] + " right, " +
+                              names[w] + " up)";
+    cairo_show_text(cr, label.c_str());
+  }
+  cairo_set_font_size(cr, 15);
+  cairo_move_to(cr, 10, 20);
+  cairo_show_text(cr, title.c_str());
+}
+
+/// `laguerre mesh` on a 3D domain (an .off file or a 3D Medit surface): the star mesher of
+/// core/meshing/StarMesher3.hpp, with the same outputs, report and exit statuses as in 2D.
+int run_mesh3(MeshArgs& a) {
+  if (a.algorithm != "stars")
+    throw core::InputError("--algorithm", 0, "3D domains are meshed with 'stars' only; got '" + a.algorithm + "'");
+  const core::PolyhedralDomain domain = core::read_polyhedral_domain(a.domain);
+  const auto field = core::parse_metric_field3(a.metric);
+  const std::string stem = a.out.empty() ? "out/mesh/" + file_stem(a.domain) : a.out;
+  std::vector<std::string> outputs = {stem + ".mesh", stem + ".sol", stem + ".vtk", stem + ".json"};
+  if (a.picture) outputs.insert(outputs.end(), {stem + ".svg", stem + ".png"});
+  for (const auto& o : outputs) check_writable(o, a.force);
+  if (const auto dir = std::filesystem::path(stem).parent_path(); !dir.empty()) std::filesystem::create_directories(dir);
+  core::StarMesh3Options o;
+  o.size_bound = a.options.size_bound;
+  o.distortion_bound = a.options.distortion_bound;
+  o.picking_ratio = a.options.picking_ratio;
+  o.seed = a.options.seed;
+  o.sliver_bound = a.sliver_bound;
+  if (a.radius_edge_option && a.radius_edge_option->count()) o.radius_edge_bound = a.options.radius_edge_bound;
+  if (a.max_vertices_option && a.max_vertices_option->count()) o.max_vertices = a.options.max_vertices;
+  const bool tty = isatty(STDERR_FILENO);
+  if (tty) o.progress = [](std::size_t n) { std::cerr << "\rmeshing: " << n << " vertices" << std::flush; };
+  const auto start = std::chrono::steady_clock::now();
+  const core::StarMesh3Result r = core::mesh_with_stars(domain, *field, o);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (tty) std::cerr << "\r\033[K";
+  const std::string valid = core::check_tetrahedralization(r.mesh, domain);
+  const core::MeshQuality q = core::measure_quality(r.mesh, r.metrics);
+  core::write_medit_mesh(stem + ".mesh", r.mesh);
+  core::write_medit_sol(stem + ".sol", r.metrics);
+  core::write_vtk(stem + ".vtk", r.mesh, r.metrics, &q);
+  const auto& s = r.stats;
+  nlohmann::json j = {
+      {"domain", a.domain},
+      {"dimension", 3},
+      {"metric", field->describe()},
+      {"algorithm", "stars"},
+      {"status", r.status},
+      {"converged", r.converged},
+      {"valid_tetrahedralization", valid.empty()},
+      {"validation", valid},
+      {"vertices", r.mesh.points.size()},
+      {"tetrahedra", r.mesh.tetrahedra.size()},
+      {"boundary_triangles", r.mesh.triangles.size()},
+      {"domain_volume", domain.volume()},
+      {"seconds", seconds},
+      {"options",
+       {{"size_bound", o.size_bound}, {"radius_edge_bound", o.radius_edge_bound}, {"distortion_bound", o.distortion_bound},
+        {"sliver_bound", o.sliver_bound}, {"picking_ratio", o.picking_ratio}, {"picking_tries", o.picking_tries},
+        {"max_vertices", o.max_vertices}, {"seed", o.seed}}},
+      {"rules",
+       {{"edge_splits", s.edge_splits}, {"facet_splits", s.facet_splits}, {"distortion", s.distortion}, {"size", s.size},
+        {"shape", s.shape}, {"sliver", s.sliver}, {"inconsistency", s.inconsistency}, {"snapped", s.snapped},
+        {"rejected_picks", s.rejected_picks}, {"star_updates", s.star_updates}, {"consistency_sweeps", s.consistency_sweeps}}},
+      {"quality",
+       {{"radius_edge", summary_json(q.radius_edge)},
+        {"smallest_dihedral_degrees", summary_json(q.smallest_angle)},
+        {"sliverity", summary_json(q.sliverity)},
+        {"slivers", q.slivers},
+        {"distortion", summary_json(q.distortion)},
+        {"edge_length", summary_json(q.edge_length)}}},
+  };
+  std::ofstream(stem + ".json") << j.dump(2) << '\n';
+  if (a.picture)
+    render_svg_png(stem, 1500, 540, [&](cairo_t* cr) {
+      draw_slices(cr, r.mesh, q, domain.bounding_box(), 500,
+                  field->describe() + ": " + std::to_string(r.mesh.points.size()) + " vertices, " +
+                      std::to_string(r.mesh.tetrahedra.size()) + " tetrahedra, min dihedral " +
+                      std::to_string(static_cast<int>(q.smallest_angle.min)) + " deg in the metric");
+    });
+  if (a.json) {
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::printf("mesh         %s (3D), metric %s, algorithm stars\n", a.domain.c_str(), field->describe().c_str());
+    std::printf("status       %s; %s\n", r.status.c_str(), valid.empty() ? "valid tetrahedralization of the domain" : valid.c_str());
+    std::printf("size         %zu vertices, %zu tetrahedra, %zu boundary triangles in %.2f s\n", r.mesh.points.size(),
+                r.mesh.tetrahedra.size(), r.mesh.triangles.size(), seconds);
+    std::printf("rules        edges %zu, facets %zu, distortion %zu, size %zu, shape %zu, sliver %zu, inconsistency %zu "
+                "(snapped %zu, picks rejected %zu)\n",
+                s.edge_splits, s.facet_splits, s.distortion, s.size, s.shape, s.sliver, s.inconsistency, s.snapped,
+                s.rejected_picks);
+    std::printf("quality      %-18s %8s %8s %8s %8s %8s\n", "(in the metric)", "min", "p5", "mean", "p95", "max");
+    auto row = [](const char* name, const core::QualitySummary& x) {
+      std::printf("             %-18s %8.3f %8.3f %8.3f %8.3f %8.3f\n", name, x.min, x.p5, x.mean, x.p95, x.max);
+    };
+    row("smallest dihedral", q.smallest_angle);
+    row("radius-edge", q.radius_edge);
+    row("sliverity", q.sliverity);
+    row("edge length", q.edge_length);
+    row("distortion", q.distortion);
+    std::printf("slivers      %zu (smallest dihedral < 10 deg with radius-edge <= 2)\n", q.slivers);
+    std::printf("wrote        %s.{mesh,sol,vtk,json%s}\n", stem.c_str(), a.picture ? ",svg,png" : "");
+  }
+  return r.converged && valid.empty() ? 0 : 3;
+}
+
 int run_mesh(MeshArgs& a) {
+  if (a.domain != "square" && core::is_3d_domain_file(a.domain)) return run_mesh3(a);
   const core::Domain domain = domain_named(a.domain);
   const auto field = core::parse_metric_field(a.metric);
   const std::string stem = a.out.empty() ? "out/mesh/" + (a.domain == "square" ? "square" : file_stem(a.domain)) : a.out;
@@ -317,6 +487,11 @@ Action add_mesh_command(CLI::App& app) {
       "(thesis Part II, rules 1-5 of section 2.7 and a size rule: options --shape-bound, --size-bound;\n"
       "--max-vertices defaults to 20000 there) until its dual triangles triangulate the domain with every\n"
       "Voronoi vertex of radius-edge ratio at most B.\n"
+      "3D: a DOMAIN ending in .off, or a .mesh of Dimension 3 (a closed triangle surface; core/meshing/Domain3.hpp),\n"
+      "is meshed with tetrahedra by 3D stars (core/meshing/StarMesher3.hpp), --metric then taking 3D fields:\n"
+      "  uniform:H1:H2:H3  shock[:HMIN:HMAX:WIDTH:X0] (plane x = X0)  sphere[:HMIN:HMAX:WIDTH:R:CX:CY:CZ]\n"
+      "  expr:xx=..;xy=..;xz=..;yy=..;yz=..;zz=..  mesh:FILE.mesh[:FILE.sol] (tetrahedral background)\n"
+      "and the picture showing three axis-aligned slices coloured by the smallest dihedral angle.\n"
       "Exit status: 0 converged and valid, 3 stopped early or invalid, 2 bad input.");
   cmd->add_option("domain", args->domain, "Domain file, or 'square'")->required();
   cmd->add_option("--metric", args->metric, "Metric field specification")->capture_default_str();
@@ -328,8 +503,13 @@ Action add_mesh_command(CLI::App& app) {
   cmd->add_option("--size-bound", args->options.size_bound,
                   "Largest circumradius in the metric (voronoi: largest radius r(v) of a Voronoi vertex)")
       ->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--radius-edge", args->options.radius_edge_bound, "Largest radius-edge ratio rho0 (1 = 30 degrees)")
-      ->check(CLI::Range(0.58, 100.0))->capture_default_str();
+  args->radius_edge_option =
+      cmd->add_option("--radius-edge", args->options.radius_edge_bound,
+                      "Largest radius-edge ratio rho0 (1 = 30 degrees; 3D default 2, the regular tetrahedron has 0.61)")
+          ->check(CLI::Range(0.58, 100.0))->capture_default_str();
+  cmd->add_option("--sliver", args->sliver_bound,
+                  "3D: smallest sliverity volume/shortest-edge^3 in the metric (sigma0; regular tetrahedron 0.118)")
+      ->check(CLI::Range(0.0, 0.1))->capture_default_str();
   cmd->add_option("--distortion", args->options.distortion_bound, "Distortion bound gamma0")
       ->check(CLI::Range(1.0001, 100.0))->capture_default_str();
   cmd->add_option("--picking", args->options.picking_ratio, "Picking ratio delta")

@@ -1,10 +1,12 @@
 #include "laguerre/core/meshing/Medit.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 #include <string_view>
 
@@ -58,21 +60,26 @@ public:
     return key == "End" ? "" : key;
   }
 
-  /// Consumes the records every Medit file may start with (`MeshVersionFormatted V`, `Dimension 2`, or
-  /// `Dimension 3` when `planar_3d` allows it, setting `dimension`; `note` ends the message for another
-  /// dimension); false for any other keyword.
-  bool header(const std::string& key, const std::string& note, long& dimension, bool planar_3d = false) {
+  /// Consumes the records every Medit file may start with (`MeshVersionFormatted V`, `Dimension D`
+  /// with D one of `accepted`, setting `dimension`; `note` ends the message for another dimension);
+  /// false for any other keyword.
+  bool header(const std::string& key, const std::string& note, long& dimension, std::initializer_list<long> accepted = {2}) {
     if (key == "MeshVersionFormatted") {
       integer("a format version");
       return true;
     }
     if (key != "Dimension") return false;
     dimension = integer("a dimension");
-    if (dimension != 2 && !(planar_3d && dimension == 3))
-      fail(std::string(planar_3d ? "expected 'Dimension 2' or 'Dimension 3', found " : "expected 'Dimension 2', found ") +
-           std::to_string(dimension) + note);
+    if (std::find(accepted.begin(), accepted.end(), dimension) == accepted.end()) {
+      std::string expected;
+      for (const long d : accepted) expected += (expected.empty() ? "" : " or ") + ("'Dimension " + std::to_string(d) + "'");
+      fail("expected " + expected + ", found " + std::to_string(dimension) + note);
+    }
     return true;
   }
+
+  /// The line of the last token read.
+  std::size_t line() const { return line_; }
 
   [[noreturn]] void fail(const std::string& message) const { throw MeshInputError(path_, line_, message); }
 
@@ -112,11 +119,13 @@ std::size_t vertex_index(Tokens& t, std::size_t vertex_count) {
 /// Reads a section of elements (a count, then per element its vertex indices and a reference).
 template <std::size_t N>
 void read_elements(Tokens& t, std::size_t vertex_count, const char* count, const char* reference,
-                   std::vector<std::array<std::size_t, N>>& elements, std::vector<int>& refs) {
+                   std::vector<std::array<std::size_t, N>>& elements, std::vector<int>& refs,
+                   std::vector<std::size_t>* lines = nullptr) {
   const std::size_t n = t.count(count);
   for (std::size_t i = 0; i < n; ++i) {
     std::array<std::size_t, N> element{};
     for (auto& v : element) v = vertex_index(t, vertex_count);
+    if (lines) lines->push_back(t.line());
     elements.push_back(element);
     refs.push_back(static_cast<int>(t.integer(reference)));
   }
@@ -135,7 +144,7 @@ TriangleMesh read_medit_mesh(const std::string& path) {
   bool have_dimension = false;
   long dimension = 2;
   for (std::string key = t.keyword(); !key.empty(); key = t.keyword()) {
-    if (t.header(key, " (only planar meshes are read)", dimension, true)) {
+    if (t.header(key, " (only planar meshes are read)", dimension, {2, 3})) {
       have_dimension = have_dimension || key == "Dimension";
     } else if (key == "Vertices") {
       const std::size_t n = t.count("a vertex count");
@@ -172,6 +181,138 @@ TriangleMesh read_medit_mesh(const std::string& path) {
     if ((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]) < 0) std::swap(tri[1], tri[2]);
   }
   return mesh;
+}
+
+int medit_dimension(const std::string& path) {
+  Tokens t(path, "Medit mesh file");
+  for (std::string key = t.keyword(); !key.empty(); key = t.keyword()) {
+    if (key == "MeshVersionFormatted") {
+      t.integer("a format version");
+    } else if (key == "Dimension") {
+      const long d = t.integer("a dimension");
+      if (d != 2 && d != 3) t.fail("expected 'Dimension 2' or 'Dimension 3', found " + std::to_string(d));
+      return static_cast<int>(d);
+    } else {
+      break;
+    }
+  }
+  throw MeshInputError(path, t.line(), "missing 'Dimension' before the first section");
+}
+
+TetMesh read_medit_tet_mesh(const std::string& path) {
+  Tokens t(path, "Medit mesh file");
+  TetMesh mesh;
+  bool have_dimension = false;
+  for (std::string key = t.keyword(); !key.empty(); key = t.keyword()) {
+    if (long dimension = 0; t.header(key, " (a 3D mesh was expected)", dimension, {3})) {
+      have_dimension = have_dimension || key == "Dimension";
+    } else if (key == "Vertices") {
+      const std::size_t n = t.count("a vertex count");
+      mesh.points.resize(n);
+      mesh.point_refs.resize(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        mesh.points[i] = {t.real("a vertex x"), t.real("a vertex y"), t.real("a vertex z")};
+        mesh.point_refs[i] = static_cast<int>(t.integer("a vertex reference"));
+      }
+    } else if (key == "Triangles") {
+      read_elements(t, mesh.points.size(), "a triangle count", "a triangle reference", mesh.triangles,
+                    mesh.triangle_refs, &mesh.triangle_lines);
+    } else if (key == "Tetrahedra") {
+      read_elements(t, mesh.points.size(), "a tetrahedron count", "a tetrahedron reference", mesh.tetrahedra,
+                    mesh.tetrahedron_refs);
+    } else if (key == "Edges") {
+      skip_records(t, t.count("an edge count"), 3);
+    } else if (key == "Corners" || key == "RequiredVertices" || key == "RequiredEdges" || key == "Ridges") {
+      skip_records(t, t.count("a count"), 1);
+    } else if (key == "Quadrilaterals") {
+      skip_records(t, t.count("a quadrilateral count"), 5);
+    } else {
+      t.fail("unknown Medit keyword '" + key +
+             "' (expected MeshVersionFormatted, Dimension, Vertices, Triangles, Tetrahedra, Edges, Corners, "
+             "RequiredVertices, RequiredEdges, Ridges, Quadrilaterals or End)");
+    }
+  }
+  if (!have_dimension) throw MeshInputError(path, 0, "missing 'Dimension 3'");
+  for (auto& tet : mesh.tetrahedra) {
+    const auto& a = mesh.points[tet[0]];
+    double u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k)
+      u[k] = mesh.points[tet[1]][k] - a[k], v[k] = mesh.points[tet[2]][k] - a[k], w[k] = mesh.points[tet[3]][k] - a[k];
+    const double det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
+    if (det < 0) std::swap(tet[2], tet[3]);
+  }
+  return mesh;
+}
+
+std::vector<Metric3> read_medit_sol3(const std::string& path, std::size_t vertex_count) {
+  Tokens t(path, "Medit solution file");
+  std::vector<Metric3> metrics;
+  bool have_solution = false;
+  for (std::string key = t.keyword(); !key.empty(); key = t.keyword()) {
+    if (long dimension = 0; t.header(key, " (a 3D solution was expected)", dimension, {3})) continue;
+    if (key != "SolAtVertices")
+      t.fail("unknown keyword '" + key + "' (expected MeshVersionFormatted, Dimension, SolAtVertices or End)");
+    const std::size_t n = t.count("a vertex count");
+    if (n != vertex_count)
+      t.fail("the solution has " + std::to_string(n) + " values but the mesh has " + std::to_string(vertex_count) +
+             " vertices");
+    if (const long fields = t.integer("a field count"); fields != 1)
+      t.fail("expected exactly 1 solution field, found " + std::to_string(fields));
+    const long type = t.integer("a solution type");
+    if (type != 1 && type != 3)
+      t.fail("expected solution type 1 (scalar size) or 3 (symmetric tensor), found " + std::to_string(type));
+    metrics.resize(n);
+    for (auto& m : metrics) {
+      if (type == 1) {
+        const double h = t.real("a size");
+        if (!(h > 0)) t.fail("a size must be positive, found " + std::to_string(h));
+        const double l = 1 / (h * h);
+        m = {l, 0, 0, l, 0, l};
+      } else {
+        const double m11 = t.real("m11"), m12 = t.real("m12"), m22 = t.real("m22");
+        const double m13 = t.real("m13"), m23 = t.real("m23"), m33 = t.real("m33");
+        m = {m11, m12, m13, m22, m23, m33};
+        if (!is_metric(m)) t.fail("the tensor is not symmetric positive definite");
+      }
+    }
+    have_solution = true;
+  }
+  if (!have_solution) throw MeshInputError(path, 0, "missing 'SolAtVertices' section");
+  return metrics;
+}
+
+void write_medit_mesh(const std::string& path, const TetMesh& mesh) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot open the file for writing");
+  out.precision(17);
+  out << "MeshVersionFormatted 2\nDimension 3\n\nVertices\n" << mesh.points.size() << '\n';
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    out << mesh.points[i][0] << ' ' << mesh.points[i][1] << ' ' << mesh.points[i][2] << ' '
+        << (i < mesh.point_refs.size() ? mesh.point_refs[i] : 0) << '\n';
+  if (!mesh.triangles.empty()) {
+    out << "\nTriangles\n" << mesh.triangles.size() << '\n';
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+      out << mesh.triangles[i][0] + 1 << ' ' << mesh.triangles[i][1] + 1 << ' ' << mesh.triangles[i][2] + 1 << ' '
+          << (i < mesh.triangle_refs.size() ? mesh.triangle_refs[i] : 0) << '\n';
+  }
+  out << "\nTetrahedra\n" << mesh.tetrahedra.size() << '\n';
+  for (std::size_t i = 0; i < mesh.tetrahedra.size(); ++i) {
+    for (std::size_t v : mesh.tetrahedra[i]) out << v + 1 << ' ';
+    out << (i < mesh.tetrahedron_refs.size() ? mesh.tetrahedron_refs[i] : 0) << '\n';
+  }
+  out << "\nEnd\n";
+  write_or_throw(out, path);
+}
+
+void write_medit_sol(const std::string& path, const std::vector<Metric3>& metrics) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot open the file for writing");
+  out.precision(17);
+  out << "MeshVersionFormatted 2\nDimension 3\n\nSolAtVertices\n" << metrics.size() << "\n1 3\n";
+  for (const Metric3& m : metrics)
+    out << m.xx << ' ' << m.xy << ' ' << m.yy << ' ' << m.xz << ' ' << m.yz << ' ' << m.zz << '\n';
+  out << "\nEnd\n";
+  write_or_throw(out, path);
 }
 
 std::vector<Metric> read_medit_sol(const std::string& path, std::size_t vertex_count) {

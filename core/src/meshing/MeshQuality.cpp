@@ -61,7 +61,7 @@ MeshQuality measure_quality(const TriangleMesh& mesh, const std::vector<Metric>&
   for (const Metric& m : metrics) roots.push_back(square_root(m));
   std::map<std::pair<std::size_t, std::size_t>, bool> edges;
   for (const auto& t : mesh.triangles) {
-    ElementQuality e{0, 180, 1};
+    ElementQuality e{0, 180, 0, 1};
     for (std::size_t k = 0; k < 3; ++k) {
       const auto [ratio, angle] = shape_in(roots[t[k]], mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
       e.radius_edge = std::max(e.radius_edge, ratio);
@@ -87,6 +87,89 @@ MeshQuality measure_quality(const TriangleMesh& mesh, const std::vector<Metric>&
   q.smallest_angle = summarize(angles, 0, 60, 12);
   q.distortion = summarize(gammas, 1, 2, 10);
   q.edge_length = summarize(q.edge_lengths, 0, 3, 12);
+  return q;
+}
+
+namespace {
+
+using P3 = std::array<double, 3>;
+P3 minus(const P3& a, const P3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot3(const P3& a, const P3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+P3 cross3(const P3& a, const P3& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+
+struct TetShape {
+  double radius_edge, smallest_dihedral, sliverity;
+};
+
+/// Shape of the tetrahedron (p[0..3]) after mapping by f.
+TetShape tet_shape(const Matrix3& f, const std::array<P3, 4>& q) {
+  std::array<P3, 4> p;
+  for (std::size_t i = 0; i < 4; ++i) p[i] = multiply(f, q[i]);
+  const P3 a = minus(p[1], p[0]), b = minus(p[2], p[0]), c = minus(p[3], p[0]);
+  const double six_volume = std::abs(dot3(a, cross3(b, c)));
+  // Circumcentre relative to p[0].
+  const P3 bc = cross3(b, c), ca = cross3(c, a), ab = cross3(a, b);
+  const double d = 2 * dot3(a, bc);
+  P3 o{};
+  for (std::size_t k = 0; k < 3; ++k) o[k] = (dot3(a, a) * bc[k] + dot3(b, b) * ca[k] + dot3(c, c) * ab[k]) / d;
+  const double radius = std::sqrt(dot3(o, o));
+  double shortest = INFINITY, smallest = 180;
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t j = i + 1; j < 4; ++j) {
+      const P3 e = minus(p[j], p[i]);
+      shortest = std::min(shortest, std::sqrt(dot3(e, e)));
+      // The dihedral angle at edge ij: between the other two vertices seen perpendicular to the edge.
+      std::size_t k = 0;
+      while (k == i || k == j) ++k;
+      std::size_t l = 6 - i - j - k;
+      const P3 u = cross3(e, minus(p[k], p[i])), w = cross3(e, minus(p[l], p[i]));
+      const double angle = std::atan2(std::sqrt(dot3(cross3(u, w), cross3(u, w))), dot3(u, w)) * 180 / M_PI;
+      smallest = std::min(smallest, angle);
+    }
+  return {radius / shortest, smallest, six_volume / 6 / (shortest * shortest * shortest)};
+}
+
+}  // namespace
+
+MeshQuality measure_quality(const TetMesh& mesh, const std::vector<Metric3>& metrics) {
+  MeshQuality q;
+  std::vector<Matrix3> roots;
+  roots.reserve(metrics.size());
+  for (const Metric3& m : metrics) roots.push_back(square_root(m));
+  std::map<std::pair<std::size_t, std::size_t>, bool> edges;
+  for (const auto& t : mesh.tetrahedra) {
+    const std::array<P3, 4> p{mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]};
+    ElementQuality e{0, 180, INFINITY, 1};
+    for (std::size_t k = 0; k < 4; ++k) {
+      const TetShape s = tet_shape(roots[t[k]], p);
+      e.radius_edge = std::max(e.radius_edge, s.radius_edge);
+      e.smallest_angle = std::min(e.smallest_angle, s.smallest_dihedral);
+      e.sliverity = std::min(e.sliverity, s.sliverity);
+      for (std::size_t l = k + 1; l < 4; ++l) {
+        e.distortion = std::max(e.distortion, distortion(metrics[t[k]], metrics[t[l]]));
+        edges.emplace(std::minmax(t[k], t[l]), true);
+      }
+    }
+    if (e.smallest_angle < 10 && e.radius_edge <= 2) ++q.slivers;
+    q.elements.push_back(e);
+  }
+  for (const auto& [e, unused] : edges) {
+    const P3 d = minus(mesh.points[e.second], mesh.points[e.first]);
+    q.edge_lengths.push_back(metric_length(metrics[e.first], d));
+    q.edge_lengths.push_back(metric_length(metrics[e.second], d));
+  }
+  std::vector<double> ratios, angles, gammas, slivers;
+  for (const auto& e : q.elements) {
+    ratios.push_back(e.radius_edge);
+    angles.push_back(e.smallest_angle);
+    gammas.push_back(e.distortion);
+    slivers.push_back(e.sliverity);
+  }
+  q.radius_edge = summarize(ratios, 0.5, 3.0, 10);
+  q.smallest_angle = summarize(angles, 0, 90, 18);
+  q.distortion = summarize(gammas, 1, 2, 10);
+  q.edge_length = summarize(q.edge_lengths, 0, 3, 12);
+  q.sliverity = summarize(slivers, 0, 0.12, 12);
   return q;
 }
 

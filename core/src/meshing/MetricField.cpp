@@ -96,38 +96,57 @@ private:
   double h_, ratio_, width_, y0_;
 };
 
-/// Three muparser expressions in x and y, giving either (a, b, c) or (h1, h2, θ).
-class ExpressionField final : public MetricField {
+/// muparser expressions in x, y (and z), evaluated together: the entries or sizes of 2D and 3D fields.
+class Expressions {
 public:
-  ExpressionField(std::string spec, const std::vector<std::string>& names, std::map<std::string, std::string> exprs,
-                  bool sizes)
-      : spec_(std::move(spec)), sizes_(sizes) {
-    for (std::size_t i = 0; i < 3; ++i) {
+  Expressions(const std::string& spec, const std::vector<std::string>& names,
+              const std::map<std::string, std::string>& exprs)
+      : spec_(spec), parsers_(names.size()) {
+    for (std::size_t i = 0; i < names.size(); ++i) {
       mu::Parser& p = parsers_[i];
       p.DefineVar("x", &x_);
       p.DefineVar("y", &y_);
+      p.DefineVar("z", &z_);
       p.DefineConst("pi", M_PI);
       try {
         p.SetExpr(exprs.at(names[i]));
-        x_ = 0.5, y_ = 0.5;
+        x_ = 0.5, y_ = 0.5, z_ = 0.5;
         p.Eval();  // compiles now, so syntax errors surface at parse time
       } catch (const mu::Parser::exception_type& e) {
         throw FieldError("metric field '" + spec_ + "': in " + names[i] + "=" + exprs.at(names[i]) + ": " + e.GetMsg());
       }
     }
   }
-  Metric at(double x, double y) const override {
-    double v[3];
-    {
-      // muparser evaluates through the bound variables: one evaluation at a time.
-      const std::lock_guard lock(mutex_);
-      x_ = x, y_ = y;
-      try {
-        for (int i = 0; i < 3; ++i) v[i] = parsers_[i].Eval();
-      } catch (const mu::Parser::exception_type& e) {
-        throw FieldError("metric field '" + spec_ + "': " + e.GetMsg());
-      }
+  /// The values of the expressions at (x, y, z), in the order of `names`.
+  template <std::size_t N>
+  std::array<double, N> at(double x, double y, double z) const {
+    std::array<double, N> v{};
+    // muparser evaluates through the bound variables: one evaluation at a time.
+    const std::lock_guard lock(mutex_);
+    x_ = x, y_ = y, z_ = z;
+    try {
+      for (std::size_t i = 0; i < N; ++i) v[i] = parsers_[i].Eval();
+    } catch (const mu::Parser::exception_type& e) {
+      throw FieldError("metric field '" + spec_ + "': " + e.GetMsg());
     }
+    return v;
+  }
+
+private:
+  std::string spec_;
+  mutable std::mutex mutex_;
+  mutable double x_ = 0, y_ = 0, z_ = 0;
+  mutable std::vector<mu::Parser> parsers_;
+};
+
+/// Three muparser expressions in x and y, giving either (a, b, c) or (h1, h2, θ).
+class ExpressionField final : public MetricField {
+public:
+  ExpressionField(std::string spec, const std::vector<std::string>& names, std::map<std::string, std::string> exprs,
+                  bool sizes)
+      : spec_(std::move(spec)), sizes_(sizes), expressions_(spec_, names, exprs) {}
+  Metric at(double x, double y) const override {
+    const auto v = expressions_.at<3>(x, y, 0);
     if (sizes_) {
       if (!(v[0] > 0) || !(v[1] > 0) || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
         throw FieldError("metric field '" + spec_ + "': sizes h1=" + number(v[0]) + ", h2=" + number(v[1]) +
@@ -143,9 +162,7 @@ public:
 private:
   std::string spec_;
   bool sizes_;
-  mutable std::mutex mutex_;
-  mutable double x_ = 0, y_ = 0;
-  mutable mu::Parser parsers_[3];
+  Expressions expressions_;
 };
 
 /// Per-vertex metrics on a triangle mesh, interpolated linearly (barycentric) inside each triangle.
@@ -281,21 +298,38 @@ std::vector<double> parameters(const std::string& spec, const std::vector<std::s
   return defaults;
 }
 
-std::unique_ptr<MetricField> expression_field(const std::string& spec, const std::string& body,
-                                              const std::vector<std::string>& names, bool sizes) {
+/// The .sol path of `mesh:FILE.mesh[:FILE.sol]` (the mesh path with .sol by default).
+std::string sol_path(const std::string& spec, const std::vector<std::string>& parts) {
+  if (parts.size() < 2 || parts.size() > 3 || parts[1].empty())
+    throw FieldError("metric field '" + spec + "': usage mesh:FILE.mesh[:FILE.sol]");
+  if (parts.size() == 3) return parts[2];
+  const auto dot = parts[1].rfind('.');
+  return (dot == std::string::npos ? parts[1] : parts[1].substr(0, dot)) + ".sol";
+}
+
+/// The `NAME=EXPR;…` items of an expression field, every name of `names` exactly once.
+std::map<std::string, std::string> expression_items(const std::string& spec, const std::string& body,
+                                                    const std::vector<std::string>& names) {
   std::map<std::string, std::string> exprs;
   for (const std::string& item : split(body, ';')) {
     const auto eq = item.find('=');
     const std::string key = eq == std::string::npos ? item : item.substr(0, eq);
-    if (eq == std::string::npos || std::find(names.begin(), names.end(), key) == names.end())
-      throw FieldError("metric field '" + spec + "': expected '" + names[0] + "=EXPR;" + names[1] + "=EXPR;" +
-                       names[2] + "=EXPR', found '" + item + "'");
+    if (eq == std::string::npos || std::find(names.begin(), names.end(), key) == names.end()) {
+      std::string usage;
+      for (const std::string& n : names) usage += (usage.empty() ? "" : ";") + n + "=EXPR";
+      throw FieldError("metric field '" + spec + "': expected '" + usage + "', found '" + item + "'");
+    }
     if (!exprs.emplace(key, item.substr(eq + 1)).second)
       throw FieldError("metric field '" + spec + "': '" + key + "' is given twice");
   }
   for (const std::string& n : names)
     if (!exprs.count(n)) throw FieldError("metric field '" + spec + "': missing '" + n + "=EXPR'");
-  return std::make_unique<ExpressionField>(spec, names, exprs, sizes);
+  return exprs;
+}
+
+std::unique_ptr<MetricField> expression_field(const std::string& spec, const std::string& body,
+                                              const std::vector<std::string>& names, bool sizes) {
+  return std::make_unique<ExpressionField>(spec, names, expression_items(spec, body, names), sizes);
 }
 
 }  // namespace
@@ -334,19 +368,257 @@ std::unique_ptr<MetricField> parse_metric_field(const std::string& spec) {
   if (kind == "expr") return expression_field(spec, body, {"a", "b", "c"}, false);
   if (kind == "sizes") return expression_field(spec, body, {"h1", "h2", "theta"}, true);
   if (kind == "mesh") {
-    if (parts.size() < 2 || parts.size() > 3 || parts[1].empty())
-      throw FieldError("metric field '" + spec + "': usage mesh:FILE.mesh[:FILE.sol]");
-    std::string sol = parts.size() == 3 ? parts[2] : parts[1];
-    if (parts.size() == 2) {
-      const auto dot = sol.rfind('.');
-      sol = (dot == std::string::npos ? sol : sol.substr(0, dot)) + ".sol";
-    }
+    const std::string sol = sol_path(spec, parts);
     TriangleMesh mesh = read_medit_mesh(parts[1]);
     std::vector<Metric> metrics = read_medit_sol(sol, mesh.points.size());
     return std::make_unique<BackgroundMeshField>(spec, std::move(mesh), std::move(metrics));
   }
   throw FieldError("unknown metric field '" + spec +
                    "' (expected uniform:…, shock[:…], thesis[:…], expr:a=…;b=…;c=…, sizes:h1=…;h2=…;theta=… or "
+                   "mesh:FILE.mesh[:FILE.sol])");
+}
+
+namespace {
+
+std::string point_text(double x, double y, double z) {
+  return "(" + number(x) + ", " + number(y) + ", " + number(z) + ")";
+}
+
+/// `m`, the value of a 3D field at (x, y, z), if it is a metric; otherwise a FieldError naming the field.
+Metric3 checked(const Metric3& m, double x, double y, double z, const MetricField3& field) {
+  if (!is_metric(m))
+    throw FieldError("metric field '" + field.describe() + "': the matrix [[" + number(m.xx) + ", " + number(m.xy) +
+                     ", " + number(m.xz) + "], [" + number(m.xy) + ", " + number(m.yy) + ", " + number(m.yz) + "], [" +
+                     number(m.xz) + ", " + number(m.yz) + ", " + number(m.zz) + "]] at " + point_text(x, y, z) +
+                     " is not symmetric positive definite");
+  return m;
+}
+
+/// The size across a shock layer at distance d from its centre (the 2D shock's profile).
+double shock_size(double h_min, double h_max, double width, double d) {
+  return h_min + (h_max - h_min) * (1 - std::exp(-std::abs(d) / width));
+}
+
+class UniformField3 final : public MetricField3 {
+public:
+  UniformField3(const Metric3& m, std::string description) : m_(m), description_(std::move(description)) {
+    if (!is_metric(m)) throw FieldError("uniform field: the matrix is not symmetric positive definite");
+  }
+  Metric3 at(double, double, double) const override { return m_; }
+  std::string describe() const override { return description_; }
+
+private:
+  Metric3 m_;
+  std::string description_;
+};
+
+class PlaneShockField final : public MetricField3 {
+public:
+  PlaneShockField(double h_min, double h_max, double width, double x0)
+      : h_min_(h_min), h_max_(h_max), width_(width), x0_(x0) {
+    if (!(h_min > 0) || !(h_max >= h_min) || !(width > 0) || !std::isfinite(h_max) || !std::isfinite(x0))
+      throw FieldError("shock field: expected 0 < HMIN <= HMAX, WIDTH > 0 and a finite X0");
+  }
+  Metric3 at(double x, double y, double z) const override {
+    const double across = shock_size(h_min_, h_max_, width_, x - x0_);
+    const double along = 1 / (h_max_ * h_max_);
+    return checked({1 / (across * across), 0, 0, along, 0, along}, x, y, z, *this);
+  }
+  std::string describe() const override {
+    return "shock:" + number(h_min_) + ":" + number(h_max_) + ":" + number(width_) + ":" + number(x0_);
+  }
+
+private:
+  double h_min_, h_max_, width_, x0_;
+};
+
+class SphereShockField final : public MetricField3 {
+public:
+  SphereShockField(double h_min, double h_max, double width, double radius, std::array<double, 3> centre)
+      : h_min_(h_min), h_max_(h_max), width_(width), radius_(radius), centre_(centre) {
+    if (!(h_min > 0) || !(h_max >= h_min) || !(width > 0) || !std::isfinite(h_max) || !(radius >= 0) ||
+        !std::isfinite(radius) || !std::isfinite(centre[0]) || !std::isfinite(centre[1]) || !std::isfinite(centre[2]))
+      throw FieldError("sphere field: expected 0 < HMIN <= HMAX, WIDTH > 0, R >= 0 and a finite centre");
+  }
+  Metric3 at(double x, double y, double z) const override {
+    const double dx = x - centre_[0], dy = y - centre_[1], dz = z - centre_[2];
+    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double base = 1 / (h_max_ * h_max_);
+    if (!(r > 0)) return {base, 0, 0, base, 0, base};
+    const double across = shock_size(h_min_, h_max_, width_, r - radius_);
+    const double k = 1 / (across * across) - base;
+    const double nx = dx / r, ny = dy / r, nz = dz / r;
+    return checked({base + k * nx * nx, k * nx * ny, k * nx * nz, base + k * ny * ny, k * ny * nz, base + k * nz * nz},
+                   x, y, z, *this);
+  }
+  std::string describe() const override {
+    return "sphere:" + number(h_min_) + ":" + number(h_max_) + ":" + number(width_) + ":" + number(radius_) + ":" +
+           number(centre_[0]) + ":" + number(centre_[1]) + ":" + number(centre_[2]);
+  }
+
+private:
+  double h_min_, h_max_, width_, radius_;
+  std::array<double, 3> centre_;
+};
+
+class ExpressionField3 final : public MetricField3 {
+public:
+  ExpressionField3(std::string spec, const std::vector<std::string>& names, const std::map<std::string, std::string>& exprs)
+      : spec_(std::move(spec)), expressions_(spec_, names, exprs) {}
+  Metric3 at(double x, double y, double z) const override {
+    const auto v = expressions_.at<6>(x, y, z);
+    return checked({v[0], v[1], v[2], v[3], v[4], v[5]}, x, y, z, *this);
+  }
+  std::string describe() const override { return spec_; }
+
+private:
+  std::string spec_;
+  Expressions expressions_;
+};
+
+/// Per-vertex metrics on a tetrahedral mesh, interpolated linearly (barycentric) inside each
+/// tetrahedron. Tetrahedra are bucketed in a uniform grid of about one tetrahedron per cell.
+class BackgroundTetField final : public MetricField3 {
+public:
+  BackgroundTetField(std::string spec, TetMesh mesh, std::vector<Metric3> metrics)
+      : spec_(std::move(spec)), mesh_(std::move(mesh)), metrics_(std::move(metrics)) {
+    if (mesh_.tetrahedra.empty())
+      throw FieldError("metric field '" + spec_ + "': the background mesh has no tetrahedra");
+    lo_ = hi_ = mesh_.points[mesh_.tetrahedra[0][0]];
+    for (const auto& t : mesh_.tetrahedra)
+      for (std::size_t v : t)
+        for (int k = 0; k < 3; ++k) {
+          lo_[k] = std::min(lo_[k], mesh_.points[v][k]);
+          hi_[k] = std::max(hi_[k], mesh_.points[v][k]);
+        }
+    n_ = std::max<std::size_t>(1, static_cast<std::size_t>(std::cbrt(static_cast<double>(mesh_.tetrahedra.size()))));
+    cells_.resize(n_ * n_ * n_);
+    for (std::size_t i = 0; i < mesh_.tetrahedra.size(); ++i) {
+      std::array<double, 3> a = mesh_.points[mesh_.tetrahedra[i][0]], b = a;
+      for (std::size_t v : mesh_.tetrahedra[i])
+        for (int k = 0; k < 3; ++k) {
+          a[k] = std::min(a[k], mesh_.points[v][k]);
+          b[k] = std::max(b[k], mesh_.points[v][k]);
+        }
+      const auto c0 = cell(a), c1 = cell(b);
+      for (std::size_t z = c0[2]; z <= c1[2]; ++z)
+        for (std::size_t y = c0[1]; y <= c1[1]; ++y)
+          for (std::size_t x = c0[0]; x <= c1[0]; ++x) cells_[(z * n_ + y) * n_ + x].push_back(i);
+    }
+    tolerance_ = 1e-9 * std::max({hi_[0] - lo_[0], hi_[1] - lo_[1], hi_[2] - lo_[2]});
+  }
+
+  Metric3 at(double x, double y, double z) const override {
+    const std::array<double, 3> p{x, y, z};
+    bool inside_box = true;
+    for (int k = 0; k < 3; ++k) inside_box = inside_box && p[k] >= lo_[k] - tolerance_ && p[k] <= hi_[k] + tolerance_;
+    if (inside_box) {
+      const auto c = cell(p);
+      // The containing tetrahedron, else (rounding on a face) the least-outside one of the cell.
+      double best = -1e-9;
+      std::size_t found = mesh_.tetrahedra.size();
+      std::array<double, 4> weights{};
+      for (std::size_t t : cells_[(c[2] * n_ + c[1]) * n_ + c[0]]) {
+        const auto w = barycentric(t, p);
+        const double worst = std::min({w[0], w[1], w[2], w[3]});
+        if (worst > best) best = worst, found = t, weights = w;
+      }
+      if (found < mesh_.tetrahedra.size()) {
+        double sum = 0;
+        for (double& w : weights) sum += (w = std::max(w, 0.0));
+        return interpolate(found, weights, sum);
+      }
+    }
+    throw FieldError("metric field '" + spec_ + "': the point " + point_text(x, y, z) +
+                     " is outside the background mesh");
+  }
+  std::string describe() const override { return spec_; }
+
+private:
+  std::array<std::size_t, 3> cell(const std::array<double, 3>& p) const {
+    std::array<std::size_t, 3> c{};
+    for (int k = 0; k < 3; ++k) {
+      const double t = hi_[k] > lo_[k] ? (p[k] - lo_[k]) / (hi_[k] - lo_[k]) : 0;
+      c[k] = static_cast<std::size_t>(std::clamp(t * static_cast<double>(n_), 0.0, static_cast<double>(n_ - 1)));
+    }
+    return c;
+  }
+  std::array<double, 4> barycentric(std::size_t t, const std::array<double, 3>& p) const {
+    const auto& tet = mesh_.tetrahedra[t];
+    auto volume = [&](const std::array<double, 3>& a, const std::array<double, 3>& b, const std::array<double, 3>& c,
+                      const std::array<double, 3>& d) {
+      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]},
+                   w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+      return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
+    };
+    const auto& a = mesh_.points[tet[0]];
+    const auto& b = mesh_.points[tet[1]];
+    const auto& c = mesh_.points[tet[2]];
+    const auto& d = mesh_.points[tet[3]];
+    const double total = volume(a, b, c, d);
+    return {volume(p, b, c, d) / total, volume(a, p, c, d) / total, volume(a, b, p, d) / total,
+            volume(a, b, c, p) / total};
+  }
+  Metric3 interpolate(std::size_t t, const std::array<double, 4>& w, double sum) const {
+    Metric3 m{0, 0, 0, 0, 0, 0};
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Metric3& v = metrics_[mesh_.tetrahedra[t][k]];
+      const double c = w[k] / sum;
+      m = {m.xx + c * v.xx, m.xy + c * v.xy, m.xz + c * v.xz, m.yy + c * v.yy, m.yz + c * v.yz, m.zz + c * v.zz};
+    }
+    return m;  // a convex combination of SPD matrices is SPD
+  }
+
+  std::string spec_;
+  TetMesh mesh_;
+  std::vector<Metric3> metrics_;
+  std::array<double, 3> lo_{}, hi_{};
+  std::size_t n_ = 1;
+  std::vector<std::vector<std::size_t>> cells_;
+  double tolerance_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<MetricField3> uniform_field3(const Metric3& m) {
+  return std::make_unique<UniformField3>(m, "expr:xx=" + exact_number(m.xx) + ";xy=" + exact_number(m.xy) +
+                                                ";xz=" + exact_number(m.xz) + ";yy=" + exact_number(m.yy) +
+                                                ";yz=" + exact_number(m.yz) + ";zz=" + exact_number(m.zz));
+}
+
+std::unique_ptr<MetricField3> parse_metric_field3(const std::string& spec) {
+  const auto colon = spec.find(':');
+  const std::string kind = spec.substr(0, colon);
+  const std::string body = colon == std::string::npos ? "" : spec.substr(colon + 1);
+  const std::vector<std::string> parts = split(spec, ':');
+  if (kind == "uniform") {
+    if (parts.size() != 4) throw FieldError("metric field '" + spec + "': usage uniform:H1:H2:H3 in 3D");
+    const auto p = parameters(spec, parts, {0, 0, 0}, "uniform:H1:H2:H3");
+    if (!(p[0] > 0) || !(p[1] > 0) || !(p[2] > 0)) throw FieldError("metric field '" + spec + "': sizes must be positive");
+    return std::make_unique<UniformField3>(metric3_from_sizes(p[0], p[1], p[2]), "uniform:" + exact_number(p[0]) + ":" +
+                                                                                    exact_number(p[1]) + ":" +
+                                                                                    exact_number(p[2]));
+  }
+  if (kind == "shock") {
+    const auto p = parameters(spec, parts, {0.02, 0.2, 0.05, 0.5}, "shock[:HMIN:HMAX:WIDTH:X0]");
+    return std::make_unique<PlaneShockField>(p[0], p[1], p[2], p[3]);
+  }
+  if (kind == "sphere") {
+    const auto p = parameters(spec, parts, {0.02, 0.2, 0.05, 0.3, 0.5, 0.5, 0.5}, "sphere[:HMIN:HMAX:WIDTH:R:CX:CY:CZ]");
+    return std::make_unique<SphereShockField>(p[0], p[1], p[2], p[3], std::array<double, 3>{p[4], p[5], p[6]});
+  }
+  if (kind == "expr") {
+    const std::vector<std::string> names{"xx", "xy", "xz", "yy", "yz", "zz"};
+    return std::make_unique<ExpressionField3>(spec, names, expression_items(spec, body, names));
+  }
+  if (kind == "mesh") {
+    const std::string sol = sol_path(spec, parts);
+    TetMesh mesh = read_medit_tet_mesh(parts[1]);
+    std::vector<Metric3> metrics = read_medit_sol3(sol, mesh.points.size());
+    return std::make_unique<BackgroundTetField>(spec, std::move(mesh), std::move(metrics));
+  }
+  throw FieldError("unknown 3D metric field '" + spec +
+                   "' (expected uniform:H1:H2:H3, shock[:…], sphere[:…], expr:xx=…;xy=…;xz=…;yy=…;yz=…;zz=… or "
                    "mesh:FILE.mesh[:FILE.sol])");
 }
 

@@ -110,7 +110,7 @@ TEST(Metric, DistortionBoundsLengthsAndIsSymmetric) {
   const Metric m{2, 0.5, 1};
   EXPECT_NEAR(distortion(m, m), 1, 1e-15);
   EXPECT_NEAR(distortion(m, {4 * m.a, 4 * m.b, 4 * m.c}), 2, 1e-14);  // lengths scale by 2
-  EXPECT_NEAR(distortion({1, 0, 1}, {1, 0, 9}), 3, 1e-14);
+  EXPECT_NEAR(distortion(Metric{1, 0, 1}, Metric{1, 0, 9}), 3, 1e-14);
 }
 
 TEST(MetricField, BuiltInsHaveTheirDocumentedValues) {

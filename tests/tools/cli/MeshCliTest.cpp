@@ -145,3 +145,51 @@ TEST_F(MeshCli, SlantedEdgesAndHoleCornersMeshValidly) {
     EXPECT_TRUE(j["valid_triangulation"].get<bool>()) << args << ": " << j["validation"];
   }
 }
+
+TEST_F(MeshCli, ThreeDimensionalDomainsMeshWithACheckedTetrahedralization) {
+  // The bundled cube and box with a hole: 3D is detected from the .off file, the report is in the
+  // metric, the outputs exist and the Medit file holds the tetrahedra the JSON counts.
+  for (const char* name : {"cube", "box-with-hole"}) {
+    const std::string stem = path(std::string(name) + "3d");
+    const MeshRun r = mesh(domains + name + ".off --metric uniform:0.3:0.3:0.4 --json -o " + stem);
+    ASSERT_EQ(r.status, 0) << r.out;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_TRUE(j["converged"].get<bool>());
+    EXPECT_TRUE(j["valid_tetrahedralization"].get<bool>()) << j["validation"];
+    EXPECT_EQ(j["dimension"], 3);
+    EXPECT_GT(j["quality"]["smallest_dihedral_degrees"]["min"].get<double>(), 0);
+    EXPECT_LE(j["quality"]["radius_edge"]["max"].get<double>(), 2 + 1e-9);
+    for (const char* ext : {".mesh", ".sol", ".vtk", ".json", ".svg", ".png"}) EXPECT_TRUE(fs::exists(stem + ext)) << stem << ext;
+    std::ifstream medit(stem + ".mesh");
+    std::string word;
+    std::size_t tets = 0;
+    while (medit >> word)
+      if (word == "Tetrahedra") medit >> tets;
+    EXPECT_EQ(tets, j["tetrahedra"].get<std::size_t>());
+  }
+  // The table names the 3D quantities.
+  const MeshRun table = mesh(domains + "cube.off --metric uniform:0.4:0.4:0.4 --no-picture -o " + path("t3"));
+  EXPECT_EQ(table.status, 0) << table.out;
+  EXPECT_NE(table.out.find("valid tetrahedralization of the domain"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("smallest dihedral"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("slivers"), std::string::npos) << table.out;
+}
+
+TEST_F(MeshCli, ThreeDimensionalBadInputAndEarlyStops) {
+  // A surface with a missing face: exit 2, file and line named.
+  std::ofstream(path("open.off")) << "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n";
+  const MeshRun open = mesh(path("open.off") + " --metric uniform:0.3:0.3:0.3 -o " + path("o"));
+  EXPECT_EQ(open.status, 2);
+  EXPECT_NE(open.out.find("open.off:"), std::string::npos) << open.out;
+  EXPECT_NE(open.out.find("not closed"), std::string::npos) << open.out;
+  // A 2D field specification on a 3D domain.
+  const MeshRun field = mesh(domains + "cube.off --metric uniform:0.3:0.3 -o " + path("f"));
+  EXPECT_EQ(field.status, 2);
+  EXPECT_NE(field.out.find("uniform:H1:H2:H3"), std::string::npos) << field.out;
+  // The Voronoi algorithm is 2D only.
+  EXPECT_EQ(mesh(domains + "cube.off --metric uniform:0.3:0.3:0.3 --algorithm voronoi -o " + path("v")).status, 2);
+  // Capped: exit 3, no checked status.
+  const MeshRun cap = mesh(domains + "cube.off --metric uniform:0.1:0.1:0.1 --max-vertices 30 --no-picture -o " + path("c"));
+  EXPECT_EQ(cap.status, 3) << cap.out;
+  EXPECT_NE(cap.out.find("max_vertices"), std::string::npos) << cap.out;
+}

@@ -55,4 +55,55 @@ private:
   std::vector<std::vector<Index>> cells_;
 };
 
+/// The same in space: n × n × n cells over box {x0, y0, z0, x1, y1, z1} (the 3D star mesher).
+template <class Index>
+class BucketGrid3 {
+public:
+  BucketGrid3(std::array<double, 6> box, std::size_t n) : box_(box), n_(std::max<std::size_t>(n, 1)), cells_(n_ * n_ * n_) {
+    for (std::size_t k = 0; k < 3; ++k) w_[k] = std::max(box_[k + 3] - box_[k], 1e-300) / static_cast<double>(n_);
+  }
+  /// Index along axis k of coordinate v.
+  std::size_t index(std::size_t k, double v) const { return clamp((v - box_[k]) / w_[k]); }
+  /// The cell containing p.
+  const std::vector<Index>& cell_of(const std::array<double, 3>& p) const {
+    return cells_[(index(2, p[2]) * n_ + index(1, p[1])) * n_ + index(0, p[0])];
+  }
+  /// Registers `item` in every cell the box [lo, hi] meets.
+  void add_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi, Index item) {
+    visit(lo, hi, [&](std::vector<Index>& cell) { cell.push_back(item); });
+  }
+  /// Removes one registration of `item` from every cell the box [lo, hi] meets.
+  void remove_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi, Index item) {
+    visit(lo, hi, [&](std::vector<Index>& cell) {
+      const auto it = std::find(cell.begin(), cell.end(), item);
+      if (it != cell.end()) cell.erase(it);
+    });
+  }
+  /// Calls f on every entry of every cell the box [lo, hi] meets (possibly several times per item).
+  template <class F>
+  void for_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi, F&& f) const {
+    for (std::size_t z = index(2, lo[2]); z <= index(2, hi[2]); ++z)
+      for (std::size_t y = index(1, lo[1]); y <= index(1, hi[1]); ++y)
+        for (std::size_t x = index(0, lo[0]); x <= index(0, hi[0]); ++x)
+          for (Index item : cells_[(z * n_ + y) * n_ + x]) f(item);
+  }
+
+private:
+  template <class F>
+  void visit(const std::array<double, 3>& lo, const std::array<double, 3>& hi, F&& f) {
+    for (std::size_t z = index(2, lo[2]); z <= index(2, hi[2]); ++z)
+      for (std::size_t y = index(1, lo[1]); y <= index(1, hi[1]); ++y)
+        for (std::size_t x = index(0, lo[0]); x <= index(0, hi[0]); ++x) f(cells_[(z * n_ + y) * n_ + x]);
+  }
+  std::size_t clamp(double t) const {
+    if (!(t > 0)) return 0;
+    if (!(t < static_cast<double>(n_))) return n_ - 1;
+    return static_cast<std::size_t>(t);
+  }
+  std::array<double, 6> box_;
+  std::size_t n_;
+  std::array<double, 3> w_{1, 1, 1};
+  std::vector<std::vector<Index>> cells_;
+};
+
 }  // namespace laguerre::core::detail

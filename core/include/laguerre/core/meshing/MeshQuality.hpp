@@ -5,6 +5,13 @@
 /// vertices (the worst of the three is reported), and the largest distortion between its vertices;
 /// per edge, its length in the metric of each endpoint. Summaries give min/mean/max, the 5th and 95th
 /// percentiles (nearest rank) and a histogram.
+///
+/// Tetrahedral meshes (3D) get the same report, per tetrahedron in the metric of each of its four
+/// vertices: radius–edge ratio (√6/4 ≈ 0.61 for the regular tetrahedron), smallest *dihedral* angle
+/// (in `smallest_angle`, 70.5° for the regular one), sliverity σ = volume / shortest edge³ (thesis
+/// §3.4; 1/(6√2) ≈ 0.118 regular), and slivers counted: tetrahedra with a dihedral angle below 10° in
+/// one of their vertices' metrics although their radius–edge ratio is at most 2 (nearly flat with
+/// well-spaced vertices, what Delaunay refinement alone leaves).
 
 #include "laguerre/core/meshing/Medit.hpp"
 #include "laguerre/core/meshing/Metric.hpp"
@@ -17,7 +24,8 @@ namespace laguerre::core {
 /// One triangle's quality, the worst over the metrics of its vertices.
 struct ElementQuality {
   double radius_edge = 0;     ///< largest circumradius / shortest edge (1/√3 for equilateral)
-  double smallest_angle = 0;  ///< smallest angle, degrees
+  double smallest_angle = 0;  ///< smallest angle, degrees (3D: smallest dihedral angle)
+  double sliverity = 0;       ///< 3D: smallest volume / shortest edge³ (0 for triangles)
   double distortion = 1;      ///< largest γ between two of its vertices
 };
 
@@ -42,10 +50,15 @@ struct MeshQuality {
   QualitySummary smallest_angle;         ///< of elements[i].smallest_angle (bins of 5° over [0, 60])
   QualitySummary distortion;             ///< of elements[i].distortion
   QualitySummary edge_length;            ///< of edge_lengths
+  QualitySummary sliverity;              ///< 3D: of elements[i].sliverity
+  std::size_t slivers = 0;               ///< 3D: slivers (see the file comment)
 };
 
 /// Measures `mesh` with one metric per vertex.
 MeshQuality measure_quality(const TriangleMesh& mesh, const std::vector<Metric>& metrics);
+
+/// Measures a tetrahedral mesh with one metric per vertex (see the file comment).
+MeshQuality measure_quality(const TetMesh& mesh, const std::vector<Metric3>& metrics);
 
 /// Summarises `values` with `bins` equal bins over [lo, hi] (values outside go to the end bins).
 QualitySummary summarize(std::vector<double> values, double lo, double hi, std::size_t bins);

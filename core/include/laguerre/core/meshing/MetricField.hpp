@@ -19,9 +19,22 @@
 ///   mesh:FILE.mesh[:FILE.sol]         per-vertex metrics on a background mesh (the .sol defaults to the
 ///                                     mesh path with .sol), interpolated linearly inside each triangle
 /// A field that yields a matrix that is not SPD at some point throws FieldError at that point.
+///
+/// Fields of space (MetricField3, for 3D domains; `parse_metric_field3`):
+///   uniform:H1:H2:H3                  constant sizes H1, H2, H3 along x, y, z
+///   shock[:HMIN:HMAX:WIDTH:X0]        a shock layer around the plane x = X0: size across it h(|x − X0|)
+///                                     with h as in 2D, HMAX along it (defaults 0.02, 0.2, 0.05, 0.5)
+///   sphere[:HMIN:HMAX:WIDTH:R:CX:CY:CZ]  a shock layer around the sphere of centre C and radius R: size
+///                                     h(|‖p − C‖ − R|) along the radius, HMAX tangentially, i.e.
+///                                     M = I/HMAX² + (1/h² − 1/HMAX²)·nnᵀ with n the unit radial direction
+///                                     (M = I/HMAX² at C itself) (defaults 0.02, 0.2, 0.05, 0.3, 0.5, 0.5, 0.5)
+///   expr:xx=EXPR;xy=EXPR;xz=EXPR;yy=EXPR;yz=EXPR;zz=EXPR   the six entries as expressions of x, y, z
+///   mesh:FILE.mesh[:FILE.sol]         per-vertex metrics (6 entries, or a size) on a background
+///                                     tetrahedral mesh, interpolated linearly inside each tetrahedron
 
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/meshing/Metric.hpp"
+#include "laguerre/core/meshing/Metric3.hpp"
 
 #include <memory>
 #include <stdexcept>
@@ -44,6 +57,23 @@ public:
   /// A one-line description (the specification it was built from, with defaults filled in).
   virtual std::string describe() const = 0;
 };
+
+/// A metric field of space (or of a domain, for background-mesh fields).
+class MetricField3 {
+public:
+  virtual ~MetricField3() = default;
+  /// The metric at (x, y, z). Throws FieldError if the value there is not SPD.
+  virtual Metric3 at(double x, double y, double z) const = 0;
+  /// A one-line description (the specification it was built from, with defaults filled in).
+  virtual std::string describe() const = 0;
+};
+
+/// Parses a 3D field specification (see the file comment). Throws FieldError with the offending part,
+/// or MeshInputError for a bad background mesh file.
+std::unique_ptr<MetricField3> parse_metric_field3(const std::string& spec);
+
+/// The constant field M of space.
+std::unique_ptr<MetricField3> uniform_field3(const Metric3& m);
 
 /// Parses a field specification (see the file comment). Throws FieldError with the offending part, or
 /// MeshInputError for a bad background mesh file.

@@ -58,7 +58,7 @@
 /// with holes is then, barring a rare chord between two boundary vertices, a 3-connected plane graph
 /// whose holes are inner non-triangular faces (see core/graph/GraphKind.hpp). Off by default: the
 /// default refinement is the thesis's, and meshes for a seed stay as they were.
-/// 3D (sliver rule 4 of §3.4) is not implemented.
+/// 3D (with the sliver rule 4 of §3.4): StarMesher3.hpp.
 ///
 /// Honest gaps.
 ///  - Fixed: sites on an outer edge not parallel to a metric axis lost their collinearity when stars

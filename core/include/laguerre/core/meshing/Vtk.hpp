@@ -16,4 +16,9 @@ namespace laguerre::core {
 void write_vtk(const std::string& path, const TriangleMesh& mesh, const std::vector<Metric>& metrics,
                const MeshQuality* quality = nullptr);
 
+/// The same for a tetrahedral mesh: POINT_DATA "metric" (3×3 tensors), CELL_DATA "radius_edge",
+/// "smallest_dihedral", "sliverity" and "distortion" when `quality` has one entry per tetrahedron.
+void write_vtk(const std::string& path, const TetMesh& mesh, const std::vector<Metric3>& metrics,
+               const MeshQuality* quality = nullptr);
+
 }  // namespace laguerre::core

@@ -1,0 +1,44 @@
+#pragma once
+/// @file
+/// The CGAL entry points of the 3D star mesher: the star of one point in the Delaunay triangulation of
+/// a small point set for a constant metric M, and the exact 3D predicates the mesher decides with.
+///
+/// Unlike 2D (LocalDelaunay.hpp), the star is the Euclidean Delaunay triangulation (CGAL, exact
+/// predicates) of the stretched points F·p, F = M^{1/2}, rounded to doubles: a CGAL 3D triangulation
+/// with the metric in-sphere (lifting xᵀMx, `metric_in_sphere`) on the input points hung in
+/// CGAL's point location on stars of the cube (cause not found in the time available). For diagonal
+/// metrics (every built-in field but `sphere`) F·p scales coordinates, so sites on an axis-aligned face
+/// stay exactly coplanar; for others, the rounding can make a flat sliver of four coplanar face sites,
+/// which the mesher's exact classification on the input points puts outside Ω. Every combinatorial
+/// decision of the mesher (faces, sides, the final check) uses the input points.
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace laguerre::core::detail {
+
+/// The star of `points[centre]` in the Delaunay triangulation of `points` for the metric with entries
+/// {xx, xy, xz, yy, yz, zz}: each entry {i, j, k} is a finite tetrahedron (centre, i, j, k), positively
+/// oriented (for the stretched points; the same for the input points unless rounding flattened it).
+/// `on_hull`: the centre is on the convex hull. False when the points span less than 3 dimensions
+/// (`star` is then empty). Cospherical ties are broken by CGAL's symbolic perturbation.
+bool delaunay_star3(const std::vector<std::array<double, 3>>& points, std::size_t centre,
+                    const std::array<double, 6>& metric, std::vector<std::array<std::size_t, 3>>& star, bool& on_hull);
+
+/// The sign of the M-in-sphere determinant (exact: interval filter, rational fallback): positive iff t is
+/// strictly inside the M-circumsphere of the positively oriented tetrahedron (p, q, r, s). The tests'
+/// oracle for the stars.
+int metric_in_sphere(const std::array<double, 3>& p, const std::array<double, 3>& q, const std::array<double, 3>& r,
+                     const std::array<double, 3>& s, const std::array<double, 3>& t, const std::array<double, 6>& metric);
+
+/// Exact orientation: +1 iff d lies on the side of the plane abc where (b − a) × (c − a) points.
+int orientation3(const std::array<double, 3>& a, const std::array<double, 3>& b, const std::array<double, 3>& c,
+                 const std::array<double, 3>& d);
+
+/// Whether the closed segment [p, q] meets the closed triangle abc (exact).
+bool segment_meets_triangle(const std::array<double, 3>& p, const std::array<double, 3>& q,
+                            const std::array<double, 3>& a, const std::array<double, 3>& b,
+                            const std::array<double, 3>& c);
+
+}  // namespace laguerre::core::detail
