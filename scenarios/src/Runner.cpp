@@ -101,7 +101,12 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
   r.kind = std::string(core::to_string(topo.kind));
   const core::PlanarGraph& g = topo.graph;
   const std::size_t n = g.num_vertices();
-  r.nodes = n;
+  r.core_nodes = n;
+  r.sensors = r.nodes = topo.sensors ? topo.sensors->points.size() : n;
+  if (!topo.sensors && topo.family == "field") {  // a repaired field without attach: the deployment's size
+    const auto& params = cfg.topology.params;
+    r.sensors = static_cast<std::size_t>(params.integer("n", static_cast<std::int64_t>(n)));
+  }
   r.edges = g.num_edges();
   try {
     ProtocolSetup setup;
@@ -200,6 +205,15 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
       sr.hops_mean = st.hops_mean;
       sr.positions = on_physical ? "physical" : "packing";
       r.routing.push_back(sr);
+    }
+    if (topo.sensors) {  // every sensor pair: greedy power with the attachment, the others on the planarization
+      const SensorNetwork& net = *topo.sensors;
+      const PlanarizationRouter planar(net);
+      std::vector<SensorRouter> routers;
+      for (core::Scheme s : cfg.routing.schemes)
+        routers.push_back(s == core::Scheme::greedy_power ? attached_router(net, g, phi) : planar.router(s));
+      const std::vector<AllPairsStats> all = evaluate_all_pairs(net, routers, selection);
+      for (std::size_t k = 0; k < all.size(); ++k) r.routing[k].all_pairs = all[k];
     }
     if (artifacts) {
       const core::CircleEmbedding& gfg_emb = physical ? geo : phi;

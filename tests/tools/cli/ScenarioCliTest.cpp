@@ -159,6 +159,11 @@ TEST_F(ScenarioCli, EveryExampleRunsSmall) {
        true},
       {"mesh-field.yaml", "--set repetitions=1 --set topology.metric=uniform:0.25:0.25", true},
       {"mesh-holes.yaml", "--set repetitions=1 --set topology.metric=uniform:0.25:0.25", true},
+      {"field-holes-comparison.yaml",
+       "--set repetitions=1 --set routing.pairs=500 --set 'sweep.topology=[{generator: field, n: 200, radius: 0.14, "
+       "graph: local-delaunay, repair: three-connected-core, attach: true}]'",
+       true},
+      {"field-holes-50000.yaml", "--set topology.n=200 --set topology.radius=0.14 --set routing.pairs=500", true},
   };
   std::size_t bundled = 0;
   for (const auto& e : fs::directory_iterator(scenarios)) bundled += e.path().extension() == ".yaml";

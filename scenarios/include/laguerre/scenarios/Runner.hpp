@@ -28,6 +28,7 @@
 #include "laguerre/core/random/Random.hpp"
 #include "laguerre/scenarios/Scenario.hpp"
 #include "laguerre/scenarios/Topology.hpp"
+#include "laguerre/scenarios/fields/SensorNetwork.hpp"
 #include "laguerre/sim/HostRunner.hpp"
 
 namespace laguerre::scenarios {
@@ -79,6 +80,10 @@ struct SchemeResult {
   double stretch_max = 0;                            ///< largest
   double hops_mean = 0;                              ///< mean hops of delivered pairs
   std::string positions;                             ///< "packing" or "physical"
+  /// A field with `attach: true`: the same scheme over pairs of all sensors (greedy power with the
+  /// attachment, the others on the planarization of all sensors; fields/SensorNetwork.hpp). The
+  /// fields above are then the core pairs.
+  std::optional<AllPairsStats> all_pairs;
 };
 
 /// The result of one run.
@@ -90,7 +95,9 @@ struct RunRecord {
   std::string topology;                ///< topology name
   std::string topology_note;           ///< the generator's report (e.g. a sensor field's repair), or ""
   std::string kind;                    ///< "triangulated_disc" / "three_connected" ("" if not built)
-  std::size_t nodes = 0;               ///< vertices
+  std::size_t sensors = 0;             ///< sensors deployed (= vertices of the topology unless a field's repair dropped some)
+  std::size_t nodes = 0;               ///< sensors routed: every sensor with attach, else the packed vertices
+  std::size_t core_nodes = 0;          ///< vertices packed by the protocol (its messages are over these)
   std::size_t edges = 0;               ///< edges
   std::uint32_t iterations = 0;        ///< protocol: Thurston steps to its stop
   std::uint32_t rounds = 0;            ///< protocol: rounds
