@@ -88,6 +88,22 @@ private:
   double stretch_weighted_ = 0, p95_ = 0, smax_ = std::numeric_limits<double>::quiet_NaN();
 };
 
+/// The family of a point: its generator, then the values of its swept topology keys other than the
+/// size (a file path by its stem), e.g. "field:one-large-hole:quasi-unit-disk"; sizes stay one column.
+std::string family_label(const ScenarioPoint& p) {
+  std::string label = p.config.topology.generator;
+  for (const auto& [key, value] : p.values) {
+    if (key.rfind("topology.", 0) != 0 || key == "topology.n") continue;
+    std::string v = value;
+    if (const auto slash = v.find_last_of('/'); slash != std::string::npos) {
+      v = v.substr(slash + 1);
+      if (const auto dot = v.find_last_of('.'); dot != std::string::npos && dot > 0) v.resize(dot);
+    }
+    label += ":" + v;
+  }
+  return label;
+}
+
 }  // namespace
 
 std::vector<ComparisonRow> compare_runs(const Scenario& scenario, const std::vector<RunRecord>& records) {
@@ -99,12 +115,12 @@ std::vector<ComparisonRow> compare_runs(const Scenario& scenario, const std::vec
       ComparisonRow row;
       row.scenario = scenario.name;
       row.point = p.index;
-      row.family = cfg.topology.generator;
+      row.family = family_label(p);
       row.size = size_label(cfg);
       row.network = network_label(cfg.network);
       row.scheme = scheme_name(cfg.routing.schemes[k]);
       PairAccumulator core_pairs, all_pairs;
-      double nodes = 0, sensors = 0, disconnected = 0, iters = 0, rounds = 0, msgs = 0, simt = 0;
+      double nodes = 0, sensors = 0, core_nodes = 0, disconnected = 0, iters = 0, rounds = 0, msgs = 0, simt = 0;
       for (const RunRecord& r : records) {
         if (r.plan.point != p.index) continue;
         ++row.runs;
@@ -120,6 +136,7 @@ std::vector<ComparisonRow> compare_runs(const Scenario& scenario, const std::vec
         }
         nodes += static_cast<double>(r.nodes);
         sensors += static_cast<double>(r.sensors);
+        core_nodes += static_cast<double>(r.core_nodes);
         iters += r.iterations;
         rounds += r.rounds;
         msgs += r.messages_per_node;
@@ -137,6 +154,7 @@ std::vector<ComparisonRow> compare_runs(const Scenario& scenario, const std::vec
       const double routed = row.routed ? static_cast<double>(row.routed) : nan;
       row.nodes_mean = nodes / routed;
       row.sensors_mean = sensors / routed;
+      row.core_nodes_mean = core_nodes / routed;
       row.disconnected_mean = row.all_pairs_runs ? disconnected / static_cast<double>(row.all_pairs_runs) : nan;
       row.iterations_mean = iters / routed;
       row.rounds_mean = rounds / routed;
@@ -162,9 +180,9 @@ std::string csv_num(double x) { return std::isfinite(x) ? fmt("%.6g", x) : ""; }
 std::string comparison_table(const std::vector<ComparisonRow>& rows) {
   std::string out;
   char line[512];
-  std::snprintf(line, sizeof line, "%-24s %6s %-22s %-14s %5s %9s %17s %7s %7s %7s %8s %7s %9s %10s %8s %8s %9s %17s %7s %7s %7s\n",
+  std::snprintf(line, sizeof line, "%-36s %6s %-22s %-14s %5s %9s %17s %7s %7s %7s %8s %7s %9s %10s %8s %8s %8s %9s %17s %7s %7s %7s\n",
                 "family", "n", "network", "scheme", "runs", "delivery", "95% CI", "stretch", "p95", "max", "iters",
-                "rounds", "msgs/node", "sim time", "sensors", "nodes", "all-pairs", "95% CI", "stretch", "p95",
+                "rounds", "msgs/node", "sim time", "sensors", "nodes", "packed", "all-pairs", "95% CI", "stretch", "p95",
                 "discon");
   out += line;
   std::string last_group;
@@ -182,7 +200,7 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows) {
                                    : "[" + fmt("%.1f", 100 * a.delivery_ci.low) + ", " +
                                          fmt("%.1f", 100 * a.delivery_ci.high) + "]" + (a.ci_method == "wilson" ? "w" : "");
     std::snprintf(line, sizeof line,
-                  "%-24s %6s %-22s %-14s %2zu/%-2zu %8s%% %17s %7s %7s %7s %8s %7s %9s %9ss %8s %8s %8s%% %17s %7s %7s "
+                  "%-36s %6s %-22s %-14s %2zu/%-2zu %8s%% %17s %7s %7s %7s %8s %7s %9s %9ss %8s %8s %8s %8s%% %17s %7s %7s "
                   "%6s%%\n",
                   r.family.c_str(), r.size.c_str(), r.network.substr(0, 22).c_str(), r.scheme.c_str(), r.routed, r.runs,
                   fmt("%.2f", 100 * r.delivery_mean).c_str(), ci.c_str(), fmt("%.3f", r.stretch_mean).c_str(),
@@ -190,13 +208,13 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows) {
                   fmt("%.1f", r.iterations_mean).c_str(), fmt("%.1f", r.rounds_mean).c_str(),
                   fmt("%.1f", r.messages_per_node_mean).c_str(), fmt("%.4f", r.simulated_seconds_mean).c_str(),
                   fmt("%.1f", r.sensors_mean).c_str(), fmt("%.1f", r.nodes_mean).c_str(),
-                  fmt("%.2f", 100 * a.delivery_mean).c_str(), all_ci.c_str(), fmt("%.3f", a.stretch_mean).c_str(),
+                  fmt("%.1f", r.core_nodes_mean).c_str(), fmt("%.2f", 100 * a.delivery_mean).c_str(), all_ci.c_str(), fmt("%.3f", a.stretch_mean).c_str(),
                   fmt("%.3f", a.stretch_p95).c_str(), fmt("%.2f", 100 * r.disconnected_mean).c_str());
     out += line;
   }
   out += "delivery = mean per-run delivery rate; 95% CI: Student t over repetitions (w: Wilson on the pairs of a single "
          "run); stretch = hop stretch (mean, mean per-run p95, max) against BFS in the routed graph.\n"
-         "Fields with attach: sensors = deployed, nodes = routed (every sensor); delivery/stretch above are over pairs "
+         "Fields with attach: sensors = deployed, nodes = routed (every sensor), packed = the 3-connected core; delivery/stretch above are over pairs "
          "of the packed core; all-pairs = delivery over pairs of all sensors in one link component (greedy power with "
          "the attachment, the others on the planarization of all sensors), stretch against BFS in the link graph; "
          "discon = share of the sampled pairs in different link components, excluded (no scheme can deliver them)\n";
@@ -207,7 +225,7 @@ std::string comparison_csv(const std::vector<ComparisonRow>& rows) {
   std::string out =
       "scenario,point,family,n,network,scheme,runs,routed,nodes_mean,delivery_mean,delivery_ci_low,delivery_ci_high,"
       "ci_method,stretch_mean,stretch_p95,stretch_max,iterations_mean,rounds_mean,messages_per_node_mean,"
-      "simulated_seconds_mean,sensors_mean,all_pairs_delivery_mean,all_pairs_delivery_ci_low,all_pairs_delivery_ci_high,"
+      "simulated_seconds_mean,sensors_mean,core_nodes_mean,all_pairs_delivery_mean,all_pairs_delivery_ci_low,all_pairs_delivery_ci_high,"
       "all_pairs_ci_method,all_pairs_stretch_mean,all_pairs_stretch_p95,all_pairs_stretch_max,disconnected_mean\n";
   auto q = [](const std::string& s) {
     if (s.find_first_of(",\"\n") == std::string::npos) return s;
@@ -222,7 +240,7 @@ std::string comparison_csv(const std::vector<ComparisonRow>& rows) {
            r.ci_method + "," + csv_num(r.stretch_mean) + "," + csv_num(r.stretch_p95) + "," + csv_num(r.stretch_max) +
            "," + csv_num(r.iterations_mean) + "," + csv_num(r.rounds_mean) + "," + csv_num(r.messages_per_node_mean) +
            "," + csv_num(r.simulated_seconds_mean) + "," + csv_num(r.sensors_mean) + "," +
-           csv_num(r.all_pairs.delivery_mean) + "," + csv_num(r.all_pairs.delivery_ci.low) + "," +
+           csv_num(r.core_nodes_mean) + "," + csv_num(r.all_pairs.delivery_mean) + "," + csv_num(r.all_pairs.delivery_ci.low) + "," +
            csv_num(r.all_pairs.delivery_ci.high) + "," + r.all_pairs.ci_method + "," + csv_num(r.all_pairs.stretch_mean) +
            "," + csv_num(r.all_pairs.stretch_p95) + "," + csv_num(r.all_pairs.stretch_max) + "," +
            csv_num(r.disconnected_mean) + "\n";
@@ -251,7 +269,8 @@ std::string comparison_json(const std::vector<ComparisonRow>& rows) {
                    {"rounds_mean", num(r.rounds_mean)},
                    {"messages_per_node_mean", num(r.messages_per_node_mean)},
                    {"simulated_seconds_mean", num(r.simulated_seconds_mean)},
-                   {"sensors_mean", num(r.sensors_mean)}});
+                   {"sensors_mean", num(r.sensors_mean)},
+                   {"core_nodes_mean", num(r.core_nodes_mean)}});
     if (r.all_pairs_runs > 0)
       arr.back()["all_pairs"] = {{"runs", r.all_pairs_runs},
                                  {"delivery_mean", num(r.all_pairs.delivery_mean)},

@@ -371,8 +371,11 @@ TEST(Runner, BundledFieldHolesComparisonRoutesEverySensor) {
     EXPECT_EQ(row.all_pairs_runs, 1u);
     EXPECT_EQ(row.sensors_mean, 250.0);
     EXPECT_EQ(row.nodes_mean, 250.0);
+    EXPECT_LE(row.core_nodes_mean, row.nodes_mean);
   }
   EXPECT_EQ(rows[0].all_pairs.delivery_mean, 1.0);
+  EXPECT_EQ(rows[0].family, "field:square-with-holes:unit-disk");  // the swept domain and links name the rows
+  EXPECT_EQ(rows[4 * 5].family, "field:many-small-holes:quasi-unit-disk");
   const ScenarioResults b = run_scenario(s, {});
   EXPECT_EQ(results_csv(s, a.records), results_csv(s, b.records));
   EXPECT_EQ(comparison_csv(rows), comparison_csv(compare_runs(s, b.records)));

@@ -53,7 +53,7 @@ struct PairSummary {
 struct ComparisonRow {
   std::string scenario;              ///< scenario name
   std::size_t point = 0;             ///< sweep point
-  std::string family;                ///< generator
+  std::string family;                ///< generator, then the point's swept topology values but the size ("field:one-large-hole:unit-disk")
   std::string size;                  ///< topology.n (or "-")
   std::string network;               ///< network condition (network_label)
   std::string scheme;                ///< routing scheme (scenario spelling)
@@ -71,6 +71,7 @@ struct ComparisonRow {
   double messages_per_node_mean = 0; ///< messages per node
   double simulated_seconds_mean = 0; ///< simulated time of the protocol
   double sensors_mean = 0;           ///< mean sensors deployed (= nodes_mean unless a field drops sensors)
+  double core_nodes_mean = 0;        ///< mean vertices packed (the 3-connected core of a field)
   /// Fields with attach: pairs of all sensors in one link component (Runner.hpp SchemeResult::all_pairs);
   /// the delivery and stretch fields above are then over the core's pairs.
   PairSummary all_pairs;
