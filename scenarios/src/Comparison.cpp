@@ -180,7 +180,7 @@ std::string csv_num(double x) { return std::isfinite(x) ? fmt("%.6g", x) : ""; }
 std::string comparison_table(const std::vector<ComparisonRow>& rows) {
   std::string out;
   char line[512];
-  std::snprintf(line, sizeof line, "%-36s %6s %-22s %-14s %5s %9s %17s %7s %7s %7s %8s %7s %9s %10s %8s %8s %8s %9s %17s %7s %7s %7s\n",
+  std::snprintf(line, sizeof line, "%-40s %6s %-22s %-14s %5s %9s %17s %7s %7s %7s %8s %7s %9s %10s %8s %8s %8s %9s %17s %7s %7s %7s\n",
                 "family", "n", "network", "scheme", "runs", "delivery", "95% CI", "stretch", "p95", "max", "iters",
                 "rounds", "msgs/node", "sim time", "sensors", "nodes", "packed", "all-pairs", "95% CI", "stretch", "p95",
                 "discon");
@@ -200,7 +200,7 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows) {
                                    : "[" + fmt("%.1f", 100 * a.delivery_ci.low) + ", " +
                                          fmt("%.1f", 100 * a.delivery_ci.high) + "]" + (a.ci_method == "wilson" ? "w" : "");
     std::snprintf(line, sizeof line,
-                  "%-36s %6s %-22s %-14s %2zu/%-2zu %8s%% %17s %7s %7s %7s %8s %7s %9s %9ss %8s %8s %8s %8s%% %17s %7s %7s "
+                  "%-40s %6s %-22s %-14s %2zu/%-2zu %8s%% %17s %7s %7s %7s %8s %7s %9s %9ss %8s %8s %8s %8s%% %17s %7s %7s "
                   "%6s%%\n",
                   r.family.c_str(), r.size.c_str(), r.network.substr(0, 22).c_str(), r.scheme.c_str(), r.routed, r.runs,
                   fmt("%.2f", 100 * r.delivery_mean).c_str(), ci.c_str(), fmt("%.3f", r.stretch_mean).c_str(),
