@@ -333,7 +333,12 @@ Topology build_field(const Args& a, std::uint64_t seed, std::size_t) {
                                 fo.source, "field");
   if (!a.boolean("attach")) return t;
   net->attachment = attach_to_core(points.size(), net->links, t.graph);
-  t.note += "; attach: " + std::to_string(t.graph.num_vertices()) + " core sensors, " +
+  std::size_t largest_face = 0;  // the holes wider than the links are inner faces of the core
+  for (core::Face f = 0; f < t.graph.num_faces(); ++f)
+    if (f != t.graph.outer_face()) largest_face = std::max<std::size_t>(largest_face, t.graph.face_size(f));
+  t.note += "; largest inner face " + std::to_string(largest_face) + " vertices, outer face " +
+            std::to_string(t.graph.face_size(t.graph.outer_face())) + "; attach: " +
+            std::to_string(t.graph.num_vertices()) + " core sensors, " +
             std::to_string(net->attachment.attached) + " attached to the core, " +
             std::to_string(net->attachment.stray) + " in other link components";
   net->points = std::move(points);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "laguerre/core/geometry/Delaunay.hpp"
+#include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/scenarios/Topology.hpp"
 #include "laguerre/scenarios/fields/Deployment.hpp"
@@ -96,6 +97,13 @@ TEST(Attachment, EverySensorHangsOnTheCoreByTheDocumentedRule) {
     const std::size_t n = net.points.size();
     ASSERT_EQ(n, 400u);
     ASSERT_LT(t.graph.num_vertices(), n) << "the test wants sensors outside the core";
+    // The hole (a square of side 0.5, perimeter 2) is an inner face of the 3-connected core: a cycle
+    // around it of links no longer than R = 0.1 has at least 2 / 0.1 = 20 vertices.
+    EXPECT_EQ(t.kind, core::GraphKind::three_connected);
+    std::size_t largest = 0;
+    for (core::Face f = 0; f < t.graph.num_faces(); ++f)
+      if (f != t.graph.outer_face()) largest = std::max<std::size_t>(largest, t.graph.face_size(f));
+    EXPECT_GE(largest, 20u) << links;
     EXPECT_EQ(t.graph.num_vertices() + a.attached + a.stray, n);
     std::vector<std::vector<Vertex>> adj(n);
     for (auto [u, v] : net.links) adj[u].push_back(v), adj[v].push_back(u);
