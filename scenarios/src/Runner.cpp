@@ -209,9 +209,19 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
     if (topo.sensors) {  // every sensor pair: greedy power with the attachment, the others on the planarization
       const SensorNetwork& net = *topo.sensors;
       const PlanarizationRouter planar(net);
+      // One entry per scheme (a scheme added to core::Scheme must say here how it routes all sensors;
+      // -Wswitch makes the compiler ask).
+      const auto sensor_router = [&](core::Scheme s) -> SensorRouter {
+        switch (s) {
+          case core::Scheme::greedy_power: return attached_router(net, g, phi);
+          case core::Scheme::greedy_euclid:
+          case core::Scheme::compass:
+          case core::Scheme::gfg: return planar.router(s);
+        }
+        throw core::InternalError("no all-sensor router for scheme " + std::string(core::to_string(s)));
+      };
       std::vector<SensorRouter> routers;
-      for (core::Scheme s : cfg.routing.schemes)
-        routers.push_back(s == core::Scheme::greedy_power ? attached_router(net, g, phi) : planar.router(s));
+      for (core::Scheme s : cfg.routing.schemes) routers.push_back(sensor_router(s));
       const std::vector<AllPairsStats> all = evaluate_all_pairs(net, routers, selection);
       for (std::size_t k = 0; k < all.size(); ++k) r.routing[k].all_pairs = all[k];
     }
