@@ -300,6 +300,14 @@ core::Domain field_domain(const Args& a) {
   return polys.empty() ? core::Domain::unit_square() : core::Domain(polys.front(), Polygons(polys.begin() + 1, polys.end()));
 }
 
+/// The largest depth of a sensor hanging on the core (0 if none).
+std::uint32_t deepest_attached(const Attachment& at) {
+  std::uint32_t deepest = 0;
+  for (std::size_t v = 0; v < at.depth.size(); ++v)
+    if (at.core_vertex[at.anchor[v]] != core::none) deepest = std::max(deepest, at.depth[v]);
+  return deepest;
+}
+
 Topology build_field(const Args& a, std::uint64_t seed, std::size_t) {
   const std::size_t n = a.size("n");
   const core::Domain domain = field_domain(a);
@@ -339,7 +347,8 @@ Topology build_field(const Args& a, std::uint64_t seed, std::size_t) {
   t.note += "; largest inner face " + std::to_string(largest_face) + " vertices, outer face " +
             std::to_string(t.graph.face_size(t.graph.outer_face())) + "; attach: " +
             std::to_string(t.graph.num_vertices()) + " core sensors, " +
-            std::to_string(net->attachment.attached) + " attached to the core, " +
+            std::to_string(net->attachment.attached) + " attached to the core (deepest " +
+            std::to_string(deepest_attached(net->attachment)) + " hops), " +
             std::to_string(net->attachment.stray) + " in other link components";
   net->points = std::move(points);
   t.sensors = std::move(net);
