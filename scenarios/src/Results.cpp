@@ -90,6 +90,7 @@ std::string results_json(const Scenario& scenario, const std::vector<RunRecord>&
                           {"sensors", r.sensors},
                           {"nodes", r.nodes},
                           {"core_nodes", r.core_nodes},
+                          {"unreachable_sensors", r.unreachable_sensors},
                           {"edges", r.edges},
                           {"iterations", r.iterations},
                           {"rounds", r.rounds},

@@ -103,6 +103,7 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
   const std::size_t n = g.num_vertices();
   r.core_nodes = n;
   r.sensors = r.nodes = topo.sensors ? topo.sensors->points.size() : n;
+  r.unreachable_sensors = topo.sensors ? topo.sensors->attachment.stray : 0;
   if (!topo.sensors && topo.family == "field") {  // a repaired field without attach: the deployment's size
     const auto& params = cfg.topology.params;
     r.sensors = static_cast<std::size_t>(params.integer("n", static_cast<std::int64_t>(n)));

@@ -353,6 +353,7 @@ TEST(Runner, BundledFieldHolesComparisonRoutesEverySensor) {
     EXPECT_EQ(r.sensors, 250u);
     EXPECT_EQ(r.nodes, r.sensors);
     EXPECT_LE(r.core_nodes, r.nodes);
+    EXPECT_LT(r.unreachable_sensors, r.sensors - r.core_nodes + 1);
     ASSERT_EQ(r.routing.size(), 4u);
     for (const SchemeResult& sr : r.routing) {
       ASSERT_TRUE(sr.all_pairs) << scheme_name(sr.scheme);

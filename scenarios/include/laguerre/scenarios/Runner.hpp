@@ -98,6 +98,7 @@ struct RunRecord {
   std::size_t sensors = 0;             ///< sensors deployed (= vertices of the topology unless a field's repair dropped some)
   std::size_t nodes = 0;               ///< sensors routed: every sensor with attach, else the packed vertices
   std::size_t core_nodes = 0;          ///< vertices packed by the protocol (its messages are over these)
+  std::size_t unreachable_sensors = 0; ///< attach: sensors in other link components than the core (own trees only)
   std::size_t edges = 0;               ///< edges
   std::uint32_t iterations = 0;        ///< protocol: Thurston steps to its stop
   std::uint32_t rounds = 0;            ///< protocol: rounds
