@@ -11,6 +11,7 @@
 #include "laguerre/core/geometry/Delaunay.hpp"
 #include "laguerre/core/graph/Embedding.hpp"
 #include "laguerre/core/random/Random.hpp"
+#include "laguerre/core/routing/Router.hpp"
 
 namespace laguerre::scenarios {
 
@@ -153,7 +154,8 @@ Attachment attach_to_core(std::size_t n, const EdgeList& links, const core::Plan
 }
 
 SensorRouter attached_router(const SensorNetwork& net, const core::PlanarGraph& core, const core::CircleEmbedding& phi) {
-  return [&net, &core, &phi](Vertex s, Vertex t) -> Route {
+  auto router = std::make_shared<core::Router>(core, phi);  // scratch reused across packets
+  return [&net, &core, router](Vertex s, Vertex t) -> Route {
     const Attachment& a = net.attachment;
     if (a.component[s] != a.component[t]) return Route{RouteOutcome::dead_end, {s}, s};
     if (a.anchor[s] == a.anchor[t]) {
@@ -162,7 +164,7 @@ SensorRouter attached_router(const SensorNetwork& net, const core::PlanarGraph& 
     }
     // Different anchors in one component: both are core sensors (other components are single trees).
     const Vertex as = a.anchor[s], at = a.anchor[t];
-    Route inner = core::route(core, phi, core::Scheme::greedy_power, a.core_vertex[as], a.core_vertex[at]);
+    const Route inner = router->route(core::Scheme::greedy_power, a.core_vertex[as], a.core_vertex[at]);
     std::vector<Vertex> middle;
     for (Vertex v : inner.path) middle.push_back(static_cast<Vertex>(core.id(v)));
     if (inner.outcome != RouteOutcome::delivered) {
@@ -205,6 +207,7 @@ PlanarizationRouter::PlanarizationRouter(const SensorNetwork& net) {
     part.graph = core::graph_from_drawing(std::move(ids), std::move(positions), local, "planarization", false).graph;
     parts_.push_back(std::move(part));
   }
+  for (const Part& part : parts_) routers_.push_back(std::make_unique<core::Router>(part.graph, part.positions));
 }
 
 SensorRouter PlanarizationRouter::router(core::Scheme s) const {
@@ -214,7 +217,7 @@ SensorRouter PlanarizationRouter::router(core::Scheme s) const {
     if (p == std::numeric_limits<std::size_t>::max() || p != part_of_[target])
       return Route{RouteOutcome::dead_end, {source}, source};
     const Part& part = parts_[p];
-    Route r = core::route(part.graph, part.positions, s, local_[source], local_[target]);
+    Route r = routers_[p]->route(s, local_[source], local_[target]);
     for (Vertex& v : r.path) v = static_cast<Vertex>(part.graph.id(v));
     if (r.stuck != core::none) r.stuck = static_cast<Vertex>(part.graph.id(r.stuck));
     return r;

@@ -28,6 +28,7 @@
 
 #include "laguerre/core/geometry/Circle.hpp"
 #include "laguerre/core/graph/PlanarGraph.hpp"
+#include "laguerre/core/routing/Router.hpp"
 #include "laguerre/core/routing/Routing.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/scenarios/fields/ProximityGraphs.hpp"
@@ -75,7 +76,7 @@ Attachment attach_to_core(std::size_t sensors, const EdgeList& links, const core
 /// Routes one packet between two sensors; the Route's path lists sensor ids.
 using SensorRouter = std::function<core::Route(core::Vertex source, core::Vertex target)>;
 
-/// Greedy power with attachment: up the source's tree, greedy power on `core` with `phi` between the
+/// Greedy power with attachment (not thread-safe: one router per thread): up the source's tree, greedy power on `core` with `phi` between the
 /// anchors, down the target's tree (see the file comment).
 SensorRouter attached_router(const SensorNetwork& net, const core::PlanarGraph& core, const core::CircleEmbedding& phi);
 
@@ -85,7 +86,7 @@ SensorRouter attached_router(const SensorNetwork& net, const core::PlanarGraph& 
 class PlanarizationRouter {
 public:
   explicit PlanarizationRouter(const SensorNetwork& net);
-  /// The router of scheme `s` (valid while this object lives).
+  /// The router of scheme `s` (valid while this object lives; not thread-safe).
   SensorRouter router(core::Scheme s) const;
 
 private:
@@ -94,6 +95,7 @@ private:
     core::CircleEmbedding positions;
   };
   std::vector<Part> parts_;
+  std::vector<std::unique_ptr<core::Router>> routers_;  // one per part, bound to it
   std::vector<std::size_t> part_of_;        // per sensor; SIZE_MAX for an isolated sensor
   std::vector<core::Vertex> local_;         // per sensor, its vertex in its part
 };
