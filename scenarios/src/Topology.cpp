@@ -391,7 +391,8 @@ std::vector<ParamIssue> check_field(const Args& a) {
                     (graph_type == "local-delaunay" && a.integer("hops") < 2)))
     out.push_back({"graph", "'" + graph_type + "' with attach or quasi-unit-disk links",
                    "a planar spanner of the links: gabriel, rng, or local-delaunay with hops >= 2"});
-  if (own_links && !a.has("radius")) out.push_back({"radius", "nothing", "a radius > 0 for the links"});
+  if (own_links && graph_type == "delaunay" && !a.has("radius"))  // other graphs ask for it above
+    out.push_back({"radius", "nothing", "a radius > 0 for the links"});
   if (a.has("domain") && a.has("domain_file"))
     out.push_back({"domain_file", "both domain and domain_file", "one of them"});
   if (a.has("domain_file")) try {

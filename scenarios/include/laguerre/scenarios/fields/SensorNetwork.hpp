@@ -69,8 +69,8 @@ struct SensorNetwork {
   Attachment attachment;             ///< filled by attach_to_core
 };
 
-/// The attachment of the file comment. `core_ids` are the sensors of the core (the core graph's ids);
-/// `core` maps them to its vertices. Cost O(n + links).
+/// The attachment of the file comment for `sensors` sensors joined by `links`; the core's vertex ids
+/// are sensor indices (below `sensors`). Cost O(n + links).
 Attachment attach_to_core(std::size_t sensors, const EdgeList& links, const core::PlanarGraph& core);
 
 /// Routes one packet between two sensors; the Route's path lists sensor ids.
