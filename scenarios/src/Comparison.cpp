@@ -139,7 +139,8 @@ std::vector<ComparisonRow> compare_runs(const Scenario& scenario, const std::vec
         core_nodes += static_cast<double>(r.core_nodes);
         iters += r.iterations;
         rounds += r.rounds;
-        msgs += r.messages_per_node;
+        // A scheme with its own setup (hyperbolic) reports its messages; the others share the protocol's.
+        msgs += std::isnan(s.setup_messages_per_node) ? r.messages_per_node : s.setup_messages_per_node;
         simt += r.simulated_seconds;
       }
       const PairSummary core = core_pairs.summary();

@@ -134,6 +134,7 @@ void merge_packing(const std::vector<std::vector<std::byte>>& results, const cor
 LiveOutcome run_live(const core::PlanarGraph& g, const std::vector<core::Point2>& positions, const ProtocolSetup& setup,
                      const LiveSetup& live, const std::vector<core::Scheme>& schemes,
                      const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs) {
+  require_forwarding_schemes(schemes);
   if (setup.link.duplication > 0)
     throw core::InputError("--dup", 0, "0 on the live host (real links duplicate nothing on loopback)");
   if (!setup.crashes.empty())

@@ -7,6 +7,7 @@
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
+#include "laguerre/scenarios/Scenario.hpp"
 #include "laguerre/protocols/Codec.hpp"
 #include "laguerre/protocols/Reliable.hpp"
 #include "laguerre/sim/LiveCluster.hpp"
@@ -320,10 +321,21 @@ protocols::ReliableParams forwarding_reliable_params(sim::Duration max_latency) 
   return reliable;
 }
 
+void require_forwarding_schemes(const std::vector<core::Scheme>& schemes) {
+  for (const core::Scheme s : schemes)
+    if (std::find(core::all_schemes.begin(), core::all_schemes.end(), s) == core::all_schemes.end())
+      throw core::InputError("--scheme", 0,
+                             "found '" + scheme_name(s) +
+                                 "', expected a scheme of the per-node forwarding protocol (greedy-power, greedy-euclid, "
+                                 "compass or gfg); the hyperbolic baseline is routed centrally by `laguerre route`, "
+                                 "`run` and `compare`");
+}
+
 std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
                                              const std::vector<core::Point2>& positions, const sim::LinkModel& link,
                                              std::uint64_t seed, const std::vector<core::Scheme>& schemes,
                                              const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs) {
+  require_forwarding_schemes(schemes);
   const std::size_t n = g.num_vertices();
   const std::vector<core::Point2> pos = forwarding_positions(circles, positions);
   const std::vector<std::vector<std::uint32_t>> hop_distance = hop_distances_from_sources(g, pairs);

@@ -59,7 +59,10 @@ std::string results_json(const Scenario& scenario, const std::vector<RunRecord>&
                {"stretch_p95", num(s.stretch_p95)},
                {"stretch_max", num(s.stretch_max)},
                {"hops_mean", num(s.hops_mean)},
-               {"positions", s.positions}};
+               {"positions", s.positions},
+               {"setup_messages_per_node", num(s.setup_messages_per_node)},
+               {"coordinate_bits_mean", num(s.coordinate_bits_mean)},
+               {"coordinate_bits_max", num(s.coordinate_bits_max)}};
       if (s.all_pairs) {
         const AllPairsStats& a = *s.all_pairs;
         entry["all_pairs"] = {{"pairs", a.pairs},

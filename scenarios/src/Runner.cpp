@@ -11,6 +11,7 @@
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/random/Random.hpp"
+#include "laguerre/core/routing/HyperbolicEmbedding.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/scenarios/ProtocolRun.hpp"
 
@@ -205,6 +206,14 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
       sr.stretch_max = st.stretch_max;
       sr.hops_mean = st.hops_mean;
       sr.positions = on_physical ? "physical" : "packing";
+      if (s == core::Scheme::hyperbolic) {
+        sr.positions = "tree";
+        const core::HyperbolicSetupCost cost =
+            core::hyperbolic_setup_cost(core::HyperbolicTreeEmbedding(g), g.num_edges());
+        sr.setup_messages_per_node = n ? static_cast<double>(cost.messages) / static_cast<double>(n) : 0.0;
+        sr.coordinate_bits_mean = cost.address_bits_mean;
+        sr.coordinate_bits_max = static_cast<double>(cost.address_bits_max);
+      }
       r.routing.push_back(sr);
     }
     if (topo.sensors) {  // every sensor pair: greedy power with the attachment, the others on the planarization
@@ -217,7 +226,9 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
           case core::Scheme::greedy_power: return attached_router(net, g, phi);
           case core::Scheme::greedy_euclid:
           case core::Scheme::compass:
-          case core::Scheme::gfg: return planar.router(s);
+          case core::Scheme::gfg:
+          case core::Scheme::hyperbolic:  // Kleinberg's embedding of each planarization component's BFS tree
+            return planar.router(s);
         }
         throw core::InternalError("no all-sensor router for scheme " + std::string(core::to_string(s)));
       };

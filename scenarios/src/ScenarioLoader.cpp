@@ -586,26 +586,44 @@ std::vector<std::string> split_path(const std::string& key) {
   return out;
 }
 
-YAML::Node with_entry(const YAML::Node& map, const std::string& key, const YAML::Node& value) {
-  YAML::Node out(YAML::NodeType::Map);
-  bool replaced = false;
-  if (map.IsMap())
-    for (auto it = map.begin(); it != map.end(); ++it) {
-      if (!replaced && it->first.IsScalar() && it->first.Scalar() == key) {
-        out.force_insert(it->first, value);
-        replaced = true;
-      } else {
-        out.force_insert(it->first, it->second);
-      }
-    }
-  if (!replaced) out.force_insert(key, value);
-  return out;
-}
+/// Makes documents that differ from the file's in a few entries and share every other node with it.
+/// yaml-cpp keeps the nodes of a document in one memory set, and a map made by YAML::Node(type)
+/// starts a set of its own that copies the whole set of the first node inserted into it; as every
+/// point's document joins the file's set, building N points cost O(N²) (a 1156-point sweep took 2 CPU
+/// seconds to load: fuzz finding scenario-1). So each new map is first appended to `anchor_`, a list
+/// in the file's set, which makes it join that set at the cost of its own (empty) one.
+class Splicer {
+public:
+  explicit Splicer(const YAML::Node& doc) { anchor_.push_back(doc); }
 
-YAML::Node with_path(const YAML::Node& root, const std::vector<std::string>& path, std::size_t i, const YAML::Node& value) {
-  if (i + 1 == path.size()) return with_entry(root, path[i], value);
-  return with_entry(root, path[i], with_path(lookup(root, path[i]), path, i + 1, value));
-}
+  /// `map` with `key` set to `value` (replaced in place, or appended).
+  YAML::Node with_entry(const YAML::Node& map, const std::string& key, const YAML::Node& value) {
+    YAML::Node out(YAML::NodeType::Map);
+    anchor_.push_back(out);
+    bool replaced = false;
+    if (map.IsMap())
+      for (auto it = map.begin(); it != map.end(); ++it) {
+        if (!replaced && it->first.IsScalar() && it->first.Scalar() == key) {
+          out.force_insert(it->first, value);
+          replaced = true;
+        } else {
+          out.force_insert(it->first, it->second);
+        }
+      }
+    if (!replaced) out.force_insert(key, value);
+    return out;
+  }
+
+  /// `root` with the entry at path[i..] set to `value`.
+  YAML::Node with_path(const YAML::Node& root, const std::vector<std::string>& path, std::size_t i,
+                       const YAML::Node& value) {
+    if (i + 1 == path.size()) return with_entry(root, path[i], value);
+    return with_entry(root, path[i], with_path(lookup(root, path[i]), path, i + 1, value));
+  }
+
+private:
+  YAML::Node anchor_{YAML::NodeType::Sequence};
+};
 
 const std::vector<std::string> sections{"topology", "network", "protocol", "routing", "outputs"};
 
@@ -660,6 +678,7 @@ Scenario load(const YAML::Node& doc, const std::string& source, const std::strin
   Scenario s;
   s.source = source;
   YAML::Node root = doc;
+  Splicer splice(doc);
   if (!doc.IsMap()) {
     c.report(doc, "(top level)", found(doc), "a mapping with name, seed, repetitions, topology, …");
     throw ScenarioError(c.issues());
@@ -668,9 +687,9 @@ Scenario load(const YAML::Node& doc, const std::string& source, const std::strin
   // Top-level overrides apply to the base document.
   for (const auto& o : overrides) {
     if (o.path.size() == 1 && (o.key == "seed" || o.key == "repetitions" || o.key == "name"))
-      root = with_entry(root, o.key, o.value);
+      root = splice.with_entry(root, o.key, o.value);
     if (o.path.size() == 2 && o.path[0] == "sweep")
-      root = with_entry(root, "sweep", with_entry(lookup(root, "sweep"), o.path[1], o.value));
+      root = splice.with_entry(root, "sweep", splice.with_entry(lookup(root, "sweep"), o.path[1], o.value));
   }
   check_keys(c, root, "", {"name", "description", "seed", "repetitions", "topology", "network", "protocol", "routing",
                            "outputs", "sweep"});
@@ -751,11 +770,11 @@ Scenario load(const YAML::Node& doc, const std::string& source, const std::strin
     }
     for (std::size_t k = 0; k < axes.size(); ++k) {
       const YAML::Node& v = axes[k].values[digit[k]];
-      d = with_path(d, axes[k].path, 0, v);
+      d = splice.with_path(d, axes[k].path, 0, v);
       point.values.emplace_back(axes[k].key, flow_text(v));
     }
     for (const auto& o : overrides)
-      if (o.path[0] != "sweep" && valid_path(o.path)) d = with_path(d, o.path, 0, o.value);
+      if (o.path[0] != "sweep" && valid_path(o.path)) d = splice.with_path(d, o.path, 0, o.value);
     point.config = parse_config(ctx, d);
     s.points.push_back(std::move(point));
   }

@@ -49,9 +49,9 @@ std::vector<std::vector<double>> numbers(std::string_view text) {
   return rows;
 }
 
-// `validity_open`: is_valid() runs but its verdict is not a finding. For Möbius diagrams, degenerate
-// sites (three at a right angle with equal λ and μ, cocircular rings) fail it with "boundary of cell i
-// is not closed" (open finding sites-2 in tests/fuzz/open/README.md).
+// `validity_open`: is_valid() runs but its verdict is not a finding. For Möbius diagrams, near-collinear,
+// repeated and wide-range sites fail it with "boundary of cell i is not closed" (open finding sites-2
+// in tests/fuzz/open/README.md).
 template <class Diagram, class Site>
 void check(std::vector<Site> sites, const std::vector<core::Point2>& points, bool validity_open = false) {
   const core::Box box = core::bounding_box(points, 0.15);

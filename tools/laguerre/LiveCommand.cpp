@@ -88,6 +88,7 @@ LoadedGraph load_graph_or_scenario(const GraphArgs& args) {
 
 int run_live(const LiveArgs& a) {
   const std::vector<core::Scheme> schemes = parse_schemes(a.scheme, "--scheme");
+  scenarios::require_forwarding_schemes(schemes);  // before the packing, not after it
   const core::PairSelection selection = parse_pairs(a.pairs, a.seed, "--pairs");
   scenarios::ProtocolSetup setup;
   setup.asynchronous = core::parse_name(scenarios::protocol_mode_names, a.mode, "--mode") == scenarios::ProtocolMode::async;

@@ -109,7 +109,7 @@ int run_route(const RouteArgs& a) {
 Action add_route_command(CLI::App& app) {
   const auto c = add_command<RouteArgs>(app, route_help);
   add_graph_options(*c.cmd, c.args->input, "input", "Graph file, or embedding JSON written by `laguerre pack`");
-  c.cmd->add_option("--scheme", c.args->scheme, "greedy-power, greedy-euclid, compass, gfg or all")->capture_default_str();
+  c.cmd->add_option("--scheme", c.args->scheme, "greedy-power, greedy-euclid, compass, gfg, hyperbolic (Kleinberg's tree embedding; not in all) or all")->capture_default_str();
   c.cmd->add_option("--pairs", c.args->pairs, "'all' ordered pairs, or a number of pairs sampled with --seed")->capture_default_str();
   c.cmd->add_option("--seed", c.args->seed, "Seed of the pair sample")->check(seed_validator())->capture_default_str();
   c.cmd->add_option("--positions", c.args->positions, "For a graph file: layout (pack first) or input (its coordinates)")

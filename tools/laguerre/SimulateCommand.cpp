@@ -88,6 +88,7 @@ scenarios::ProtocolSetup setup_of(const SimulateArgs& a) {
 
 int run_simulate(const SimulateArgs& a) {
   const std::vector<core::Scheme> schemes = parse_schemes(a.scheme, "--scheme");
+  scenarios::require_forwarding_schemes(schemes);  // before the packing, not after it
   const core::PairSelection selection = parse_pairs(a.pairs, a.seed, "--pairs");
   const scenarios::ProtocolSetup setup = setup_of(a);
   const LoadedGraph loaded = load_graph(a.graph);

@@ -234,7 +234,10 @@ void MobiusDiagram::Impl::build_vertices(std::unordered_map<std::uint64_t, std::
     const double qa = d[0] * d[0] + d[1] * d[1];
     const double qb = 2 * (x0[0] * d[0] + x0[1] * d[1]) - d[2];
     const double qc = x0[0] * x0[0] + x0[1] * x0[1] - x0[2];
-    const double disc = qb * qb - 4 * qa * qc;
+    double disc = qb * qb - 4 * qa * qc;
+    // Within its rounding error, the discriminant is 0: the bisectors touch (tangent circles), one
+    // vertex, not two at ~√ε apart (fuzz finding sites-2).
+    if (std::fabs(disc) <= 8 * std::numeric_limits<double>::epsilon() * (qb * qb + 4 * std::fabs(qa * qc))) disc = 0;
     if (disc < 0) continue;
     const double sq = std::sqrt(disc);
     const double q = -0.5 * (qb + (qb >= 0 ? sq : -sq));
@@ -410,6 +413,7 @@ void MobiusDiagram::Impl::build_cells(const std::vector<std::pair<std::size_t, s
     double s;
     Point2 p;
     std::size_t node;
+    SiteIndex after = no_site;  ///< for the end of an unbounded edge: the site whose cell follows it counter-clockwise
   };
   const double W = frame.width(), H = frame.height();
   auto perimeter = [&](Point2 p) {
@@ -425,13 +429,17 @@ void MobiusDiagram::Impl::build_cells(const std::vector<std::pair<std::size_t, s
   std::vector<std::size_t> edge_from(edges.size()), edge_to(edges.size());
   for (std::size_t e = 0; e < edges.size(); ++e) edge_from[e] = edges[e].from, edge_to[e] = edges[e].to;
   for (const auto& [e, ends] : unbounded) {
+    // Walking the frame counter-clockwise (inside on the left) past an edge end, one enters the cell on
+    // the right of the edge as it points inwards: at its `to` end the edge's left site, at its `from`
+    // end the other one.
+    const MobiusEdge& E = edges[e];
     if (ends & 1u) {
       edge_from[e] = V + fnodes.size();
-      fnodes.push_back({perimeter(edges[e].curve.from), edges[e].curve.from, edge_from[e]});
+      fnodes.push_back({perimeter(E.curve.from), E.curve.from, edge_from[e], E.left == E.a ? E.b : E.a});
     }
     if (ends & 2u) {
       edge_to[e] = V + fnodes.size();
-      fnodes.push_back({perimeter(edges[e].curve.to), edges[e].curve.to, edge_to[e]});
+      fnodes.push_back({perimeter(E.curve.to), E.curve.to, edge_to[e], E.left});
     }
   }
   {
@@ -440,6 +448,21 @@ void MobiusDiagram::Impl::build_cells(const std::vector<std::pair<std::size_t, s
     for (int c = 0; c < 4; ++c) fnodes.push_back({ss[c], corners[c], V + fnodes.size()});
   }
   std::sort(fnodes.begin(), fnodes.end(), [](const FrameNode& a, const FrameNode& b) { return a.s < b.s; });
+  // Frame nodes at the same point are one node (an unbounded edge ending exactly at a corner, two
+  // edges crossing the frame at one point: fuzz finding sites-2), else the chain of its cell breaks.
+  {
+    std::unordered_map<std::size_t, std::size_t> same;
+    for (std::size_t k = 1; k <= fnodes.size() && fnodes.size() > 1; ++k) {
+      FrameNode &a = fnodes[k - 1], &b = fnodes[k % fnodes.size()];
+      if (a.p.x == b.p.x && a.p.y == b.p.y && a.node != b.node) same[b.node] = a.node, b.node = a.node;
+    }
+    auto one = [&](std::size_t node) {
+      for (auto it = same.find(node); it != same.end() && it->second != node; it = same.find(node)) node = it->second;
+      return node;
+    };
+    for (FrameNode& f : fnodes) f.node = one(f.node);
+    for (std::size_t e = 0; e < edges.size() && !same.empty(); ++e) edge_from[e] = one(edge_from[e]), edge_to[e] = one(edge_to[e]);
+  }
 
   // Half-edges: (site, from node, to node, piece).
   struct Half {
@@ -454,11 +477,19 @@ void MobiusDiagram::Impl::build_cells(const std::vector<std::pair<std::size_t, s
     halves.push_back({E.left, edge_from[e], edge_to[e], {E.curve, right, e}});
     halves.push_back({right, edge_to[e], edge_from[e], {E.curve.reversed(), E.left, e}});
   }
+  // The frame's pieces: each belongs to the cell entered at the last edge end before it (by the
+  // combinatorics, not by locating the piece's midpoint, which is ambiguous on a piece of length ~ε
+  // between an edge end and a corner: fuzz finding sites-2); one site owns the whole frame without
+  // unbounded edges.
+  SiteIndex owner = no_site;
+  for (const FrameNode& f : fnodes)
+    if (f.after != no_site) owner = f.after;  // the last end, which precedes the first piece cyclically
+  if (owner == no_site) owner = locate({(frame.xmin + frame.xmax) / 2, frame.ymin});
   for (std::size_t k = 0; k < fnodes.size(); ++k) {
     const FrameNode &a = fnodes[k], &b = fnodes[(k + 1) % fnodes.size()];
+    if (a.after != no_site) owner = a.after;
     if (a.p.x == b.p.x && a.p.y == b.p.y) continue;
     const CurvePiece piece = segment(a.p, b.p);
-    const SiteIndex owner = locate(piece.midpoint());
     if (owner == no_site) continue;
     halves.push_back({owner, a.node, b.node, {piece, no_site, MobiusEdge::npos}});
   }

@@ -9,6 +9,7 @@
 
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
+#include "laguerre/core/routing/HyperbolicEmbedding.hpp"
 #include "laguerre/core/routing/NextHop.hpp"
 #include "laguerre/core/routing/Router.hpp"
 
@@ -50,6 +51,7 @@ std::string_view to_string(Scheme s) {
     case Scheme::greedy_euclid: return "greedy_euclid";
     case Scheme::compass: return "compass";
     case Scheme::gfg: return "gfg";
+    case Scheme::hyperbolic: return "hyperbolic";
   }
   return "unknown";
 }
@@ -57,6 +59,7 @@ std::string_view to_string(Scheme s) {
 std::optional<Scheme> parse_scheme(std::string_view name) {
   for (const Scheme s : all_schemes)
     if (to_string(s) == name) return s;
+  if (to_string(Scheme::hyperbolic) == name) return Scheme::hyperbolic;
   return std::nullopt;
 }
 
@@ -66,6 +69,7 @@ std::string_view to_string(RouteOutcome o) {
     case RouteOutcome::dead_end: return "dead_end";
     case RouteOutcome::loop: return "loop";
     case RouteOutcome::ttl_exceeded: return "ttl_exceeded";
+    case RouteOutcome::uncertified: return "uncertified";
   }
   return "unknown";
 }
@@ -118,6 +122,7 @@ Vertex Router::hop(Scheme s, Vertex at, Vertex target) const {
     case Scheme::greedy_euclid: i = greedy_euclid_hop(view, t); break;
     case Scheme::compass: i = compass_hop(view, t); break;
     case Scheme::gfg: break;
+    case Scheme::hyperbolic: i = hyperbolic_hop(hyperbolic(), g_->neighbours(at), at, target).next; break;
   }
   return i == view.degree() ? none : g_->neighbours(at)[i];
 }
@@ -147,6 +152,7 @@ void Router::route(Scheme s, Vertex source, Vertex target, std::size_t ttl, Rout
   if (source == target) return;
   const std::size_t limit = ttl == 0 ? default_ttl(*g_, s) : ttl;
   if (s == Scheme::gfg) route_gfg(target, limit, out);
+  else if (s == Scheme::hyperbolic) route_hyperbolic(target, limit, out);
   else route_memoryless(s, target, limit, out);
 }
 
@@ -179,6 +185,31 @@ void Router::route_memoryless(Scheme s, Vertex target, std::size_t ttl, Route& o
       if (visit_mark_[v] == epoch_) return stop(RouteOutcome::loop, v);
       visit_mark_[v] = epoch_;
     }
+  }
+}
+
+const HyperbolicTreeEmbedding& Router::hyperbolic() const {
+  if (!hyperbolic_) hyperbolic_ = std::make_unique<HyperbolicTreeEmbedding>(*g_);
+  return *hyperbolic_;
+}
+
+// Greedy by hyperbolic distance: every hop is certified to decrease it strictly (hyperbolic_hop), so
+// the packet cannot revisit a node; a hop the numbers cannot certify ends the route as `uncertified`.
+void Router::route_hyperbolic(Vertex target, std::size_t ttl, Route& out) const {
+  const HyperbolicTreeEmbedding& e = hyperbolic();
+  Vertex v = out.path.back();
+  auto stop = [&](RouteOutcome o, Vertex at) {
+    out.outcome = o;
+    out.stuck = at;
+  };
+  for (;;) {
+    if (v == target) return stop(RouteOutcome::delivered, none);
+    const auto nb = g_->neighbours(v);
+    const HyperbolicHop h = hyperbolic_hop(e, nb, v, target);
+    if (h.next == nb.size()) return stop(h.certified ? RouteOutcome::dead_end : RouteOutcome::uncertified, v);
+    if (out.hops() >= ttl) return stop(RouteOutcome::ttl_exceeded, v);
+    v = nb[h.next];
+    out.path.push_back(v);
   }
 }
 

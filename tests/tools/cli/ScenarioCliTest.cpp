@@ -159,6 +159,11 @@ TEST_F(ScenarioCli, EveryExampleRunsSmall) {
        true},
       {"mesh-field.yaml", "--set repetitions=1 --set topology.metric=uniform:0.25:0.25", true},
       {"mesh-holes.yaml", "--set repetitions=1 --set topology.metric=uniform:0.25:0.25", true},
+      {"baseline-hyperbolic.yaml",
+       "--set repetitions=1 --set routing.pairs=200 --set 'sweep.topology=[{generator: field, n: 80, radius: 0.25, "
+       "domain: [[[0, 0], [1, 0], [1, 1], [0, 1]], [[0.2, 0.2], [0.4, 0.2], [0.4, 0.35], [0.2, 0.35]]], "
+       "graph: local-delaunay, repair: three-connected-core}]'",
+       true},
       {"field-holes-comparison.yaml",
        "--set repetitions=1 --set routing.pairs=500 --set 'sweep.topology=[{generator: field, n: 200, radius: 0.14, "
        "graph: local-delaunay, repair: three-connected-core, attach: true}]'",

@@ -81,6 +81,18 @@ TEST(CliSimulateSchemes, OneLinePerSchemeAndTheDefaultIsGreedyPower) {
   laguerre::cli_test::expect_bad_input("simulate " + graph_tri + " --scheme greedy", {"--scheme"});
 }
 
+// The hyperbolic baseline is asked for by name: `route` evaluates it (every pair delivered on a
+// connected graph), `all` leaves it out, and the per-node forwarding of `simulate` refuses it up front.
+TEST(CliSimulateSchemes, HyperbolicBaselineIsRoutedCentrallyOnly) {
+  const auto doc = laguerre::cli_test::run_json("route " + graph3 + " --scheme hyperbolic --json");
+  ASSERT_EQ(doc["schemes"].size(), 1u);
+  EXPECT_EQ(doc["schemes"][0]["scheme"], "hyperbolic");
+  EXPECT_EQ(doc["schemes"][0]["pairs"], 60 * 59);
+  EXPECT_EQ(doc["schemes"][0]["delivered"], 60 * 59);
+  EXPECT_EQ(laguerre::cli_test::run_json("route " + graph3 + " --scheme all --pairs 10 --json")["schemes"].size(), 4u);
+  laguerre::cli_test::expect_bad_input("simulate " + graph3 + " --scheme hyperbolic --pairs 5", {"--scheme", "hyperbolic"});
+}
+
 TEST(CliSimulateSchemes, CrashWithRecovery) {
   // A 20 ms outage is masked by the reliability layer: the run converges, bit for bit.
   const auto a = laguerre::cli_test::run_json("simulate " + graph_tri + " --crash 17@100ms-120ms --verify --pairs 5 --json");

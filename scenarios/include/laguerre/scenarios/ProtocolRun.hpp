@@ -216,12 +216,16 @@ public:
   std::vector<protocols::PacketReport> reports;  ///< in the order the packets ended
 };
 
+/// Throws InputError (source "--scheme") if `schemes` holds one the per-node forwarding protocol lacks
+/// (Scheme::hyperbolic, evaluated by the central router only).
+void require_forwarding_schemes(const std::vector<core::Scheme>& schemes);
+
 /// Forwards one packet per pair in `pairs` hop by hop, one simulation per scheme, over the links of
 /// `link` and the simulator seeded with `seed`; on lossy or duplicating links every forwarding node
 /// runs over the reliability layer (protocols::ReliableNode), so each hop arrives exactly once and
 /// the outcomes and hop counts are those of loss-free links (only the timing differs). Greedy power routes on `circles`; the other schemes on `positions` if not empty (they also
 /// place the network's nodes for distance latencies), else on the circles' centres. Each packet's
-/// hop limit is core::default_ttl, so the outcomes are core::route's.
+/// hop limit is core::default_ttl, so the outcomes are core::route's. Checks require_forwarding_schemes.
 std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
                                              const std::vector<core::Point2>& positions, const sim::LinkModel& link,
                                              std::uint64_t seed, const std::vector<core::Scheme>& schemes,

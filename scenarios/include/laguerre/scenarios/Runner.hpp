@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -79,7 +80,12 @@ struct SchemeResult {
   double stretch_p95 = 0;                            ///< 95th percentile (nearest rank)
   double stretch_max = 0;                            ///< largest
   double hops_mean = 0;                              ///< mean hops of delivered pairs
-  std::string positions;                             ///< "packing" or "physical"
+  std::string positions;                             ///< "packing", "physical" or "tree" (hyperbolic)
+  /// Schemes with their own setup (hyperbolic): messages per node to set it up, and the bits of a
+  /// node's coordinate (mean, max); NaN for the others, whose setup is the run's protocol.
+  double setup_messages_per_node = std::numeric_limits<double>::quiet_NaN();
+  double coordinate_bits_mean = std::numeric_limits<double>::quiet_NaN();
+  double coordinate_bits_max = std::numeric_limits<double>::quiet_NaN();
   /// A field with `attach: true`: the same scheme over pairs of all sensors (greedy power with the
   /// attachment, the others on the planarization of all sensors; fields/SensorNetwork.hpp). The
   /// fields above are then the core pairs.

@@ -84,10 +84,11 @@ inline constexpr core::EnumNames<GeometricPositions, 3> positions_names{{{Geomet
 /// `routing:` — schemes and pairs.
 /// The routing schemes as scenario files and the command line spell them (core::to_string(Scheme) is
 /// the underscore form of the outputs).
-inline constexpr core::EnumNames<core::Scheme, 4> scheme_names{{{core::Scheme::greedy_power, "greedy-power"},
+inline constexpr core::EnumNames<core::Scheme, 5> scheme_names{{{core::Scheme::greedy_power, "greedy-power"},
                                                                 {core::Scheme::greedy_euclid, "greedy-euclid"},
                                                                 {core::Scheme::compass, "compass"},
-                                                                {core::Scheme::gfg, "gfg"}}};
+                                                                {core::Scheme::gfg, "gfg"},
+                                                                {core::Scheme::hyperbolic, "hyperbolic"}}};
 
 struct RoutingSpec {
   std::vector<core::Scheme> schemes{core::all_schemes.begin(), core::all_schemes.end()};  ///< in order
@@ -134,7 +135,7 @@ struct Scenario {
 std::string_view to_string(StopSpec stop);
 /// Name of a positions rule ("auto", "packing", "physical").
 std::string_view to_string(GeometricPositions positions);
-/// A scheme as scenario files write it ("greedy-power", "greedy-euclid", "compass", "gfg").
+/// A scheme as scenario files write it ("greedy-power", "greedy-euclid", "compass", "gfg", "hyperbolic").
 std::string scheme_name(core::Scheme scheme);
 
 }  // namespace laguerre::scenarios

@@ -3,8 +3,10 @@
 /// A reusable router: routes many packets over one embedded graph without per-route allocations.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "laguerre/core/routing/HyperbolicEmbedding.hpp"
 #include "laguerre/core/routing/NextHop.hpp"
 #include "laguerre/core/routing/Routing.hpp"
 
@@ -27,8 +29,13 @@ public:
 
   /// One forwarding decision of a memoryless scheme (greedy_power, greedy_euclid, compass): the next
   /// hop from `at` towards `target`, or `none`. Preconditions: `at` and `target` are vertices of
-  /// the graph, and `s` is not gfg, whose decisions depend on state carried in the packet.
+  /// the graph, and `s` is not gfg, whose decisions depend on state carried in the packet. For
+  /// hyperbolic, `none` also when the decision is not certified (route() tells the two apart).
   Vertex next_hop(Scheme s, Vertex at, Vertex target) const;
+
+  /// Kleinberg's embedding of a BFS tree of the graph that Scheme::hyperbolic routes on, built on
+  /// first use (default HyperbolicOptions) and kept.
+  const HyperbolicTreeEmbedding& hyperbolic() const;
 
   /// The graph routed over.
   const PlanarGraph& graph() const { return *g_; }
@@ -38,6 +45,7 @@ public:
 private:
   void route_memoryless(Scheme s, Vertex target, std::size_t ttl, Route& out);
   void route_gfg(Vertex target, std::size_t ttl, Route& out) const;
+  void route_hyperbolic(Vertex target, std::size_t ttl, Route& out) const;
   void check_vertex(Vertex v, const char* role) const;
   Vertex hop(Scheme s, Vertex at, Vertex target) const;
   GraphView view_of(Vertex v) const { return {*g_, *phi_, v}; }
@@ -46,6 +54,7 @@ private:
   const CircleEmbedding* phi_;
   std::vector<std::uint32_t> visit_mark_;  // compass loop detection: == epoch_ when visited this route
   std::uint32_t epoch_ = 0;
+  mutable std::unique_ptr<HyperbolicTreeEmbedding> hyperbolic_;  // built on first use
 };
 
 }  // namespace laguerre::core

@@ -30,13 +30,17 @@ enum class Scheme {
   greedy_euclid,  ///< forward to the neighbour whose centre is nearest to p(t); stop at a local minimum
   compass,        ///< forward to the neighbour whose direction deviates least from that of p(t)
   gfg,            ///< greedy-face-greedy (greedy Euclidean + face routing on the straight-line drawing)
+  /// literature baseline: greedy by hyperbolic distance in Kleinberg's embedding of a BFS tree of the
+  /// graph (HyperbolicEmbedding.hpp); ignores φ. Centralized router only (no per-node protocol).
+  hyperbolic,
 };
 
-/// All schemes, in declaration order.
+/// The schemes on the circle embedding, in declaration order: what `all` selects and what the
+/// per-node forwarding protocol implements (Scheme::hyperbolic is asked for by name).
 inline constexpr std::array<Scheme, 4> all_schemes{Scheme::greedy_power, Scheme::greedy_euclid, Scheme::compass,
                                                    Scheme::gfg};
 
-/// The scheme's name: "greedy_power", "greedy_euclid", "compass" or "gfg".
+/// The scheme's name: "greedy_power", "greedy_euclid", "compass", "gfg" or "hyperbolic".
 std::string_view to_string(Scheme s);
 /// Inverse of to_string(Scheme); `std::nullopt` for any other string.
 std::optional<Scheme> parse_scheme(std::string_view name);
@@ -48,9 +52,10 @@ enum class RouteOutcome {
   loop,          ///< the packet would cycle forever (compass revisited a node; GFG walked a whole face
                  ///< without progress, which only a non-plane drawing can cause)
   ttl_exceeded,  ///< the hop limit was reached first
+  uncertified,   ///< the numbers could not prove the next hop closer (Scheme::hyperbolic): not delivered
 };
 
-/// The outcome's name: "delivered", "dead_end", "loop" or "ttl_exceeded".
+/// The outcome's name: "delivered", "dead_end", "loop", "ttl_exceeded" or "uncertified".
 std::string_view to_string(RouteOutcome o);
 
 /// The journey of one packet.
@@ -63,7 +68,7 @@ struct Route {
   std::size_t hops() const { return path.empty() ? 0 : path.size() - 1; }
 };
 
-/// The hop limit used when route() is given ttl = 0: 4·|V| + 16 for greedy and compass routing (which
+/// The hop limit used when route() is given ttl = 0: 4·|V| + 16 for greedy (also hyperbolic) and compass routing (which
 /// stop on their own within |V| hops) and, for gfg, |V|·(2|E|·(|E|+1) + |V|) + 16, a bound its
 /// progress argument guarantees is never reached (saturated at SIZE_MAX).
 std::size_t default_ttl(const PlanarGraph& g, Scheme s);
