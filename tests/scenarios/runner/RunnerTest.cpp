@@ -354,7 +354,7 @@ TEST(Runner, BundledFieldHolesComparisonRoutesEverySensor) {
     EXPECT_EQ(r.nodes, r.sensors);
     EXPECT_LE(r.core_nodes, r.nodes);
     EXPECT_LT(r.unreachable_sensors, r.sensors - r.core_nodes + 1);
-    ASSERT_EQ(r.routing.size(), 4u);
+    ASSERT_EQ(r.routing.size(), 5u);  // the four schemes and the hyperbolic baseline
     for (const SchemeResult& sr : r.routing) {
       ASSERT_TRUE(sr.all_pairs) << scheme_name(sr.scheme);
       EXPECT_EQ(sr.all_pairs->pairs, 3000u);
@@ -367,7 +367,7 @@ TEST(Runner, BundledFieldHolesComparisonRoutesEverySensor) {
     EXPECT_EQ(r.routing[0].delivered, r.routing[0].pairs);  // the core pairs as before
   }
   const auto rows = compare_runs(s, a.records);
-  ASSERT_EQ(rows.size(), 24u);
+  ASSERT_EQ(rows.size(), 30u);
   for (const ComparisonRow& row : rows) {
     EXPECT_EQ(row.all_pairs_runs, 1u);
     EXPECT_EQ(row.sensors_mean, 250.0);
@@ -376,7 +376,7 @@ TEST(Runner, BundledFieldHolesComparisonRoutesEverySensor) {
   }
   EXPECT_EQ(rows[0].all_pairs.delivery_mean, 1.0);
   EXPECT_EQ(rows[0].family, "field:square-with-holes:unit-disk");  // the swept domain and links name the rows
-  EXPECT_EQ(rows[4 * 5].family, "field:many-small-holes:quasi-unit-disk");
+  EXPECT_EQ(rows[5 * 5].family, "field:many-small-holes:quasi-unit-disk");
   const ScenarioResults b = run_scenario(s, {});
   EXPECT_EQ(results_csv(s, a.records), results_csv(s, b.records));
   EXPECT_EQ(comparison_csv(rows), comparison_csv(compare_runs(s, b.records)));
