@@ -342,22 +342,22 @@ TEST(Runner, CentralModeEqualsTheSynchronousProtocol) {
 TEST(Runner, BundledFieldHolesComparisonRoutesEverySensor) {
   LoadOptions o;
   o.overrides = {"repetitions=1",
-                 "sweep.topology=[{generator: field, n: 250, radius: 0.13, graph: local-delaunay, repair: "
+                 "sweep.topology=[{generator: field, n: 200, radius: 0.14, graph: local-delaunay, repair: "
                  "three-connected-core, attach: true}]",
-                 "routing.pairs=3000"};
+                 "routing.pairs=1500"};
   const Scenario s = load_scenario(std::string(LAGUERRE_TEST_DATA) + "/../../scenarios/field-holes-comparison.yaml", o);
   ASSERT_EQ(s.points.size(), 6u);  // 3 domains × 2 link models
   const ScenarioResults a = run_scenario(s, {});
   for (const RunRecord& r : a.records) {
     ASSERT_EQ(r.status, RunStatus::ok) << r.message;
-    EXPECT_EQ(r.sensors, 250u);
+    EXPECT_EQ(r.sensors, 200u);
     EXPECT_EQ(r.nodes, r.sensors);
     EXPECT_LE(r.core_nodes, r.nodes);
     EXPECT_LT(r.unreachable_sensors, r.sensors - r.core_nodes + 1);
     ASSERT_EQ(r.routing.size(), 5u);  // the four schemes and the hyperbolic baseline
     for (const SchemeResult& sr : r.routing) {
       ASSERT_TRUE(sr.all_pairs) << scheme_name(sr.scheme);
-      EXPECT_EQ(sr.all_pairs->pairs, 3000u);
+      EXPECT_EQ(sr.all_pairs->pairs, 1500u);
       EXPECT_EQ(sr.all_pairs->invalid_routes, 0u);
       EXPECT_GE(sr.all_pairs->stretch_mean, 1.0) << scheme_name(sr.scheme);
       EXPECT_GE(sr.stretch_mean, 1.0);
@@ -370,8 +370,8 @@ TEST(Runner, BundledFieldHolesComparisonRoutesEverySensor) {
   ASSERT_EQ(rows.size(), 30u);
   for (const ComparisonRow& row : rows) {
     EXPECT_EQ(row.all_pairs_runs, 1u);
-    EXPECT_EQ(row.sensors_mean, 250.0);
-    EXPECT_EQ(row.nodes_mean, 250.0);
+    EXPECT_EQ(row.sensors_mean, 200.0);
+    EXPECT_EQ(row.nodes_mean, 200.0);
     EXPECT_LE(row.core_nodes_mean, row.nodes_mean);
   }
   EXPECT_EQ(rows[0].all_pairs.delivery_mean, 1.0);
