@@ -50,18 +50,34 @@ std::string results_json(const Scenario& scenario, const std::vector<RunRecord>&
     nlohmann::ordered_json values = nlohmann::ordered_json::object();
     for (const auto& [k, v] : p.values) values[k] = v;
     nlohmann::ordered_json routing = nlohmann::ordered_json::object();
-    for (const SchemeResult& s : r.routing)
-      routing[scheme_name(s.scheme)] = {{"pairs", s.pairs},
-                                        {"delivered", s.delivered},
-                                        {"delivery_rate", num(s.delivery_rate)},
-                                        {"stretch_mean", num(s.stretch_mean)},
-                                        {"stretch_p95", num(s.stretch_p95)},
-                                        {"stretch_max", num(s.stretch_max)},
-                                        {"hops_mean", num(s.hops_mean)},
-                                        {"positions", s.positions},
-                                        {"setup_messages_per_node", num(s.setup_messages_per_node)},
-                                        {"coordinate_bits_mean", num(s.coordinate_bits_mean)},
-                                        {"coordinate_bits_max", num(s.coordinate_bits_max)}};
+    for (const SchemeResult& s : r.routing) {
+      nlohmann::ordered_json& entry = routing[scheme_name(s.scheme)];
+      entry = {{"pairs", s.pairs},
+               {"delivered", s.delivered},
+               {"delivery_rate", num(s.delivery_rate)},
+               {"stretch_mean", num(s.stretch_mean)},
+               {"stretch_p95", num(s.stretch_p95)},
+               {"stretch_max", num(s.stretch_max)},
+               {"hops_mean", num(s.hops_mean)},
+               {"positions", s.positions},
+               {"setup_messages_per_node", num(s.setup_messages_per_node)},
+               {"coordinate_bits_mean", num(s.coordinate_bits_mean)},
+               {"coordinate_bits_max", num(s.coordinate_bits_max)}};
+      if (s.all_pairs) {
+        const AllPairsStats& a = *s.all_pairs;
+        entry["all_pairs"] = {{"pairs", a.pairs},
+                              {"disconnected", a.disconnected},
+                              {"delivered", a.delivered},
+                              {"delivery_rate", num(a.delivery_rate)},
+                              {"delivery_over", "pairs in one link component (disconnected pairs excluded)"},
+                              {"stretch_mean", num(a.stretch_mean)},
+                              {"stretch_p95", num(a.stretch_p95)},
+                              {"stretch_max", num(a.stretch_max)},
+                              {"stretch_reference", "BFS hops in the link graph of all sensors"},
+                              {"hops_mean", num(a.hops_mean)},
+                              {"invalid_routes", a.invalid_routes}};
+      }
+    }
     nlohmann::ordered_json run = {{"point", r.plan.point},
                           {"repetition", r.plan.repetition},
                           {"seed", r.plan.seed},
@@ -74,7 +90,10 @@ std::string results_json(const Scenario& scenario, const std::vector<RunRecord>&
                           {"topology_note", r.topology_note},
                           {"kind", r.kind},
                           {"network", network_label(p.config.network)},
+                          {"sensors", r.sensors},
                           {"nodes", r.nodes},
+                          {"core_nodes", r.core_nodes},
+                          {"unreachable_sensors", r.unreachable_sensors},
                           {"edges", r.edges},
                           {"iterations", r.iterations},
                           {"rounds", r.rounds},
@@ -112,7 +131,9 @@ std::string results_csv(const Scenario& scenario, const std::vector<RunRecord>& 
   for (const auto& k : scenario.sweep_keys) out += "," + quote(k);
   out += ",status,family,topology,kind,network,nodes,edges,iterations,rounds,local_condition_holds,messages,"
          "messages_per_node,max_node_messages,retransmissions,simulated_seconds,exact_iterations,scheme,positions,"
-         "pairs,delivered,delivery_rate,stretch_mean,stretch_p95,stretch_max,hops_mean\n";
+         "pairs,delivered,delivery_rate,stretch_mean,stretch_p95,stretch_max,hops_mean,sensors,core_nodes,all_pairs,"
+         "all_pairs_disconnected,all_pairs_delivered,all_pairs_delivery_rate,all_pairs_stretch_mean,"
+         "all_pairs_stretch_p95,all_pairs_stretch_max\n";
   for (const RunRecord& r : records) {
     const ScenarioPoint& p = scenario.points.at(r.plan.point);
     std::string head = std::to_string(r.plan.point) + "," + std::to_string(r.plan.repetition) + "," +
@@ -124,11 +145,19 @@ std::string results_csv(const Scenario& scenario, const std::vector<RunRecord>& 
             std::to_string(r.messages) + "," + g6(r.messages_per_node) + "," + std::to_string(r.max_node_messages) +
             "," + std::to_string(r.retransmissions) + "," + g6(r.simulated_seconds) + "," +
             (r.exact_iterations >= 0 ? std::to_string(r.exact_iterations) : "");
-    if (r.routing.empty()) out += head + ",,,,,,,,,\n";
-    for (const SchemeResult& s : r.routing)
+    const std::string sizes = "," + std::to_string(r.sensors) + "," + std::to_string(r.core_nodes);
+    if (r.routing.empty()) out += head + ",,,,,,,,," + sizes + ",,,,,,,\n";
+    for (const SchemeResult& s : r.routing) {
+      std::string all = ",,,,,,,";
+      if (s.all_pairs) {
+        const AllPairsStats& a = *s.all_pairs;
+        all = "," + std::to_string(a.pairs) + "," + std::to_string(a.disconnected) + "," + std::to_string(a.delivered) +
+              "," + g6(a.delivery_rate) + "," + g6(a.stretch_mean) + "," + g6(a.stretch_p95) + "," + g6(a.stretch_max);
+      }
       out += head + "," + scheme_name(s.scheme) + "," + s.positions + "," + std::to_string(s.pairs) + "," +
              std::to_string(s.delivered) + "," + g6(s.delivery_rate) + "," + g6(s.stretch_mean) + "," +
-             g6(s.stretch_p95) + "," + g6(s.stretch_max) + "," + g6(s.hops_mean) + "\n";
+             g6(s.stretch_p95) + "," + g6(s.stretch_max) + "," + g6(s.hops_mean) + sizes + all + "\n";
+    }
   }
   return out;
 }
@@ -142,7 +171,7 @@ std::string summary_table(const Scenario& scenario, const std::vector<RunRecord>
     if (p.values.empty()) title = scenario.name;
     std::size_t runs = 0, ok = 0;
     std::map<std::string, std::size_t> other;
-    double nodes = 0, iters = 0, rounds = 0, msgs = 0, simt = 0;
+    double nodes = 0, sensors = 0, core_nodes = 0, iters = 0, rounds = 0, msgs = 0, simt = 0;
     std::size_t measured = 0;
     std::string first_problem;
     for (const RunRecord& r : records) {
@@ -156,6 +185,8 @@ std::string summary_table(const Scenario& scenario, const std::vector<RunRecord>
       if (r.nodes == 0 || r.status == RunStatus::unsupported || r.status == RunStatus::error) continue;
       ++measured;
       nodes += static_cast<double>(r.nodes);
+      sensors += static_cast<double>(r.sensors);
+      core_nodes += static_cast<double>(r.core_nodes);
       iters += r.iterations;
       rounds += r.rounds;
       msgs += r.messages_per_node;
@@ -166,19 +197,30 @@ std::string summary_table(const Scenario& scenario, const std::vector<RunRecord>
     for (const auto& [k, v] : other) status += ", " + std::to_string(v) + " " + k;
     out += title + "\n";
     std::snprintf(line, sizeof line,
-                  "  %s: %s, %s nodes; %s iterations, %s rounds, %s messages/node, %s s simulated (means)\n",
-                  p.config.topology.generator.c_str(), status.c_str(), fmt("%.0f", nodes / m).c_str(),
+                  "  %s: %s, %s sensors, %s nodes routed, %s packed; %s iterations, %s rounds, %s messages/packed node, "
+                  "%s s simulated (means)\n",
+                  p.config.topology.generator.c_str(), status.c_str(), fmt("%.0f", sensors / m).c_str(),
+                  fmt("%.0f", nodes / m).c_str(), fmt("%.0f", core_nodes / m).c_str(),
                   fmt("%.1f", iters / m).c_str(), fmt("%.1f", rounds / m).c_str(), fmt("%.1f", msgs / m).c_str(),
                   fmt("%.4f", simt / m).c_str());
     out += line;
     if (!first_problem.empty()) out += "  first problem: " + first_problem + "\n";
     for (std::size_t k = 0; k < p.config.routing.schemes.size(); ++k) {
-      std::size_t pairs = 0, delivered = 0, w = 0;
-      double stretch = 0, smax = std::numeric_limits<double>::quiet_NaN();
+      std::size_t pairs = 0, delivered = 0, w = 0, all_pairs = 0, all_connected = 0, all_delivered = 0, all_w = 0;
+      double stretch = 0, smax = std::numeric_limits<double>::quiet_NaN(), all_stretch = 0;
       std::string where;
       for (const RunRecord& r : records) {
         if (r.plan.point != p.index || k >= r.routing.size()) continue;
         const SchemeResult& s = r.routing[k];
+        if (s.all_pairs) {
+          all_pairs += s.all_pairs->pairs;
+          all_connected += s.all_pairs->pairs - s.all_pairs->disconnected;
+          all_delivered += s.all_pairs->delivered;
+          if (s.all_pairs->delivered) {
+            all_stretch += s.all_pairs->stretch_mean * static_cast<double>(s.all_pairs->delivered);
+            all_w += s.all_pairs->delivered;
+          }
+        }
         pairs += s.pairs;
         delivered += s.delivered;
         where = s.positions;
@@ -194,6 +236,15 @@ std::string summary_table(const Scenario& scenario, const std::vector<RunRecord>
                     100.0 * static_cast<double>(delivered) / static_cast<double>(pairs),
                     fmt("%.3f", w ? stretch / static_cast<double>(w) : std::nan("")).c_str(), fmt("%.2f", smax).c_str(),
                     where.c_str());
+      out += line;
+      if (all_pairs == 0) continue;
+      std::snprintf(line, sizeof line,
+                    "    %-14s %9zu/%-9zu all sensor pairs delivered (%6.2f%% of %zu connected; %zu disconnected "
+                    "excluded)  stretch vs links %s\n",
+                    "", all_delivered, all_connected,
+                    all_connected ? 100.0 * static_cast<double>(all_delivered) / static_cast<double>(all_connected) : 0.0,
+                    all_connected, all_pairs - all_connected,
+                    fmt("%.3f", all_w ? all_stretch / static_cast<double>(all_w) : std::nan("")).c_str());
       out += line;
     }
   }

@@ -103,7 +103,13 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
   r.kind = std::string(core::to_string(topo.kind));
   const core::PlanarGraph& g = topo.graph;
   const std::size_t n = g.num_vertices();
-  r.nodes = n;
+  r.core_nodes = n;
+  r.sensors = r.nodes = topo.sensors ? topo.sensors->points.size() : n;
+  r.unreachable_sensors = topo.sensors ? topo.sensors->attachment.stray : 0;
+  if (!topo.sensors && topo.family == "field") {  // a repaired field without attach: the deployment's size
+    const auto& params = cfg.topology.params;
+    r.sensors = static_cast<std::size_t>(params.integer("n", static_cast<std::int64_t>(n)));
+  }
   r.edges = g.num_edges();
   try {
     ProtocolSetup setup;
@@ -210,6 +216,27 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
         sr.coordinate_bits_max = static_cast<double>(cost.address_bits_max);
       }
       r.routing.push_back(sr);
+    }
+    if (topo.sensors) {  // every sensor pair: greedy power with the attachment, the others on the planarization
+      const SensorNetwork& net = *topo.sensors;
+      const PlanarizationRouter planar(net);
+      // One entry per scheme (a scheme added to core::Scheme must say here how it routes all sensors;
+      // -Wswitch makes the compiler ask).
+      const auto sensor_router = [&](core::Scheme s) -> SensorRouter {
+        switch (s) {
+          case core::Scheme::greedy_power: return attached_router(net, g, phi);
+          case core::Scheme::greedy_euclid:
+          case core::Scheme::compass:
+          case core::Scheme::gfg:
+          case core::Scheme::hyperbolic:  // Kleinberg's embedding of each planarization component's BFS tree
+            return planar.router(s);
+        }
+        throw core::InternalError("no all-sensor router for scheme " + std::string(core::to_string(s)));
+      };
+      std::vector<SensorRouter> routers;
+      for (core::Scheme s : cfg.routing.schemes) routers.push_back(sensor_router(s));
+      const std::vector<AllPairsStats> all = evaluate_all_pairs(net, routers, selection);
+      for (std::size_t k = 0; k < all.size(); ++k) r.routing[k].all_pairs = all[k];
     }
     if (artifacts) {
       const core::CircleEmbedding& gfg_emb = physical ? geo : phi;

@@ -18,6 +18,8 @@
 #include "laguerre/core/meshing/StarMesher.hpp"
 #include "laguerre/scenarios/fields/Deployment.hpp"
 #include "laguerre/scenarios/fields/FieldGraph.hpp"
+#include "laguerre/scenarios/fields/SensorNetwork.hpp"
+#include "laguerre/core/random/Random.hpp"
 #include "laguerre/scenarios/generators/UniformThreeConnected.hpp"
 #include "laguerre/scenarios/generators/UniformTriangulation.hpp"
 
@@ -291,11 +293,24 @@ Topology build_mesh(const Args& a, std::uint64_t seed, std::size_t) {
   return t;
 }
 
+/// The field's domain: `domain_file`, else the `domain` polygons, else the unit square.
+core::Domain field_domain(const Args& a) {
+  if (a.has("domain_file")) return core::read_domain(a.text("domain_file"));
+  const Polygons polys = a.polygons("domain");
+  return polys.empty() ? core::Domain::unit_square() : core::Domain(polys.front(), Polygons(polys.begin() + 1, polys.end()));
+}
+
+/// The largest depth of a sensor hanging on the core (0 if none).
+std::uint32_t deepest_attached(const Attachment& at) {
+  std::uint32_t deepest = 0;
+  for (std::size_t v = 0; v < at.depth.size(); ++v)
+    if (at.core_vertex[at.anchor[v]] != core::none) deepest = std::max(deepest, at.depth[v]);
+  return deepest;
+}
+
 Topology build_field(const Args& a, std::uint64_t seed, std::size_t) {
   const std::size_t n = a.size("n");
-  const Polygons polys = a.polygons("domain");
-  const core::Domain domain =
-      polys.empty() ? core::Domain::unit_square() : core::Domain(polys.front(), Polygons(polys.begin() + 1, polys.end()));
+  const core::Domain domain = field_domain(a);
   std::vector<core::Point2> points;
   if (a.text("deployment") == "clustered") {
     ClusterOptions co;
@@ -312,7 +327,32 @@ Topology build_field(const Args& a, std::uint64_t seed, std::size_t) {
   fo.hops = static_cast<unsigned>(a.integer("hops"));
   fo.repair = parse_repair_policy(a.text("repair"));
   fo.source = "field(" + a.text("graph") + ", n=" + std::to_string(n) + ")";
-  return from_field_graph(build_field_graph(domain, points, fo), fo.source, "field");
+  const bool quasi = a.text("links") == "quasi-unit-disk";
+  if (!quasi && !a.boolean("attach")) return from_field_graph(build_field_graph(domain, points, fo), fo.source, "field");
+  // Links of their own (quasi-unit-disk) or every sensor kept (attach): the spanner is cut to the links,
+  // its core is packed, and with attach the other sensors hang on it (fields/SensorNetwork.hpp).
+  auto net = std::make_shared<SensorNetwork>();
+  const LinkOptions lo{quasi, fo.radius, a.number("quasi_inner"), a.number("quasi_probability"), core::splitmix64(seed)};
+  net->links = link_edges(points, lo);
+  net->planar = common_edges(field_edges(domain, points, fo), net->links);
+  std::string type_name(to_string(fo.type));
+  type_name += quasi ? " graph on quasi-unit-disk links" : " graph";
+  Topology t = from_field_graph(field_graph_from_edges(points, net->planar, fo.repair, fo.source, type_name, false),
+                                fo.source, "field");
+  if (!a.boolean("attach")) return t;
+  net->attachment = attach_to_core(points.size(), net->links, t.graph);
+  std::size_t largest_face = 0;  // the holes wider than the links are inner faces of the core
+  for (core::Face f = 0; f < t.graph.num_faces(); ++f)
+    if (f != t.graph.outer_face()) largest_face = std::max<std::size_t>(largest_face, t.graph.face_size(f));
+  t.note += "; largest inner face " + std::to_string(largest_face) + " vertices, outer face " +
+            std::to_string(t.graph.face_size(t.graph.outer_face())) + "; attach: " +
+            std::to_string(t.graph.num_vertices()) + " core sensors, " +
+            std::to_string(net->attachment.attached) + " attached to the core (deepest " +
+            std::to_string(deepest_attached(net->attachment)) + " hops), " +
+            std::to_string(net->attachment.stray) + " in other link components";
+  net->points = std::move(points);
+  t.sensors = std::move(net);
+  return t;
 }
 
 // The cross-parameter checks.
@@ -346,6 +386,20 @@ std::vector<ParamIssue> check_field(const Args& a) {
   const std::string graph_type = a.text("graph");
   if (graph_type != "delaunay" && !a.has("radius"))
     out.push_back({"radius", "nothing", "a radius > 0 for graph " + graph_type});
+  const bool own_links = a.boolean("attach") || a.text("links") == "quasi-unit-disk";
+  if (own_links && (graph_type == "delaunay" || graph_type == "unit-disk" ||
+                    (graph_type == "local-delaunay" && a.integer("hops") < 2)))
+    out.push_back({"graph", "'" + graph_type + "' with attach or quasi-unit-disk links",
+                   "a planar spanner of the links: gabriel, rng, or local-delaunay with hops >= 2"});
+  if (own_links && graph_type == "delaunay" && !a.has("radius"))  // other graphs ask for it above
+    out.push_back({"radius", "nothing", "a radius > 0 for the links"});
+  if (a.has("domain") && a.has("domain_file"))
+    out.push_back({"domain_file", "both domain and domain_file", "one of them"});
+  if (a.has("domain_file")) try {
+      (void)core::read_domain(a.text("domain_file"));
+    } catch (const std::exception& e) {
+      out.push_back({"domain_file", "'" + a.text("domain_file") + "'", std::string("a valid domain (") + e.what() + ")"});
+    }
   if (a.has("domain")) {
     try {
       const Polygons polys = a.polygons("domain");
@@ -466,6 +520,24 @@ std::vector<GeneratorInfo> make_registry() {
            .fallback(std::string("fail")),
        Param("domain", T::polygons, "outer polygon, then holes: [[[x, y], ...], [[x, y], ...], ...]")
            .documented_default("the unit square [0, 1]^2"),
+       Param("domain_file", T::file,
+             "a domain file instead of `domain` (core/meshing/Domain.hpp, as for mesh), relative to the scenario file")
+           .documented_default("none"),
+       Param("links", T::choice,
+             "radio links: unit-disk (|uv| <= radius) or quasi-unit-disk (|uv| <= quasi_inner * radius always, up to "
+             "radius with probability quasi_probability); the spanner is cut to the links (fields/SensorNetwork.hpp)")
+           .choices({"unit-disk", "quasi-unit-disk"})
+           .fallback(std::string("unit-disk")),
+       Param("quasi_inner", T::number, "quasi-unit-disk: the ratio of the sure-link radius to radius")
+           .range(1e-6, 1)
+           .fallback(0.75),
+       Param("quasi_probability", T::number, "quasi-unit-disk: the probability of a link between the two radii")
+           .range(0, 1)
+           .fallback(0.5),
+       Param("attach", T::boolean,
+             "route every sensor: the sensors outside the packed core hang on it by trees in the links "
+             "(fields/SensorNetwork.hpp); needs a radius and a planar spanner (gabriel, rng, local-delaunay)")
+           .fallback(false),
        Param("deployment", T::choice, "how sensors are placed")
            .choices({"uniform", "clustered"})
            .fallback(std::string("uniform")),

@@ -288,6 +288,36 @@ TEST(ScenarioLoader, CrossFieldRules) {
   }
 }
 
+// `attach` and quasi-unit-disk links need link-made plane spanners and a radius; one domain only.
+TEST(ScenarioLoader, AttachNeedsAPlanarSpannerOfTheLinks) {
+  try {
+    (void)from_text("name: x\ntopology: {generator: field, n: 10, attach: true}\n");
+    FAIL() << "no error";
+  } catch (const ScenarioError& e) {
+    ASSERT_EQ(e.issues().size(), 2u);
+    EXPECT_NE(e.issues()[0].find("topology.graph: found 'delaunay' with attach or quasi-unit-disk links, expected a "
+                                 "planar spanner of the links"),
+              std::string::npos)
+        << e.issues()[0];
+    EXPECT_NE(e.issues()[1].find("topology.radius: found nothing, expected a radius > 0 for the links"), std::string::npos)
+        << e.issues()[1];
+  }
+  try {
+    (void)from_text("name: x\ntopology: {generator: field, n: 10, graph: gabriel, radius: 0.2, links: quasi-unit-disk, "
+                    "domain: [[[0, 0], [1, 0], [1, 1]]], domain_file: ../../../scenarios/domains/one-large-hole.txt}\n");
+    FAIL() << "no error";
+  } catch (const ScenarioError& e) {
+    ASSERT_EQ(e.issues().size(), 1u);
+    EXPECT_NE(e.issues()[0].find("topology.domain_file: found both domain and domain_file, expected one of them"),
+              std::string::npos)
+        << e.issues()[0];
+  }
+  const Scenario ok = from_text(
+      "name: x\ntopology: {generator: field, n: 10, graph: rng, radius: 0.2, attach: true, links: quasi-unit-disk, "
+      "domain_file: ../../../scenarios/domains/many-small-holes.txt}\n");
+  EXPECT_TRUE(ok.points[0].config.topology.params.boolean("attach", false));
+}
+
 TEST(ScenarioLoader, PolygonDomains) {
   const Scenario s = from_text("name: x\ntopology:\n  generator: field\n  n: 10\n  domain:\n"
                                "    - [[0, 0], [3, 0], [3, 3], [0, 3]]\n    - [[1, 1], [1, 2], [2, 2]]\n");

@@ -419,3 +419,50 @@ TEST(Runner, CentralModeEqualsTheSynchronousProtocol) {
   }
   EXPECT_THROW(from_text(base + "protocol: {mode: async, acceleration: chebyshev}\n"), ScenarioError);
 }
+
+// The bundled all-sensors comparison (scenarios/field-holes-comparison.yaml), small: every sensor is
+// routed (nodes == sensors), greedy power with the attachment delivers every connected sensor pair,
+// every scheme's stretch against BFS in the links is at least 1, no route uses a non-link, and the
+// comparison rows carry the all-pairs columns; two runs give the same tables.
+TEST(Runner, BundledFieldHolesComparisonRoutesEverySensor) {
+  LoadOptions o;
+  o.overrides = {"repetitions=1",
+                 "sweep.topology=[{generator: field, n: 200, radius: 0.14, graph: local-delaunay, repair: "
+                 "three-connected-core, attach: true}]",
+                 "routing.pairs=1500"};
+  const Scenario s = load_scenario(std::string(LAGUERRE_TEST_DATA) + "/../../scenarios/field-holes-comparison.yaml", o);
+  ASSERT_EQ(s.points.size(), 6u);  // 3 domains × 2 link models
+  const ScenarioResults a = run_scenario(s, {});
+  for (const RunRecord& r : a.records) {
+    ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+    EXPECT_EQ(r.sensors, 200u);
+    EXPECT_EQ(r.nodes, r.sensors);
+    EXPECT_LE(r.core_nodes, r.nodes);
+    EXPECT_LT(r.unreachable_sensors, r.sensors - r.core_nodes + 1);
+    ASSERT_EQ(r.routing.size(), 5u);  // the four schemes and the hyperbolic baseline
+    for (const SchemeResult& sr : r.routing) {
+      ASSERT_TRUE(sr.all_pairs) << scheme_name(sr.scheme);
+      EXPECT_EQ(sr.all_pairs->pairs, 1500u);
+      EXPECT_EQ(sr.all_pairs->invalid_routes, 0u);
+      EXPECT_GE(sr.all_pairs->stretch_mean, 1.0) << scheme_name(sr.scheme);
+      EXPECT_GE(sr.stretch_mean, 1.0);
+    }
+    EXPECT_EQ(r.routing[0].scheme, core::Scheme::greedy_power);
+    EXPECT_EQ(r.routing[0].all_pairs->delivered, r.routing[0].all_pairs->pairs - r.routing[0].all_pairs->disconnected);
+    EXPECT_EQ(r.routing[0].delivered, r.routing[0].pairs);  // the core pairs as before
+  }
+  const auto rows = compare_runs(s, a.records);
+  ASSERT_EQ(rows.size(), 30u);
+  for (const ComparisonRow& row : rows) {
+    EXPECT_EQ(row.all_pairs_runs, 1u);
+    EXPECT_EQ(row.sensors_mean, 200.0);
+    EXPECT_EQ(row.nodes_mean, 200.0);
+    EXPECT_LE(row.core_nodes_mean, row.nodes_mean);
+  }
+  EXPECT_EQ(rows[0].all_pairs.delivery_mean, 1.0);
+  EXPECT_EQ(rows[0].family, "field:square-with-holes:unit-disk");  // the swept domain and links name the rows
+  EXPECT_EQ(rows[5 * 5].family, "field:many-small-holes:quasi-unit-disk");
+  const ScenarioResults b = run_scenario(s, {});
+  EXPECT_EQ(results_csv(s, a.records), results_csv(s, b.records));
+  EXPECT_EQ(comparison_csv(rows), comparison_csv(compare_runs(s, b.records)));
+}

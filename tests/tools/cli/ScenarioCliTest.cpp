@@ -164,6 +164,11 @@ TEST_F(ScenarioCli, EveryExampleRunsSmall) {
        "domain: [[[0, 0], [1, 0], [1, 1], [0, 1]], [[0.2, 0.2], [0.4, 0.2], [0.4, 0.35], [0.2, 0.35]]], "
        "graph: local-delaunay, repair: three-connected-core}]'",
        true},
+      {"field-holes-comparison.yaml",
+       "--set repetitions=1 --set routing.pairs=500 --set 'sweep.topology=[{generator: field, n: 200, radius: 0.14, "
+       "graph: local-delaunay, repair: three-connected-core, attach: true}]'",
+       true},
+      {"field-holes-50000.yaml", "--set topology.n=200 --set topology.radius=0.14 --set routing.pairs=500", true},
   };
   std::size_t bundled = 0;
   for (const auto& e : fs::directory_iterator(scenarios)) bundled += e.path().extension() == ".yaml";

@@ -12,6 +12,7 @@
 /// (z = 1.96) is given instead and marked as such (`ci_method` "wilson" instead of "t").
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -38,11 +39,21 @@ Interval wilson_interval(std::size_t successes, std::size_t trials, double z = 1
 /// Student t 95% interval of the mean of `samples` (at least 2), not clipped.
 Interval t_interval(const std::vector<double>& samples);
 
+/// Delivery and stretch of one population of pairs over the routed runs of a row.
+struct PairSummary {
+  double delivery_mean = std::numeric_limits<double>::quiet_NaN();  ///< mean per-run delivery rate
+  Interval delivery_ci{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};  ///< 95%
+  std::string ci_method;  ///< "t", "wilson" or "" (no run)
+  double stretch_mean = std::numeric_limits<double>::quiet_NaN();  ///< weighted by delivered pairs
+  double stretch_p95 = std::numeric_limits<double>::quiet_NaN();   ///< mean of per-run 95th percentiles
+  double stretch_max = std::numeric_limits<double>::quiet_NaN();   ///< largest over the runs
+};
+
 /// One line of the comparison.
 struct ComparisonRow {
   std::string scenario;              ///< scenario name
   std::size_t point = 0;             ///< sweep point
-  std::string family;                ///< generator
+  std::string family;                ///< generator, then the point's swept topology values but the size ("field:one-large-hole:unit-disk")
   std::string size;                  ///< topology.n (or "-")
   std::string network;               ///< network condition (network_label)
   std::string scheme;                ///< routing scheme (scenario spelling)
@@ -59,6 +70,13 @@ struct ComparisonRow {
   double rounds_mean = 0;            ///< protocol rounds
   double messages_per_node_mean = 0; ///< messages per node
   double simulated_seconds_mean = 0; ///< simulated time of the protocol
+  double sensors_mean = 0;           ///< mean sensors deployed (= nodes_mean unless a field drops sensors)
+  double core_nodes_mean = 0;        ///< mean vertices packed (the 3-connected core of a field)
+  /// Fields with attach: pairs of all sensors in one link component (Runner.hpp SchemeResult::all_pairs);
+  /// the delivery and stretch fields above are then over the core's pairs.
+  PairSummary all_pairs;
+  std::size_t all_pairs_runs = 0;    ///< runs that measured all pairs (0: not a field with attach)
+  double disconnected_mean = 0;      ///< mean share of sampled pairs in different link components (excluded)
 };
 
 /// The comparison rows of one scenario's records: one per sweep point and scheme, in point order then

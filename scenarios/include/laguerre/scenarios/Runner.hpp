@@ -30,6 +30,7 @@
 #include "laguerre/core/random/Random.hpp"
 #include "laguerre/scenarios/Scenario.hpp"
 #include "laguerre/scenarios/Topology.hpp"
+#include "laguerre/scenarios/fields/SensorNetwork.hpp"
 #include "laguerre/sim/HostRunner.hpp"
 
 namespace laguerre::scenarios {
@@ -86,6 +87,10 @@ struct SchemeResult {
   double setup_messages_per_node = std::numeric_limits<double>::quiet_NaN();
   double coordinate_bits_mean = std::numeric_limits<double>::quiet_NaN();
   double coordinate_bits_max = std::numeric_limits<double>::quiet_NaN();
+  /// A field with `attach: true`: the same scheme over pairs of all sensors (greedy power with the
+  /// attachment, the others on the planarization of all sensors; fields/SensorNetwork.hpp). The
+  /// fields above are then the core pairs.
+  std::optional<AllPairsStats> all_pairs;
 };
 
 /// The result of one run.
@@ -97,7 +102,10 @@ struct RunRecord {
   std::string topology;                ///< topology name
   std::string topology_note;           ///< the generator's report (e.g. a sensor field's repair), or ""
   std::string kind;                    ///< "triangulated_disc" / "three_connected" ("" if not built)
-  std::size_t nodes = 0;               ///< vertices
+  std::size_t sensors = 0;             ///< sensors deployed (= vertices of the topology unless a field's repair dropped some)
+  std::size_t nodes = 0;               ///< sensors routed: every sensor with attach, else the packed vertices
+  std::size_t core_nodes = 0;          ///< vertices packed by the protocol (its messages are over these)
+  std::size_t unreachable_sensors = 0; ///< attach: sensors in other link components than the core (own trees only)
   std::size_t edges = 0;               ///< edges
   std::uint32_t iterations = 0;        ///< protocol: Thurston steps to its stop
   std::uint32_t rounds = 0;            ///< protocol: rounds

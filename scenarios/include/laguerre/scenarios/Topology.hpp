@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -98,6 +99,8 @@ struct ParamIssue {
   std::string expected;  ///< what was expected
 };
 
+struct SensorNetwork;  // fields/SensorNetwork.hpp
+
 /// A topology ready for the packing protocol.
 struct Topology {
   core::PlanarGraph graph;              ///< prepared for packing (see core::prepare_for_packing)
@@ -107,6 +110,9 @@ struct Topology {
   std::string family;                   ///< the generator name
   std::string note;                     ///< what the generator reports (e.g. a sensor field's repair), or ""
   std::vector<std::uint64_t> removed;   ///< ids of input vertices the outer rule removed (core::prepare_input)
+  /// A sensor field built with `attach: true`: every sensor, its links and its attachment to `graph`
+  /// (the core, whose ids are sensor indices); null otherwise.
+  std::shared_ptr<const SensorNetwork> sensors;
 };
 
 /// What the registry knows about a generator.
