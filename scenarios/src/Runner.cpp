@@ -278,7 +278,9 @@ void encode_record(const RunRecord& r, std::vector<std::byte>& out) {
   append_bytes(out, r.plan);
   append_bytes(out, r.status);
   for (const std::string* t : {&r.message, &r.family, &r.topology, &r.topology_note, &r.kind}) put_text(out, *t);
-  append_bytes(out, r.nodes), append_bytes(out, r.edges), append_bytes(out, r.iterations), append_bytes(out, r.rounds);
+  append_bytes(out, r.sensors), append_bytes(out, r.nodes), append_bytes(out, r.core_nodes);
+  append_bytes(out, r.unreachable_sensors);
+  append_bytes(out, r.edges), append_bytes(out, r.iterations), append_bytes(out, r.rounds);
   append_bytes(out, r.holds_nodes), append_bytes(out, r.messages), append_bytes(out, r.bytes);
   append_bytes(out, r.messages_per_node), append_bytes(out, r.max_node_messages), append_bytes(out, r.retransmissions);
   append_bytes(out, r.simulated_seconds), append_bytes(out, r.events), append_bytes(out, r.exact_iterations);
@@ -291,6 +293,8 @@ void encode_record(const RunRecord& r, std::vector<std::byte>& out) {
     put_text(out, x.positions);
     append_bytes(out, x.setup_messages_per_node), append_bytes(out, x.coordinate_bits_mean);
     append_bytes(out, x.coordinate_bits_max);
+    append_bytes(out, x.all_pairs.has_value());
+    if (x.all_pairs) append_bytes(out, *x.all_pairs);
   }
   append_bytes(out, r.wall_seconds);
 }
@@ -301,7 +305,9 @@ RunRecord decode_record(std::span<const std::byte> in, std::size_t& at) {
   r.plan = read_bytes<RunPlan>(in, at);
   r.status = read_bytes<RunStatus>(in, at);
   for (std::string* t : {&r.message, &r.family, &r.topology, &r.topology_note, &r.kind}) *t = get_text(in, at);
-  r.nodes = read_bytes<std::size_t>(in, at), r.edges = read_bytes<std::size_t>(in, at);
+  r.sensors = read_bytes<std::size_t>(in, at), r.nodes = read_bytes<std::size_t>(in, at);
+  r.core_nodes = read_bytes<std::size_t>(in, at), r.unreachable_sensors = read_bytes<std::size_t>(in, at);
+  r.edges = read_bytes<std::size_t>(in, at);
   r.iterations = read_bytes<std::uint32_t>(in, at), r.rounds = read_bytes<std::uint32_t>(in, at);
   r.holds_nodes = read_bytes<std::size_t>(in, at), r.messages = read_bytes<std::uint64_t>(in, at);
   r.bytes = read_bytes<std::uint64_t>(in, at), r.messages_per_node = read_bytes<double>(in, at);
@@ -317,6 +323,7 @@ RunRecord decode_record(std::span<const std::byte> in, std::size_t& at) {
     x.positions = get_text(in, at);
     x.setup_messages_per_node = read_bytes<double>(in, at), x.coordinate_bits_mean = read_bytes<double>(in, at);
     x.coordinate_bits_max = read_bytes<double>(in, at);
+    if (read_bytes<bool>(in, at)) x.all_pairs = read_bytes<AllPairsStats>(in, at);
   }
   r.wall_seconds = read_bytes<double>(in, at);
   return r;

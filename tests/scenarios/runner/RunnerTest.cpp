@@ -224,12 +224,15 @@ TEST(Runner, RunsSharedBetweenProcessesGiveTheSingleProcessResults) {
 }
 
 TEST(Runner, RecordsRoundTripThroughTheirBytes) {
-  // Every run of a sweep with every scheme (hyperbolic too): decode(encode(r)) writes the same
+  // Every run of a sweep with every scheme (hyperbolic too), on a triangulation and on a field with
+  // every sensor attached: decode(encode(r)) writes the same
   // results.json as r (every field users see, wall times included), and the bytes are used up.
   const Scenario s = from_text(
       "name: x\nrepetitions: 2\ntopology: {generator: delaunay, n: 20}\n"
       "routing: {schemes: [greedy-power, greedy-euclid, compass, gfg, hyperbolic], pairs: 50}\n"
-      "sweep:\n  network.loss: [0, 0.2]\n");
+      "sweep:\n  network.loss: [0, 0.2]\n"
+      "  topology:\n    - {generator: delaunay, n: 20}\n"
+      "    - {generator: field, n: 80, graph: local-delaunay, radius: 0.25, repair: three-connected-core, attach: true}\n");
   RunnerOptions o;
   o.jobs = 1;
   const ScenarioResults a = run_scenario(s, o);
@@ -241,6 +244,10 @@ TEST(Runner, RecordsRoundTripThroughTheirBytes) {
   EXPECT_EQ(at, bytes.size());
   EXPECT_EQ(results_json(s, back), results_json(s, a.records));
   EXPECT_EQ(results_csv(s, back), results_csv(s, a.records));
+  bool all_pairs = false;  // the field's runs carry the all-sensor results too
+  for (const RunRecord& r : back)
+    for (const SchemeResult& x : r.routing) all_pairs = all_pairs || x.all_pairs.has_value();
+  EXPECT_TRUE(all_pairs);
 }
 
 // On a packing that converged to LPD/GLPD greedy power routing delivers every pair (thesis Th. 5.2.5
