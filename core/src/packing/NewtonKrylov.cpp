@@ -15,8 +15,12 @@
 //     p_i = z_i + β_i p_{i−1},  s_i = w_i + β_i s_{i−1}   (s_i = A p_i)
 //     x_{i+1} = x_i + α_i p_i,  r_{i+1} = r_i − α_i s_i,  z_{i+1} = M⁻¹ r_{i+1}
 // In exact arithmetic these are PCG's iterates; ρ_i is the stop test ‖r_i‖ ≤ η ‖b‖ with the inexact-
-// Newton forcing term η = clamp(‖b‖, 10⁻¹⁴, 10⁻⁴) of NewtonSolver::pcg. The first sum also gives
-// ‖θ − 2π‖² for the line search (ρ_0).
+// Newton forcing term η = clamp(‖b‖, 10⁻¹⁴, 0.9) (superlinear convergence as η → 0 with ‖b‖; 0.9 is
+// Eisenstat and Walker's safeguard). Each CG iteration costs the network an exchange and a tree sum,
+// so early Newton steps solve loosely: on uniform random maps of 500 / 5000 nodes the cap 0.9 needs
+// 278 / 1697–2068 CG iterations to LPD where NewtonSolver::pcg's 10⁻⁴ needs 963–1077 / 4751–5360
+// (tools/bench/acceleration.sh), for 1–7 more Newton steps. The first sum also gives ‖θ − 2π‖² for
+// the line search (ρ_0).
 
 namespace laguerre::core {
 

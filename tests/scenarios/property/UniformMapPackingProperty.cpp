@@ -106,3 +106,40 @@ TEST(UniformMapPacking, ChebyshevInTheSimulatedNetworkEqualsCoreAndRoutesGreedil
       EXPECT_EQ(f[0].delivered, f[0].packets);
     }
 }
+
+TEST(UniformMapPacking, NewtonKrylovReachesLpdGlpdAndRoutesGreedily) {
+  // Newton–Krylov as the network runs it (core::pack's reference of the protocol): every map of 50-200
+  // nodes converges in a few dozen Newton steps, and greedy power routing delivers every pair.
+  for (const char* generator : {"uniform-triangulation", "uniform-three-connected"})
+    for (int i = 0; i < std::max(2, cases() / 3); ++i) {
+      const std::int64_t n = 50 + 50 * (i % 4);
+      SCOPED_TRACE(std::string(generator) + " n=" + std::to_string(n) + " case " + std::to_string(i));
+      const int steps = expect_greedy_embedding(uniform(generator, n, 7000 + static_cast<std::uint64_t>(i)),
+                                                core::Acceleration::newton_krylov, 200);
+      EXPECT_LT(steps, 100);
+    }
+}
+
+TEST(UniformMapPacking, NewtonKrylovInTheSimulatedNetworkEqualsCoreAndRoutesGreedily) {
+  // Every message simulated: CG in the network, the tree sums in the tree's order, core::pack's circles
+  // bit for bit; forwarding hop by hop on them delivers every sampled pair.
+  for (const char* generator : {"uniform-triangulation", "uniform-three-connected"})
+    for (std::uint64_t seed : {71u, 72u}) {
+      const core::PlanarGraph g = uniform(generator, 50, seed);
+      scenarios::ProtocolSetup setup;
+      setup.acceleration = core::Acceleration::newton_krylov;
+      const scenarios::ProtocolOutcome o = scenarios::run_packing_protocol(g, {}, setup);
+      const core::GraphKind kind = std::string(generator) == "uniform-triangulation" ? core::GraphKind::triangulated_disc
+                                                                                      : core::GraphKind::three_connected;
+      SCOPED_TRACE(std::string(generator) + " seed " + std::to_string(seed));
+      EXPECT_EQ(scenarios::verify_against_core(g, kind, setup, o), "identical to core::pack, bit for bit");
+      EXPECT_EQ(o.converged_nodes, g.num_vertices());
+      std::vector<std::pair<core::Vertex, core::Vertex>> pairs;
+      for (core::Vertex s = 0; s < g.num_vertices(); s += 3)
+        for (core::Vertex t = 0; t < g.num_vertices(); t += 5)
+          if (s != t) pairs.emplace_back(s, t);
+      const auto f = scenarios::run_forwarding(g, o.circles, {}, setup.link, seed, {core::Scheme::greedy_power}, pairs);
+      ASSERT_EQ(f.size(), 1u);
+      EXPECT_EQ(f[0].delivered, f[0].packets);
+    }
+}

@@ -54,7 +54,7 @@ struct KrylovDecision {
 struct KrylovLimits {
   static constexpr int max_cg = 5000;       ///< CG iterations per Newton step
   static constexpr int max_halvings = 40;   ///< step halvings of the line search
-  static constexpr double max_forcing = 1e-4;  ///< CG stops at ‖r‖ ≤ clamp(‖θ − 2π‖₂, 1e-14, this)·‖θ − 2π‖₂
+  static constexpr double max_forcing = 0.9;  ///< CG stops at ‖r‖ ≤ clamp(‖θ − 2π‖₂, 1e-14, this)·‖θ − 2π‖₂
 };
 
 /// The root's scalar state through one Newton step (Chronopoulos–Gear CG: one sum per iteration).
