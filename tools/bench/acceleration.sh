@@ -6,7 +6,7 @@
 # --accelerate newton`: Newton steps, no messages), on uniform random triangulations and uniform random
 # 3-connected maps (`laguerre generate`). One table; figures are means over the seeds of a size.
 #   tools/bench/acceleration.sh [--timeout SECONDS] [--seeds "50:5 500:2 5000:1"] [--modes "…"]
-#                               [--skip "MODE:N …"] [SIZES…]
+#                               [--skip "MODE:N …"] [--families "…"] [SIZES…]
 # Defaults: sizes 50 500 5000, timeout 600 s per simulator run (a run that does not finish in time
 # prints "timeout" and the central core::pack sweep count instead, if that finishes in time too),
 # modes "plain chebyshev local-superstep newton-krylov newton"; --skip "plain:5000" prints "skipped"
@@ -22,12 +22,14 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 
 timeout_s=600 seeds_spec="50:5 500:2 5000:1" modes="plain chebyshev local-superstep newton-krylov newton" skip="" sizes=()
+families="uniform-triangulation uniform-three-connected"
 while [ $# -gt 0 ]; do
   case "$1" in
     --timeout) timeout_s=$2; shift 2 ;;
     --seeds) seeds_spec=$2; shift 2 ;;
     --modes) modes=$2; shift 2 ;;
     --skip) skip=$2; shift 2 ;;
+    --families) families=$2; shift 2 ;;
     -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
     *) sizes+=("$1"); shift ;;
   esac
@@ -43,7 +45,7 @@ seeds_of() {
 }
 printf '%-24s %5s %5s %-14s %6s %7s %7s %6s %8s %10s %11s %6s %7s %-5s %7s\n' family nodes seeds mode steps sweeps cg \
   rounds hops 'msgs/node' 'bytes/node' 'LPD' greedy '=core' wall_s
-for family in uniform-triangulation uniform-three-connected; do
+for family in $families; do
   for n in "${sizes[@]}"; do
     count=$(seeds_of "$n")
     for seed in $(seq 1 "$count"); do
@@ -63,7 +65,7 @@ for family in uniform-triangulation uniform-three-connected; do
             python3 - "$dir/out.json" >>"$dir/rows" <<'PY'
 import json, sys
 p = json.load(open(sys.argv[1]))["packing"]
-print("central", p["iterations"], "-", "-", "-", "-", "-", p["local_ok"] == len(json.load(open(sys.argv[1]))["vertices"]), "-", "-", p["seconds"])
+print("central", p["iterations"], "-", "-", "-", "-", "-", "-", p["local_ok"] == len(json.load(open(sys.argv[1]))["vertices"]), "-", "-", p["seconds"])
 PY
           else
             echo "timeout" >>"$dir/rows"

@@ -83,18 +83,20 @@ TEST(UniformMapPacking, ChebyshevReachesLpdGlpdInFarFewerSweeps) {
   }
 }
 
-TEST(UniformMapPacking, ChebyshevInTheSimulatedNetworkEqualsCoreAndRoutesGreedily) {
-  // Every message simulated (sync mode, the simulator's network): the nodes' circles are core::pack's
-  // bit for bit, and forwarding hop by hop on them delivers every sampled pair.
+TEST(UniformMapPacking, AcceleratedSimulatedNetworkEqualsCoreAndRoutesGreedily) {
+  // Every message simulated (sync mode, the simulator's network), with the local acceleration and with
+  // Newton–Krylov (CG in the network, tree sums in the tree's order): the nodes' circles are
+  // core::pack's bit for bit, and forwarding hop by hop on them delivers every sampled pair.
+  for (const core::Acceleration a : {core::Acceleration::chebyshev, core::Acceleration::newton_krylov})
   for (const char* generator : {"uniform-triangulation", "uniform-three-connected"})
     for (std::uint64_t seed : {61u, 62u}) {
       const core::PlanarGraph g = uniform(generator, 50, seed);
       scenarios::ProtocolSetup setup;
-      setup.acceleration = core::Acceleration::chebyshev;
+      setup.acceleration = a;
       const scenarios::ProtocolOutcome o = scenarios::run_packing_protocol(g, {}, setup);
       const core::GraphKind kind = std::string(generator) == "uniform-triangulation" ? core::GraphKind::triangulated_disc
                                                                                       : core::GraphKind::three_connected;
-      SCOPED_TRACE(std::string(generator) + " seed " + std::to_string(seed));
+      SCOPED_TRACE(std::string(core::to_string(a)) + " " + generator + " seed " + std::to_string(seed));
       EXPECT_EQ(scenarios::verify_against_core(g, kind, setup, o), "identical to core::pack, bit for bit");
       EXPECT_EQ(o.converged_nodes, g.num_vertices());
       std::vector<std::pair<core::Vertex, core::Vertex>> pairs;
@@ -117,29 +119,5 @@ TEST(UniformMapPacking, NewtonKrylovReachesLpdGlpdAndRoutesGreedily) {
       const int steps = expect_greedy_embedding(uniform(generator, n, 7000 + static_cast<std::uint64_t>(i)),
                                                 core::Acceleration::newton_krylov, 200);
       EXPECT_LT(steps, 100);
-    }
-}
-
-TEST(UniformMapPacking, NewtonKrylovInTheSimulatedNetworkEqualsCoreAndRoutesGreedily) {
-  // Every message simulated: CG in the network, the tree sums in the tree's order, core::pack's circles
-  // bit for bit; forwarding hop by hop on them delivers every sampled pair.
-  for (const char* generator : {"uniform-triangulation", "uniform-three-connected"})
-    for (std::uint64_t seed : {71u, 72u}) {
-      const core::PlanarGraph g = uniform(generator, 50, seed);
-      scenarios::ProtocolSetup setup;
-      setup.acceleration = core::Acceleration::newton_krylov;
-      const scenarios::ProtocolOutcome o = scenarios::run_packing_protocol(g, {}, setup);
-      const core::GraphKind kind = std::string(generator) == "uniform-triangulation" ? core::GraphKind::triangulated_disc
-                                                                                      : core::GraphKind::three_connected;
-      SCOPED_TRACE(std::string(generator) + " seed " + std::to_string(seed));
-      EXPECT_EQ(scenarios::verify_against_core(g, kind, setup, o), "identical to core::pack, bit for bit");
-      EXPECT_EQ(o.converged_nodes, g.num_vertices());
-      std::vector<std::pair<core::Vertex, core::Vertex>> pairs;
-      for (core::Vertex s = 0; s < g.num_vertices(); s += 3)
-        for (core::Vertex t = 0; t < g.num_vertices(); t += 5)
-          if (s != t) pairs.emplace_back(s, t);
-      const auto f = scenarios::run_forwarding(g, o.circles, {}, setup.link, seed, {core::Scheme::greedy_power}, pairs);
-      ASSERT_EQ(f.size(), 1u);
-      EXPECT_EQ(f[0].delivered, f[0].packets);
     }
 }
