@@ -17,10 +17,11 @@
 // In exact arithmetic these are PCG's iterates; ρ_i is the stop test ‖r_i‖ ≤ η ‖b‖ with the inexact-
 // Newton forcing term η = clamp(‖b‖, 10⁻¹⁴, 0.9) (superlinear convergence as η → 0 with ‖b‖; 0.9 is
 // Eisenstat and Walker's safeguard). Each CG iteration costs the network an exchange and a tree sum,
-// so early Newton steps solve loosely: on uniform random maps of 500 / 5000 nodes the cap 0.9 needs
-// 278 / 1697–2068 CG iterations to LPD where NewtonSolver::pcg's 10⁻⁴ needs 963–1077 / 4751–5360
-// (tools/bench/acceleration.sh), for 1–7 more Newton steps. The first sum also gives ‖θ − 2π‖² for
-// the line search (ρ_0).
+// so early Newton steps solve loosely: on uniform random maps of 500 / 5000 nodes (one seed each,
+// triangulation and 3-connected) the cap 0.9 needs 180–262 / 2437–2527 CG iterations to LPD where
+// NewtonSolver::pcg's cap 10⁻⁴ needs 963–1077 / 4751–5360, for up to 6 more Newton steps.
+// (η = clamp(‖b‖^{1/2}, ·, 0.9) needed 1604–1972 at 5000 nodes, 215–218 at 500: not adopted yet.)
+// The first sum also gives ‖θ − 2π‖² for the line search (ρ_0).
 
 namespace laguerre::core {
 
