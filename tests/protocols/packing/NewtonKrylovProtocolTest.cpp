@@ -111,17 +111,7 @@ TEST(NewtonKrylovProtocol, ACrashMidStepEndsEverySurvivorWithTheFailureStatus) {
   for (core::Vertex victim : {core::Vertex{0}, core::Vertex{17}})
     for (Time at : {end / 4, end / 2}) {  // in the rounds phase: CG iterates and tree sums in flight
       SCOPED_TRACE("victim " + std::to_string(victim) + " at " + std::to_string(at));
-      LossyConfig cc = c;
-      cc.crashes = {{g.id(victim), at}};
-      LossyHost host(g, p, cc);
-      EXPECT_TRUE(host.run().drained);
-      for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
-        if (v == victim) continue;
-        EXPECT_EQ(host.node(v).outcome(), PackingOutcome::neighbour_failed) << "survivor " << v;
-        EXPECT_EQ(host.node(v).suspect(), g.id(victim));
-        EXPECT_TRUE(host.node(v).is_final());
-        EXPECT_EQ(host.node(v).counters().unexpected, 0u);
-      }
+      expect_crash_detected(g, p, g.id(victim), at, c);
     }
 }
 
