@@ -79,6 +79,11 @@ template <class Ar, Is<FrameMsg> M> void fields(Ar& ar, M& m) {
 }
 template <class Ar, Is<AckMsg> M> void fields(Ar& ar, M& m) { ar(m.ack.next, m.ack.bits); }
 template <class Ar, Is<FailureMsg> M> void fields(Ar& ar, M& m) { ar(m.suspect); }
+template <class Ar, Is<KrylovValueMsg> M> void fields(Ar& ar, M& m) { ar(m.seq, m.value); }
+template <class Ar, Is<KrylovSumMsg> M> void fields(Ar& ar, M& m) { ar(m.seq, m.s0, m.s1, m.s2, m.max); }
+template <class Ar, Is<KrylovDecisionMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.seq, m.action, m.a, m.b).require(m.action <= 4);
+}
 
 template <class Ar, Is<RouteMsg> M>
 void fields(Ar& ar, M& m) {
@@ -280,7 +285,7 @@ void place(std::variant<A...>& out, T&& m) {
   place(out.template emplace<k>(), std::move(m));
 }
 
-// Calls f.template operator()<T>() for the message struct T whose type code is `code` (1 … 16).
+// Calls f.template operator()<T>() for the message struct T whose type code is `code` (1 … 19).
 template <class F>
 void with_message_type(std::uint8_t code, F&& f) {
   [&]<std::size_t... I>(std::index_sequence<I...>) {
@@ -314,7 +319,8 @@ DecodeStatus decode_set(std::span<const std::byte> bytes, Set& out) {
 std::string_view to_string(MessageType t) {
   static constexpr std::string_view names[] = {"?",      "depth",        "election", "start", "wave",  "radius",
                                                "placed", "report",       "decision", "shape", "face_circles",
-                                               "relay",  "data",         "frame",    "ack",   "failure", "route"};
+                                               "relay",  "data",         "frame",    "ack",   "failure", "route",
+                                               "krylov_value", "krylov_sum", "krylov_decision"};
   static_assert(std::size(names) == max_message_type + 1);
   const auto code = static_cast<std::size_t>(t);
   return code <= max_message_type ? names[code] : names[0];
@@ -394,6 +400,9 @@ template void encode(const FrameMsg&, std::vector<std::byte>&);
 template void encode(const AckMsg&, std::vector<std::byte>&);
 template void encode(const FailureMsg&, std::vector<std::byte>&);
 template void encode(const RouteMsg&, std::vector<std::byte>&);
+template void encode(const KrylovValueMsg&, std::vector<std::byte>&);
+template void encode(const KrylovSumMsg&, std::vector<std::byte>&);
+template void encode(const KrylovDecisionMsg&, std::vector<std::byte>&);
 
 DecodeStatus decode(std::span<const std::byte> bytes, Message& out) { return decode_set(bytes, out); }
 DecodeStatus decode(std::span<const std::byte> bytes, PackingMessage& out) { return decode_set(bytes, out); }

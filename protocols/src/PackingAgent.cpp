@@ -4,9 +4,27 @@
 #include <limits>
 
 #include "laguerre/core/packing/HyperbolicTriangle.hpp"
+#include "laguerre/core/packing/NewtonKrylov.hpp"
 #include "laguerre/protocols/LocalChecks.hpp"
 
 namespace laguerre::protocols::detail {
+
+// The state of a Newton–Krylov step (see "Newton–Krylov steps" below); allocated in that mode only.
+struct PackingAgent::KrylovState {
+  enum class Stage : std::uint8_t { idle, exchange, sum, decision };
+  explicit KrylovState(std::size_t deg) : value(deg), sum_tag(deg, unknown), sum(deg), neighbour(deg, 0.0) {}
+  Stage stage = Stage::idle;
+  std::uint32_t seq = 0;         // the tree sum this vertex is at
+  bool trial = false;            // the exchange carries trial radii (else CG's z)
+  std::uint32_t steps_left = 0;  // boundary vertices: Newton steps of this round still to relay
+  core::KrylovVertex vertex;
+  core::KrylovRoot root;
+  core::KrylovSums own;
+  std::vector<std::array<Slot, 2>> value;  // per neighbour, by seq parity
+  std::vector<std::uint32_t> sum_tag;      // per child: the seq of its partial in `sum`
+  std::vector<core::KrylovSums> sum;
+  std::vector<double> neighbour;           // the exchanged values in neighbour order
+};
 
 PackingAgent::PackingAgent(AgentHost& host, std::size_t index, AgentSpec spec, PackingParams params)
     : host_(host), index_(index), know_(std::move(spec)), params_(params), deg_(know_.neighbours.size()),
@@ -35,7 +53,10 @@ PackingAgent::PackingAgent(AgentHost& host, std::size_t index, AgentSpec spec, P
   // neighbours' entries are never read.
   latest_h_.assign(deg_, 1.0);
   latest_step_.assign(deg_, 0);
+  if (params_.acceleration == core::Acceleration::newton_krylov) krylov_ = std::make_unique<KrylovState>(deg_);
 }
+
+PackingAgent::~PackingAgent() = default;
 
 std::size_t PackingAgent::children() const {
   return static_cast<std::size_t>(std::count(child_.begin(), child_.end(), std::uint8_t{1}));
@@ -414,13 +435,21 @@ void PackingAgent::handle(std::size_t i, const RadiusMsg& m) {
 }
 
 void PackingAgent::advance_steps() {
-  if (know_.boundary) step_ = round_end_step_;  // horocycles never change
+  if (know_.boundary) {
+    // Horocycles never change; in Newton–Krylov mode the vertex still relays the round's tree sums.
+    if (krylov_ && step_ < round_end_step_) {
+      krylov_->steps_left = round_end_step_ - step_;
+      krylov_begin_step();
+    }
+    step_ = round_end_step_;
+  }
   if (params_.asynchronous) {
     advance_async_steps();
     if (step_ == round_end_step_) advance_layout();
     return;
   }
   while (step_ < round_end_step_) {
+    if (krylov_ && krylov_->stage != KrylovState::Stage::idle) return;  // a Newton step is under way
     if (!sent_step_) {
       sent_step_ = true;
       encode(RadiusMsg{step_, h_}, buffer_);
@@ -436,6 +465,10 @@ void PackingAgent::advance_steps() {
       if (radius_[i][slot].tag != step_) return;
       star_h_[i] = radius_[i][slot].h;
     }
+    if (krylov_) {  // the step continues in krylov_apply
+      krylov_begin_step();
+      return;
+    }
     // The Jacobi update on K: every neighbour value is from step t, the cosines are those of
     // PackingComplex (spoke_/rim_ empty iff tangent_only), as in core::thurston_sweep; then this
     // vertex's local acceleration, as core::pack applies it after the sweep.
@@ -444,6 +477,140 @@ void PackingAgent::advance_steps() {
     sent_step_ = false;
   }
   advance_layout();
+}
+
+// ---- Newton–Krylov steps (PackingParams::acceleration = newton_krylov) --------------------------------
+//
+// core::NewtonKrylovMethod in the network (docs/protocol.md, "Newton–Krylov in the network"). A step
+// starts once the step's radii are in (the RadiusMsg exchange); then, until the root accepts or
+// rejects: [exchange a value with the interior neighbours (KrylovValueMsg)], add up the tree
+// (KrylovSumMsg: own sums, then each child's partial in neighbour order), the root decides
+// (core::KrylovRoot) and the decision goes down (KrylovDecisionMsg). Every protocol vertex counts the
+// tree sums (`seq`, equal everywhere); boundary vertices only relay (their sums are zero). Values run
+// at most one sum ahead (a neighbour's next value needs this vertex's partial), hence two slots.
+
+void PackingAgent::krylov_begin_step() {
+  KrylovState& k = *krylov_;
+  k.root.reset();
+  if (know_.boundary) {
+    k.own = {};
+    k.stage = KrylovState::Stage::sum;
+    krylov_advance();
+    return;
+  }
+  k.vertex.begin(h_, core::StarView{star_h_, spoke_, rim_});
+  k.trial = false;
+  krylov_exchange();
+}
+
+void PackingAgent::krylov_exchange() {
+  KrylovState& k = *krylov_;
+  k.stage = KrylovState::Stage::exchange;
+  encode(KrylovValueMsg{k.seq, k.vertex.value()}, buffer_);
+  for (std::size_t i = 0; i < deg_; ++i)
+    if (interior_nbr(i)) send_encoded(i);
+  krylov_advance();
+}
+
+void PackingAgent::krylov_advance() {
+  KrylovState& k = *krylov_;
+  if (k.stage == KrylovState::Stage::exchange) {
+    for (std::size_t i = 0; i < deg_; ++i) {
+      if (!interior_nbr(i)) {
+        k.neighbour[i] = k.trial ? std::numeric_limits<double>::infinity() : 0.0;
+        continue;
+      }
+      const Slot& v = k.value[i][k.seq & 1];
+      if (v.tag != k.seq) return;
+      k.neighbour[i] = v.h;
+    }
+    k.own = k.trial ? k.vertex.trial_sums(core::StarView{k.neighbour, spoke_, rim_}) : k.vertex.cg_sums(k.neighbour);
+    k.stage = KrylovState::Stage::sum;
+  }
+  if (k.stage != KrylovState::Stage::sum) return;
+  for (std::size_t i = 0; i < deg_; ++i)
+    if (child_[i] && k.sum_tag[i] != k.seq) return;
+  core::KrylovSums total = k.own;
+  for (std::size_t i = 0; i < deg_; ++i)
+    if (child_[i]) core::combine(total, k.sum[i]);
+  k.stage = KrylovState::Stage::decision;
+  if (!is_root_) {
+    send(parent_index_, KrylovSumMsg{k.seq, total.sum[0], total.sum[1], total.sum[2], total.max});
+    return;
+  }
+  const core::KrylovDecision d = k.root.decide(total);
+  krylov_apply(KrylovDecisionMsg{k.seq, static_cast<std::uint8_t>(d.action), d.a, d.b});
+}
+
+void PackingAgent::krylov_apply(const KrylovDecisionMsg& m) {
+  KrylovState& k = *krylov_;
+  ++k.seq;
+  encode(m, buffer_);
+  for (std::size_t i = 0; i < deg_; ++i)
+    if (child_[i]) send_encoded(i);
+  const core::KrylovDecision d{static_cast<core::KrylovAction>(m.action), m.a, m.b};
+  const bool done = d.action == core::KrylovAction::accept || d.action == core::KrylovAction::reject;
+  if (know_.boundary) {
+    k.own = {};
+    k.stage = done ? KrylovState::Stage::idle : KrylovState::Stage::sum;
+    if (!done) krylov_advance();
+    else if (--k.steps_left > 0) krylov_begin_step();
+    return;
+  }
+  // On rejection the plain Jacobi update of this step, from the star of the radius exchange.
+  const double plain = d.action == core::KrylovAction::reject
+                           ? core::star_updated_radius(h_, core::StarView{star_h_, spoke_, rim_}, params_.update)
+                           : h_;
+  const double h = k.vertex.apply(d, plain);
+  switch (d.action) {
+    case core::KrylovAction::iterate:
+    case core::KrylovAction::trial:
+      k.trial = d.action == core::KrylovAction::trial;
+      krylov_exchange();
+      return;
+    case core::KrylovAction::solved:
+      k.own = k.vertex.direction_sums();
+      k.stage = KrylovState::Stage::sum;
+      krylov_advance();
+      return;
+    case core::KrylovAction::accept:
+    case core::KrylovAction::reject:
+      h_ = h;
+      k.stage = KrylovState::Stage::idle;
+      ++step_;
+      sent_step_ = false;
+      advance_steps();
+      return;
+  }
+}
+
+void PackingAgent::handle(std::size_t i, const KrylovValueMsg& m) {
+  if (!krylov_ || phase_ != PackingPhase::rounds || know_.boundary || !interior_nbr(i) ||
+      (m.seq != krylov_->seq && m.seq != krylov_->seq + 1)) {
+    ++host_.counters().unexpected;
+    return;
+  }
+  krylov_->value[i][m.seq & 1] = Slot{m.seq, m.value};
+  if (krylov_->stage == KrylovState::Stage::exchange) krylov_advance();
+}
+
+void PackingAgent::handle(std::size_t i, const KrylovSumMsg& m) {
+  if (!krylov_ || phase_ != PackingPhase::rounds || !child_[i] || m.seq != krylov_->seq || krylov_->sum_tag[i] == m.seq) {
+    ++host_.counters().unexpected;
+    return;
+  }
+  krylov_->sum_tag[i] = m.seq;
+  krylov_->sum[i] = core::KrylovSums{{m.s0, m.s1, m.s2}, m.max};
+  if (krylov_->stage == KrylovState::Stage::sum) krylov_advance();
+}
+
+void PackingAgent::handle(std::size_t i, const KrylovDecisionMsg& m) {
+  if (!krylov_ || phase_ != PackingPhase::rounds || is_root_ || i != parent_index_ ||
+      krylov_->stage != KrylovState::Stage::decision || m.seq != krylov_->seq) {
+    ++host_.counters().unexpected;
+    return;
+  }
+  krylov_apply(m);
 }
 
 void PackingAgent::handle(std::size_t i, const PlacedMsg& m) {

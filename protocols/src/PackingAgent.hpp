@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -44,6 +45,7 @@ private:
 class PackingAgent {
 public:
   PackingAgent(AgentHost& host, std::size_t index, AgentSpec spec, PackingParams params);
+  ~PackingAgent();
 
   void start();
   void receive(std::size_t k_index, const PackingMessage& m);
@@ -95,6 +97,9 @@ private:
   void handle(std::size_t i, const DecisionMsg& m);
   void handle(std::size_t i, const ShapeMsg& m);
   void handle(std::size_t i, const FaceCirclesMsg& m);
+  void handle(std::size_t i, const KrylovValueMsg& m);
+  void handle(std::size_t i, const KrylovSumMsg& m);
+  void handle(std::size_t i, const KrylovDecisionMsg& m);
 
   // Neighbour i's status at a pulse (depth or wave): `final` fixes its value to `pulse`, otherwise it
   // has passed `pulse`; false for a second final pulse.
@@ -112,6 +117,12 @@ private:
   void begin_round();
   void advance_steps();
   void advance_async_steps();
+  // Newton–Krylov mode (PackingAgent.cpp, "Newton–Krylov steps").
+  struct KrylovState;
+  void krylov_begin_step();
+  void krylov_exchange();
+  void krylov_advance();
+  void krylov_apply(const KrylovDecisionMsg& m);
   void handle_async_radius(std::size_t i, const RadiusMsg& m);
   std::uint32_t round_of_step(std::uint32_t s) const;
   void advance_layout();
@@ -180,6 +191,7 @@ private:
   bool sent_step_ = false;
   double h_ = 0;
   core::LocalAccelerator accelerator_;  // plain: returns the update unchanged
+  std::unique_ptr<KrylovState> krylov_;  // Newton–Krylov mode only
   std::vector<std::array<Slot, 2>> radius_;
   std::vector<double> star_h_, spoke_, rim_;
   std::vector<std::array<PlacedSlot, 2>> placed_in_;

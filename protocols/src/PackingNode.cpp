@@ -86,10 +86,10 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
     throw core::InternalError(who + " is interior but has an outer-face wedge.");
   if (params.steps_per_check < 1) throw core::InternalError("steps_per_check must be at least 1.");
   if (params.max_iterations < 0) throw core::InternalError("max_iterations must not be negative.");
-  if (!core::is_local(params.acceleration))
-    throw core::InternalError("the packing protocol runs plain or local accelerations only.");
+  if (!core::runs_in_network(params.acceleration))
+    throw core::InternalError("the packing protocol runs plain, local accelerations or newton-krylov only.");
   if (params.asynchronous && params.acceleration != core::Acceleration::plain)
-    throw core::InternalError("the local accelerations run in synchronous mode only.");
+    throw core::InternalError("the accelerations run in synchronous mode only.");
   validate(params);
   if (!know_.faces.empty() && know_.faces.size() != deg_)
     throw core::InternalError(who + " lists faces for some but not all of its wedges.");

@@ -449,11 +449,12 @@ void parse_protocol(Context& ctx, const YAML::Node& n, ProtocolSpec& out) {
       out.acceleration = *core::find_name(core::acceleration_names, s);
     if (out.asynchronous && out.acceleration != core::Acceleration::plain)
       c.report(v, "protocol.acceleration", "'" + s + "' with mode async",
-               "plain, or mode sync for the local accelerations (chebyshev, local-superstep)");
-    else if (!out.central && !core::is_local(out.acceleration))
+               "plain, or mode sync for the accelerations (chebyshev, local-superstep, newton-krylov: they need "
+               "consistent synchronous iterates)");
+    else if (!out.central && !core::runs_in_network(out.acceleration))
       c.report(v, "protocol.acceleration", "'" + s + "' with mode sync",
-               "plain, chebyshev or local-superstep, or mode central (the distributed protocol runs local "
-               "accelerations only)");
+               "plain, chebyshev, local-superstep or newton-krylov, or mode central (the distributed protocol "
+               "runs local accelerations and newton-krylov only)");
   }
   std::int64_t i = 0;
   if (const YAML::Node v = lookup(n, "steps_per_round");

@@ -32,6 +32,9 @@ int main(int argc, char** argv) {
       p::AckMsg{{9, 0xff}},
       p::FailureMsg{13},
       p::RouteMsg{4, 1, 2, p::RouteScheme::gfg, 0.75, 0.25, 32, 3, true, 0.1, 0.2, true, 0.3, 0.4, 0.5, 0.6, 7, 8},
+      p::KrylovValueMsg{9, -0.5},
+      p::KrylovSumMsg{9, 1, 2, 3, 0.5},
+      p::KrylovDecisionMsg{9, 0, 0.25, 0.75},
   };
   for (std::size_t i = 0; i < messages.size(); ++i) {
     const std::vector<std::byte> bytes = p::encode(messages[i]);

@@ -69,4 +69,23 @@ inline LossyTotals expect_lossy_equals_core(const core::PlanarGraph& g, const Pa
   return totals;
 }
 
+// Runs g with node `victim` crashing at `at` under `params`; checks every survivor ends with
+// neighbour_failed naming the victim and that the queue drains; returns the host's statistics.
+inline LossyHost::Stats expect_crash_detected(const core::PlanarGraph& g, const PackingParams& params, NodeId victim,
+                                              Time at, LossyConfig c) {
+  c.crashes = {{victim, at}};
+  LossyHost host(g, params, c);
+  const LossyHost::Stats s = host.run();
+  EXPECT_TRUE(s.drained);
+  for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
+    if (g.id(v) == victim) continue;
+    SCOPED_TRACE("survivor " + std::to_string(v));
+    EXPECT_EQ(host.node(v).outcome(), PackingOutcome::neighbour_failed);
+    EXPECT_EQ(host.node(v).suspect(), victim);
+    EXPECT_TRUE(host.node(v).is_final());
+    EXPECT_EQ(host.node(v).counters().unexpected, 0u);
+  }
+  return s;
+}
+
 }  // namespace laguerre::protocols::testing

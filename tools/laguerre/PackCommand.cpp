@@ -112,6 +112,11 @@ int run_pack(const PackArgs& a) {
                     {"accelerated_jumps", r.jumps},
                     {"newton_solver", opt.acceleration == core::Acceleration::newton ? nlohmann::json(a.newton_solver) : nlohmann::json()},
                     {"steps_per_check", a.steps},
+                    {"newton_krylov", opt.acceleration == core::Acceleration::newton_krylov
+                                          ? nlohmann::json{{"cg_iterations", r.linear_iterations},
+                                                           {"exchanges", r.exchanges},
+                                                           {"tree_sums", r.tree_sums}}
+                                          : nlohmann::json()},
                     {"sweep", a.sweep},
                     {"angle_error", r.angle_error},
                     {"max_tangency_error", r.max_tangency_error},

@@ -66,14 +66,16 @@ scenarios::ProtocolSetup setup_of(const SimulateArgs& a) {
   setup.max_iterations = a.max_iterations;
   setup.root = core::parse_name(core::root_rule_names, a.root, "--root");
   setup.acceleration = core::parse_name(core::acceleration_names, a.accelerate, "--accelerate");
-  if (!core::is_local(setup.acceleration))
+  if (!core::runs_in_network(setup.acceleration))
     throw core::InputError("--accelerate", 0,
-                           "found '" + a.accelerate + "', which needs global sums or a central solver; expected plain, "
-                           "chebyshev or local-superstep (the others run in 'laguerre pack' only)");
+                           "found '" + a.accelerate + "', which needs a central solver or global sums per sweep; "
+                           "expected plain, chebyshev, local-superstep or newton-krylov (the others run in "
+                           "'laguerre pack' only)");
   if (setup.asynchronous && setup.acceleration != core::Acceleration::plain)
     throw core::InputError("--accelerate", 0,
-                           "found '" + a.accelerate + "' with --mode async; expected plain (the local accelerations "
-                           "extrapolate along consistent synchronous iterates: use --mode sync)");
+                           "found '" + a.accelerate + "' with --mode async; expected plain (the accelerations need "
+                           "consistent synchronous iterates: the local ones extrapolate along them, newton-krylov's "
+                           "conjugate gradients combine them in tree sums; use --mode sync)");
   setup.link.latency = scenarios::parse_latency(a.latency, "--latency");
   setup.link.loss = a.loss;
   setup.link.duplication = a.dup;
@@ -143,10 +145,12 @@ Action add_simulate_command(CLI::App& app) {
       ->check(CLI::Range(1, 100000000))->capture_default_str();
   add_choice(*c.cmd, "--root", c.args->root, core::root_rule_names, "Layout root election: deepest or smallest-id");
   add_choice(*c.cmd, "--accelerate", c.args->accelerate, core::acceleration_names,
-             "Local acceleration each node runs on its own updates (sync mode, bit for bit with core::pack): "
-             "plain (Thurston's Jacobi), chebyshev (adaptive second-order iteration, ~14-17x fewer steps on "
-             "500-node uniform maps) or local-superstep (Collins-Stephenson with local ratios); superstep, "
-             "anderson and newton need global sums and are refused");
+             "Acceleration the nodes run (sync mode only, bit for bit with core::pack): plain (Thurston's "
+             "Jacobi), chebyshev (adaptive second-order iteration on each node's own updates, ~14-17x fewer "
+             "steps on 500-node uniform maps), local-superstep (Collins-Stephenson with local ratios) or "
+             "newton-krylov (damped Newton steps, each solved by conjugate gradients in the network: one "
+             "neighbour exchange plus one sum over the layout tree per CG iteration); --mode async refuses "
+             "them all (CG needs consistent iterates); superstep, anderson and newton are central only");
   c.cmd->add_option("--pairs", c.args->pairs, "'all' ordered pairs, or a number sampled with --seed")->capture_default_str();
   c.cmd->add_option("--scheme", c.args->scheme, "Forwarding scheme: greedy-power, greedy-euclid, compass, gfg or all")
       ->capture_default_str();

@@ -19,7 +19,8 @@ bool Accelerator::after_sweep(const PackingComplex& k, const Radii& before, Radi
     case Acceleration::plain:
     case Acceleration::chebyshev:
     case Acceleration::local_superstep:  // per vertex: LocalAccelerator
-    case Acceleration::newton: return false;  // pack() takes Newton steps instead of sweeps
+    case Acceleration::newton:
+    case Acceleration::newton_krylov: return false;  // pack() takes Newton steps instead of sweeps
     case Acceleration::superstep: return superstep(k, before, after);
     case Acceleration::anderson: return anderson(k, before, after);
   }

@@ -258,6 +258,25 @@ AngleJacobian angle_jacobian(const PackingComplex& k, const Radii& h) {
   return out;
 }
 
+double star_jacobian_row(double hv, const StarView& s, std::vector<double>& off) {
+  // The corners of assemble_jacobian, around v from neighbour 0 (the node-local form).
+  const std::size_t deg = s.neighbour_h.size();
+  const bool tangent = s.cos_spoke.empty();
+  off.assign(deg, 0.0);
+  const Lift v = lift(hv);
+  double diag = 0;
+  for (std::size_t e = 0; e < deg; ++e) {
+    const std::size_t f = e + 1 == deg ? 0 : e + 1;
+    const double ha = s.neighbour_h[e], hb = s.neighbour_h[f];
+    const CornerDerivative d = corner_derivative(v, lift(ha), lift(hb), hv, ha, hb, tangent ? 1.0 : s.cos_spoke[e],
+                                                 tangent ? 1.0 : s.cos_spoke[f], tangent ? 1.0 : s.cos_rim[e]);
+    diag += d.dv;
+    off[e] += d.da;
+    off[f] += d.db;
+  }
+  return diag;
+}
+
 struct NewtonMethod::State {
   const PackingComplex* complex = nullptr;
   std::size_t num_vertices = 0;

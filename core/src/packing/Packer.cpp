@@ -3,6 +3,7 @@
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/packing/Accelerator.hpp"
 #include "laguerre/core/packing/Newton.hpp"
+#include "laguerre/core/packing/NewtonKrylov.hpp"
 #include "laguerre/core/packing/PackingNames.hpp"
 
 #include <cmath>
@@ -89,12 +90,15 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   Accelerator accelerator(options.acceleration);
   NewtonMethod newton_method(options.newton_solver);
   const bool newton = options.acceleration == Acceleration::newton;
+  const bool krylov = options.acceleration == Acceleration::newton_krylov;
+  NewtonKrylovMethod krylov_method;
   const bool local = options.acceleration != Acceleration::plain && is_local(options.acceleration);
-  const bool accelerate = options.acceleration != Acceleration::plain && !newton;
+  const bool accelerate = options.acceleration != Acceleration::plain && !newton && !krylov;
   std::vector<LocalAccelerator> local_state(local ? k.graph.num_vertices() : 0, LocalAccelerator(options.acceleration));
   int local_jumps = 0;
   Radii previous;
   bool done = check(0);
+  const Layout tree = krylov ? result.layout : Layout{};  // the layout tree (combinatorial: every round's)
   while (!done && it < options.max_iterations) {
     const int steps = std::min(options.steps_per_check, options.max_iterations - it);
     for (int s = 0; s < steps; ++s) {
@@ -103,6 +107,14 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
           ++result.jumps;
           continue;
         }
+      }
+      if (krylov) {  // the network's step: an accepted Newton step, or else a plain Jacobi update
+        const KrylovStep ks = krylov_method.step(k, result.radii, tree, options.update);
+        result.jumps += ks.improved;
+        result.linear_iterations += ks.cg_iterations;
+        result.exchanges += ks.exchanges;
+        result.tree_sums += ks.sums;
+        continue;
       }
       if (accelerate) previous = result.radii;
       thurston_sweep(k, result.radii, options.sweep, options.update, scratch);
@@ -120,7 +132,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     done = check(it);
   }
   result.iterations = it;
-  if (!newton) result.jumps = local ? local_jumps : accelerator.jumps();
+  if (!newton && !krylov) result.jumps = local ? local_jumps : accelerator.jumps();
   result.status = done ? PackStatus::converged : PackStatus::iteration_cap;
   // Never claim anything on circles the doubles cannot carry.
   if (result.layout.precision == Precision::unrepresentable) result.status = PackStatus::precision_loss;

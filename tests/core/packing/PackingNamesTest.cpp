@@ -45,7 +45,7 @@ TEST(PackingNames, UnknownNamesListTheAcceptedOnes) {
     (void)parse_acceleration("warp");
     FAIL() << "accepted";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "found 'warp', expected plain, superstep, anderson, newton, chebyshev or local-superstep");
+    EXPECT_EQ(std::string(e.what()), "found 'warp', expected plain, superstep, anderson, newton, chebyshev, local-superstep or newton-krylov");
   }
   EXPECT_EQ(listed_names(root_rule_names), "deepest or smallest-id");
 }

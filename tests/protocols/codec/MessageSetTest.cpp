@@ -27,7 +27,10 @@ std::vector<Message> one_of_each() {
           FrameMsg{4, {2, 1}, encode(RadiusMsg{1, 2.0})},
           AckMsg{{5, 3}},
           FailureMsg{11},
-          RouteMsg{1, 2, 3, RouteScheme::compass, 0.5, 0.5, 9, 1}};
+          RouteMsg{1, 2, 3, RouteScheme::compass, 0.5, 0.5, 9, 1},
+          KrylovValueMsg{3, -0.125},
+          KrylovSumMsg{3, 1.5, -2.5, 0.25, 7},
+          KrylovDecisionMsg{3, 2, 0.5, 0}};
 }
 
 // The type codes each set accepts.
@@ -46,10 +49,10 @@ std::vector<int> accepted_types() {
 TEST(MessageSets, EachSetAcceptsExactlyItsTypes) {
   ASSERT_EQ(one_of_each().size(), std::size_t{max_message_type});
   for (std::size_t k = 0; k < one_of_each().size(); ++k) EXPECT_EQ(one_of_each()[k].index(), k);
-  EXPECT_EQ(accepted_types<PackingMessage>(), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10}));
-  EXPECT_EQ(accepted_types<PackingHop>(), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}));
+  EXPECT_EQ(accepted_types<PackingMessage>(), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 18, 19}));
+  EXPECT_EQ(accepted_types<PackingHop>(), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 17, 18, 19}));
   EXPECT_EQ(accepted_types<LinkMessage>(), (std::vector<int>{13, 14}));
-  EXPECT_EQ(accepted_types<FramePayload>(), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 15}));
+  EXPECT_EQ(accepted_types<FramePayload>(), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 15, 17, 18, 19}));
   EXPECT_EQ(accepted_types<ForwardingMessage>(), (std::vector<int>{12, 16}));
   EXPECT_EQ(accepted_types<Message>().size(), std::size_t{max_message_type});
 }

@@ -88,28 +88,6 @@ TEST(LossyPacking, HeavyLossStillTerminatesWithTheSameResult) {
   expect_lossy_equals_core(g, p, c, "loss 0.4");
 }
 
-namespace {
-
-// Runs g with node `victim` crashing at `at`; checks every survivor ends with neighbour_failed naming
-// the victim and that the queue drains; returns the host's statistics.
-LossyHost::Stats expect_crash_detected(const core::PlanarGraph& g, NodeId victim, Time at, LossyConfig c) {
-  c.crashes = {{victim, at}};
-  LossyHost host(g, lossy_params(), c);
-  const LossyHost::Stats s = host.run();
-  EXPECT_TRUE(s.drained);
-  for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
-    if (g.id(v) == victim) continue;
-    SCOPED_TRACE("survivor " + std::to_string(v));
-    EXPECT_EQ(host.node(v).outcome(), PackingOutcome::neighbour_failed);
-    EXPECT_EQ(host.node(v).suspect(), victim);
-    EXPECT_TRUE(host.node(v).is_final());
-    EXPECT_EQ(host.node(v).counters().unexpected, 0u);
-  }
-  return s;
-}
-
-}  // namespace
-
 TEST(LossyPacking, ACrashMidRunEndsEverySurvivorWithTheFailureStatus) {
   const core::PlanarGraph g = delaunay(40, 11);
   const LossyConfig c = lossy_config(0.1, 0.05, 3);
@@ -119,15 +97,15 @@ TEST(LossyPacking, ACrashMidRunEndsEverySurvivorWithTheFailureStatus) {
   for (core::Vertex victim : {core::Vertex{0}, core::Vertex{17}, core::Vertex{39}})
     for (Time at : {Time{0}, end / 10, end / 3}) {
       SCOPED_TRACE("victim " + std::to_string(victim) + " at " + std::to_string(at));
-      expect_crash_detected(g, g.id(victim), at, c);
+      expect_crash_detected(g, lossy_params(), g.id(victim), at, c);
     }
 }
 
 TEST(LossyPacking, CrashRunsAreDeterministicPerSeed) {
   const core::PlanarGraph g = three_connected(25, 8);
   const LossyConfig c = lossy_config(0.15, 0, 21);
-  const LossyHost::Stats a = expect_crash_detected(g, g.id(5), 200'000'000, c);
-  const LossyHost::Stats b = expect_crash_detected(g, g.id(5), 200'000'000, c);
+  const LossyHost::Stats a = expect_crash_detected(g, lossy_params(), g.id(5), 200'000'000, c);
+  const LossyHost::Stats b = expect_crash_detected(g, lossy_params(), g.id(5), 200'000'000, c);
   EXPECT_EQ(a.end, b.end);
   EXPECT_EQ(a.events, b.events);
   EXPECT_EQ(a.sent, b.sent);

@@ -83,18 +83,20 @@ TEST(UniformMapPacking, ChebyshevReachesLpdGlpdInFarFewerSweeps) {
   }
 }
 
-TEST(UniformMapPacking, ChebyshevInTheSimulatedNetworkEqualsCoreAndRoutesGreedily) {
-  // Every message simulated (sync mode, the simulator's network): the nodes' circles are core::pack's
-  // bit for bit, and forwarding hop by hop on them delivers every sampled pair.
+TEST(UniformMapPacking, AcceleratedSimulatedNetworkEqualsCoreAndRoutesGreedily) {
+  // Every message simulated (sync mode, the simulator's network), with the local acceleration and with
+  // Newton–Krylov (CG in the network, tree sums in the tree's order): the nodes' circles are
+  // core::pack's bit for bit, and forwarding hop by hop on them delivers every sampled pair.
+  for (const core::Acceleration a : {core::Acceleration::chebyshev, core::Acceleration::newton_krylov})
   for (const char* generator : {"uniform-triangulation", "uniform-three-connected"})
     for (std::uint64_t seed : {61u, 62u}) {
       const core::PlanarGraph g = uniform(generator, 50, seed);
       scenarios::ProtocolSetup setup;
-      setup.acceleration = core::Acceleration::chebyshev;
+      setup.acceleration = a;
       const scenarios::ProtocolOutcome o = scenarios::run_packing_protocol(g, {}, setup);
       const core::GraphKind kind = std::string(generator) == "uniform-triangulation" ? core::GraphKind::triangulated_disc
                                                                                       : core::GraphKind::three_connected;
-      SCOPED_TRACE(std::string(generator) + " seed " + std::to_string(seed));
+      SCOPED_TRACE(std::string(core::to_string(a)) + " " + generator + " seed " + std::to_string(seed));
       EXPECT_EQ(scenarios::verify_against_core(g, kind, setup, o), "identical to core::pack, bit for bit");
       EXPECT_EQ(o.converged_nodes, g.num_vertices());
       std::vector<std::pair<core::Vertex, core::Vertex>> pairs;
@@ -104,5 +106,18 @@ TEST(UniformMapPacking, ChebyshevInTheSimulatedNetworkEqualsCoreAndRoutesGreedil
       const auto f = scenarios::run_forwarding(g, o.circles, {}, setup.link, seed, {core::Scheme::greedy_power}, pairs);
       ASSERT_EQ(f.size(), 1u);
       EXPECT_EQ(f[0].delivered, f[0].packets);
+    }
+}
+
+TEST(UniformMapPacking, NewtonKrylovReachesLpdGlpdAndRoutesGreedily) {
+  // Newton–Krylov as the network runs it (core::pack's reference of the protocol): every map of 50-200
+  // nodes converges in a few dozen Newton steps, and greedy power routing delivers every pair.
+  for (const char* generator : {"uniform-triangulation", "uniform-three-connected"})
+    for (int i = 0; i < std::max(2, cases() / 3); ++i) {
+      const std::int64_t n = 50 + 50 * (i % 4);
+      SCOPED_TRACE(std::string(generator) + " n=" + std::to_string(n) + " case " + std::to_string(i));
+      const int steps = expect_greedy_embedding(uniform(generator, n, 7000 + static_cast<std::uint64_t>(i)),
+                                                core::Acceleration::newton_krylov, 200);
+      EXPECT_LT(steps, 100);
     }
 }

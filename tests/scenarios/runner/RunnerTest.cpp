@@ -413,18 +413,22 @@ TEST(Runner, CentralModeEqualsTheSynchronousProtocol) {
     EXPECT_EQ(r.holds_nodes, r.nodes);
   }
   EXPECT_THROW(from_text(base + "protocol: {mode: sync, acceleration: anderson}\n"), ScenarioError);
-  // The local acceleration runs in the network: the same iterations as centrally, with messages.
-  const ScenarioResults local_sync = run_scenario(from_text(base + "protocol: {mode: sync, acceleration: chebyshev}\n"), {});
-  const ScenarioResults local_central =
-      run_scenario(from_text(base + "protocol: {mode: central, acceleration: chebyshev}\n"), {});
-  ASSERT_EQ(local_sync.records.size(), local_central.records.size());
-  for (std::size_t i = 0; i < local_sync.records.size(); ++i) {
-    ASSERT_EQ(local_sync.records[i].status, RunStatus::ok) << local_sync.records[i].message;
-    EXPECT_EQ(local_sync.records[i].iterations, local_central.records[i].iterations);
-    EXPECT_EQ(local_sync.records[i].holds_nodes, local_sync.records[i].nodes);
-    EXPECT_GT(local_sync.records[i].messages, 0u);
+  // The local acceleration and Newton–Krylov run in the network: the same iterations as centrally,
+  // with messages.
+  for (const std::string a : {"chebyshev", "newton-krylov"}) {
+    SCOPED_TRACE(a);
+    const ScenarioResults local_sync = run_scenario(from_text(base + "protocol: {mode: sync, acceleration: " + a + "}\n"), {});
+    const ScenarioResults local_central =
+        run_scenario(from_text(base + "protocol: {mode: central, acceleration: " + a + "}\n"), {});
+    ASSERT_EQ(local_sync.records.size(), local_central.records.size());
+    for (std::size_t i = 0; i < local_sync.records.size(); ++i) {
+      ASSERT_EQ(local_sync.records[i].status, RunStatus::ok) << local_sync.records[i].message;
+      EXPECT_EQ(local_sync.records[i].iterations, local_central.records[i].iterations);
+      EXPECT_EQ(local_sync.records[i].holds_nodes, local_sync.records[i].nodes);
+      EXPECT_GT(local_sync.records[i].messages, 0u);
+    }
+    EXPECT_THROW(from_text(base + "protocol: {mode: async, acceleration: " + a + "}\n"), ScenarioError);
   }
-  EXPECT_THROW(from_text(base + "protocol: {mode: async, acceleration: chebyshev}\n"), ScenarioError);
 }
 
 // The bundled all-sensors comparison (scenarios/field-holes-comparison.yaml), small: every sensor is

@@ -47,10 +47,14 @@ TEST_F(CliBadInput, SimulateRefusesAccelerationsTheNetworkCannotRun) {
   for (const char* a : {"anderson", "superstep", "newton"})
     expect_bad("simulate " + graph + " --accelerate " + a, {"--accelerate", a, "chebyshev"});
   expect_bad("simulate " + graph + " --accelerate chebyshev --mode async", {"--accelerate", "--mode async"});
+  expect_bad("simulate " + graph + " --accelerate newton-krylov --mode async",
+             {"--accelerate", "newton-krylov", "--mode async", "consistent"});
   expect_bad("simulate " + graph + " --accelerate warp", {"--accelerate"});
-  const Outcome r = run("simulate " + graph + " --accelerate chebyshev --verify --pairs 20");
-  EXPECT_EQ(r.status, 0) << r.out;
-  EXPECT_NE(r.out.find("identical to core::pack, bit for bit"), std::string::npos) << r.out;
+  for (const char* a : {"chebyshev", "newton-krylov"}) {
+    const Outcome r = run("simulate " + graph + " --accelerate " + a + " --verify --pairs 20");
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("identical to core::pack, bit for bit"), std::string::npos) << a << ": " << r.out;
+  }
 }
 
 TEST_F(CliBadInput, ParseErrorsExitWith2) {

@@ -25,13 +25,13 @@
 ///
 /// Message sets: each receiver decodes only the messages it handles (docs/protocol.md describes the
 /// protocols):
-///  - PackingMessage (types 1–10): between protocol vertices of the packing protocol;
+///  - PackingMessage (types 1–10 and 17–19): between protocol vertices of the packing protocol;
 ///  - PackingHop: what a packing node sends a neighbour without the reliability layer, a
 ///    PackingMessage or a RelayMsg (type 11, an envelope between a face vertex and a face member);
 ///  - LinkMessage (types 13, 14): the reliability layer's frames and acknowledgements on one link;
 ///  - FramePayload: what a frame carries, a PackingHop or a FailureMsg (type 15);
 ///  - ForwardingMessage (types 12, 16): data packets of the forwarding schemes (Forwarding.hpp);
-///  - Message: any of the 16 types.
+///  - Message: any of the 19 types.
 
 #include <cstddef>
 #include <cstdint>
@@ -64,10 +64,13 @@ enum class MessageType : std::uint8_t {
   ack = 14,      ///< AckMsg: the reliability layer's acknowledgement of received frames
   failure = 15,  ///< FailureMsg: a node declared a neighbour failed (flooded, carried in frames)
   route = 16,    ///< RouteMsg: a data packet of a baseline scheme (Euclidean, compass, GFG; Forwarding.hpp)
+  krylov_value = 17,     ///< KrylovValueMsg: a Newton–Krylov neighbour exchange (CG vector or trial radius)
+  krylov_sum = 18,       ///< KrylovSumMsg: a Newton–Krylov partial sum, up the layout tree
+  krylov_decision = 19,  ///< KrylovDecisionMsg: the root's Newton–Krylov decision, down the layout tree
 };
 
 /// Largest MessageType value (types 1 … max_message_type exist).
-inline constexpr std::uint8_t max_message_type = 16;
+inline constexpr std::uint8_t max_message_type = 19;
 
 /// Name of a message type ("depth", "election", …), "?" for values outside the enum.
 std::string_view to_string(MessageType t);
@@ -293,20 +296,48 @@ struct RouteMsg {
   friend bool operator==(const RouteMsg&, const RouteMsg&) = default;
 };
 
-/// Messages between protocol vertices of the packing protocol (types 1–10).
+/// Newton–Krylov mode (core/packing/NewtonKrylov.hpp): the value the sender exchanges before tree sum
+/// `seq` (its CG vector z, or its trial radius). Fields: u32 seq, f64 value (not range-checked: CG
+/// values have any sign; a non-finite one makes the step fail at the root, never here).
+struct KrylovValueMsg {
+  std::uint32_t seq = 0;  ///< the tree sum it feeds (counted from the start of the run)
+  double value = 0;       ///< z or the trial radius
+  friend bool operator==(const KrylovValueMsg&, const KrylovValueMsg&) = default;
+};
+
+/// Newton–Krylov mode: the sender's subtree partial of tree sum `seq`, to its parent. Fields: u32 seq,
+/// f64 s0, s1, s2 (sums), f64 max.
+struct KrylovSumMsg {
+  std::uint32_t seq = 0;  ///< tree sum number
+  double s0 = 0, s1 = 0, s2 = 0;  ///< the three sums
+  double max = 0;         ///< the maximum
+  friend bool operator==(const KrylovSumMsg&, const KrylovSumMsg&) = default;
+};
+
+/// Newton–Krylov mode: the root's decision after tree sum `seq` (core::KrylovDecision), to the
+/// children. Fields: u32 seq, u8 action ∈ [0, 4], f64 a, f64 b.
+struct KrylovDecisionMsg {
+  std::uint32_t seq = 0;  ///< tree sum number
+  std::uint8_t action = 0;  ///< core::KrylovAction
+  double a = 0, b = 0;    ///< α or t, and β
+  friend bool operator==(const KrylovDecisionMsg&, const KrylovDecisionMsg&) = default;
+};
+
+/// Messages between protocol vertices of the packing protocol (types 1–10, 17–19).
 using PackingMessage = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg,
-                                    DecisionMsg, ShapeMsg, FaceCirclesMsg>;
-/// What a packing node sends a neighbour without the reliability layer (types 1–11).
+                                    DecisionMsg, ShapeMsg, FaceCirclesMsg, KrylovValueMsg, KrylovSumMsg, KrylovDecisionMsg>;
+/// What a packing node sends a neighbour without the reliability layer (types 1–11, 17–19).
 using PackingHop = std::variant<PackingMessage, RelayMsg>;
 /// The reliability layer's messages on one link (types 13, 14).
 using LinkMessage = std::variant<FrameMsg, AckMsg>;
-/// What a FrameMsg carries (types 1–11 and 15).
+/// What a FrameMsg carries (types 1–11, 15 and 17–19).
 using FramePayload = std::variant<PackingHop, FailureMsg>;
 /// Data packets of the forwarding schemes (types 12, 16).
 using ForwardingMessage = std::variant<DataMsg, RouteMsg>;
 /// Any message; the alternatives are in type-code order (alternative k has type k + 1).
 using Message = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg, DecisionMsg,
-                             ShapeMsg, FaceCirclesMsg, RelayMsg, DataMsg, FrameMsg, AckMsg, FailureMsg, RouteMsg>;
+                             ShapeMsg, FaceCirclesMsg, RelayMsg, DataMsg, FrameMsg, AckMsg, FailureMsg, RouteMsg,
+                             KrylovValueMsg, KrylovSumMsg, KrylovDecisionMsg>;
 
 namespace detail {
 template <class T, class Variant>
@@ -315,7 +346,7 @@ template <class T, class... Ts>
 struct IsAlternative<T, std::variant<Ts...>> : std::disjunction<std::is_same<T, Ts>...> {};
 }  // namespace detail
 
-/// Whether T is one of the 16 message structs.
+/// Whether T is one of the 19 message structs.
 template <class T>
 inline constexpr bool is_message_v = detail::IsAlternative<T, Message>::value;
 
@@ -346,7 +377,7 @@ inline constexpr std::size_t decode_status_count = 7;
 /// Name of a decode status ("ok", "truncated", …).
 std::string_view to_string(DecodeStatus s);
 
-/// Encodes message `m` (one of the 16 structs), replacing the contents of `out`.
+/// Encodes message `m` (one of the 19 structs), replacing the contents of `out`.
 template <class M>
   requires is_message_v<M>
 void encode(const M& m, std::vector<std::byte>& out);

@@ -57,8 +57,9 @@ struct PackingParams : ReliableParams {
   core::UpdateRule update = core::UpdateRule::uniform_neighbour;  ///< per-vertex update
   core::RootRule root = core::RootRule::deepest;                  ///< which root the election picks
   bool asynchronous = false;  ///< asynchronous Thurston updates (chaotic relaxation); not bit for bit with core
-  /// plain, or a local acceleration (core::is_local: chebyshev, local_superstep), synchronous mode only:
-  /// each protocol vertex runs a core::LocalAccelerator on its own updates, with no extra message.
+  /// plain, or (synchronous mode only) a local acceleration (core::is_local: chebyshev, local_superstep;
+  /// each protocol vertex runs a core::LocalAccelerator on its own updates, with no extra message) or
+  /// newton_krylov (Newton steps whose CG runs in the network: core/packing/NewtonKrylov.hpp).
   core::Acceleration acceleration = core::Acceleration::plain;
 };
 

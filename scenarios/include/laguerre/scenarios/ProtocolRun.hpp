@@ -42,7 +42,7 @@ struct ProtocolSetup {
   int steps_per_round = 1;                      ///< N
   int max_iterations = 100000;                  ///< cap on steps
   core::RootRule root = core::RootRule::deepest;  ///< root election
-  core::Acceleration acceleration = core::Acceleration::plain;  ///< plain or local (core::is_local), sync only
+  core::Acceleration acceleration = core::Acceleration::plain;  ///< core::runs_in_network (local kinds, newton_krylov), sync only
   sim::LinkModel link;                          ///< every link's model
   std::vector<CrashSpec> crashes;               ///< outages, for good or with a recovery
   std::optional<sim::Duration> retransmit_after;  ///< explicit reliability period (else 3 × longest latency)

@@ -62,7 +62,9 @@ struct ProtocolSpec {
   /// `acceleration`) and the run routes on its result; messages and simulated time are then 0. For
   /// routing questions on networks too large to simulate to convergence.
   bool central = false;
-  core::Acceleration acceleration = core::Acceleration::plain;  ///< central mode only: plain, superstep, anderson, newton
+  /// Modes sync and central: plain, chebyshev, local-superstep, newton-krylov (core::runs_in_network);
+  /// central only: superstep, anderson, newton; async: plain only.
+  core::Acceleration acceleration = core::Acceleration::plain;
   int steps_per_round = 1;                     ///< N, Thurston steps per round
   StopSpec stop = StopSpec::lpd;               ///< stopping rule
   int max_iterations = 100000;                 ///< cap on Thurston steps

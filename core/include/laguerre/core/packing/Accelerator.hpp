@@ -19,7 +19,8 @@ enum class Acceleration {
   anderson,    ///< Anderson mixing of the last few sweeps (AA(m), type II)
   newton,      ///< not a sweep: damped Newton steps on the angle sums (Newton.hpp; centralized only)
   chebyshev,   ///< local adaptive Chebyshev (second-order Richardson) iteration, per vertex
-  local_superstep  ///< Collins & Stephenson's extrapolation with the ratio each vertex sees locally
+  local_superstep,  ///< Collins & Stephenson's extrapolation with the ratio each vertex sees locally
+  newton_krylov     ///< not a sweep: damped Newton steps solved by CG in the network (NewtonKrylov.hpp)
 };
 
 /// Whether the distributed protocol can run `a` (plain and the local accelerations).
@@ -27,7 +28,12 @@ constexpr bool is_local(Acceleration a) {
   return a == Acceleration::plain || a == Acceleration::chebyshev || a == Acceleration::local_superstep;
 }
 
-/// Name of an acceleration ("plain", "superstep", "anderson", "newton", "chebyshev", "local-superstep").
+/// Whether the distributed protocol can run `a`: the local kinds and newton_krylov (synchronous mode
+/// only: its CG iterates must be consistent).
+constexpr bool runs_in_network(Acceleration a) { return is_local(a) || a == Acceleration::newton_krylov; }
+
+/// Name of an acceleration ("plain", "superstep", "anderson", "newton", "chebyshev", "local-superstep",
+/// "newton-krylov").
 std::string_view to_string(Acceleration a);
 /// Parses an acceleration name; throws InputError listing the valid names (PackingNames.hpp).
 Acceleration parse_acceleration(std::string_view name);

@@ -97,4 +97,9 @@ struct AngleJacobian {
 /// row sum strictly negative up to rounding, so −J is symmetric positive definite (Newton.cpp).
 AngleJacobian angle_jacobian(const PackingComplex& k, const Radii& h);
 
+/// Row v of J = ∂θ/∂u in node-local form: returns ∂θ_v/∂u_v and sets `off[i]` = ∂θ_v/∂u of neighbour
+/// i of the star (0 for a horocycle), summing the corners around v from neighbour 0. The same closed
+/// forms as angle_jacobian (equal up to rounding: the order of the sums differs).
+double star_jacobian_row(double hv, const StarView& s, std::vector<double>& off);
+
 }  // namespace laguerre::core

@@ -62,6 +62,9 @@ struct PackResult {
   int first_exact = -1;     ///< first checked iteration with an exact packing (tracked rules only)
   int first_angle = -1;     ///< first checked iteration with angle error ≤ epsilon (tracked only)
   int jumps = 0;            ///< accelerated steps taken (PackOptions::acceleration; Newton: improving Newton steps; local kinds: extrapolated vertex updates)
+  long long linear_iterations = 0;  ///< Acceleration::newton_krylov: CG iterations over all Newton steps
+  long long exchanges = 0;   ///< Acceleration::newton_krylov: neighbour exchanges (radius, CG, line search)
+  long long tree_sums = 0;   ///< Acceleration::newton_krylov: sums over the layout tree
   double angle_error = 0;   ///< max |θ − 2π| at the end
   double max_tangency_error = 0;  ///< max tangency error over G's edges at the end
   CircleEmbedding circles;        ///< φ on G's vertices (indexed by Vertex of G)

@@ -8,13 +8,14 @@
 
 namespace laguerre::core {
 
-/// Acceleration: plain, superstep, anderson, newton, chebyshev, local-superstep.
-inline constexpr EnumNames<Acceleration, 6> acceleration_names{{{Acceleration::plain, "plain"},
+/// Acceleration: plain, superstep, anderson, newton, chebyshev, local-superstep, newton-krylov.
+inline constexpr EnumNames<Acceleration, 7> acceleration_names{{{Acceleration::plain, "plain"},
                                                                 {Acceleration::superstep, "superstep"},
                                                                 {Acceleration::anderson, "anderson"},
                                                                 {Acceleration::newton, "newton"},
                                                                 {Acceleration::chebyshev, "chebyshev"},
-                                                                {Acceleration::local_superstep, "local-superstep"}}};
+                                                                {Acceleration::local_superstep, "local-superstep"},
+                                                                {Acceleration::newton_krylov, "newton-krylov"}}};
 /// StopRule: lpd, exact, angle, cap.
 inline constexpr EnumNames<StopRule, 4> stop_rule_names{
     {{StopRule::lpd, "lpd"}, {StopRule::exact, "exact"}, {StopRule::angle, "angle"}, {StopRule::cap, "cap"}}};
