@@ -5,6 +5,14 @@
 // (anchor on this machine kind: Apollonius_graph_hierarchy_2 takes about 7 s for 10^6 sites).
 #include <benchmark/benchmark.h>
 
+#include <CGAL/Apollonius_graph_2.h>
+#include <CGAL/Apollonius_graph_filtered_traits_2.h>
+#include <CGAL/Apollonius_graph_hierarchy_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
+
+#include <chrono>
 #include <cmath>
 #include <random>
 
@@ -49,6 +57,44 @@ void BM_Apollonius(benchmark::State& state) {
   state.counters["hidden"] = static_cast<double>(hidden);
 }
 
+/// CGAL alone on the same sites (issue 14 §5: where the facade's time goes): the hierarchy filled
+/// one site at a time in the input order (what apollonius_diagram_cgal does), or after CGAL's
+/// spatial_sort (Hilbert order); no index, no edges, no vertices read back.
+template <bool Sorted>
+void BM_CgalApolloniusRaw(benchmark::State& state) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Gt = CGAL::Apollonius_graph_filtered_traits_2<K>;
+  using Ag = CGAL::Apollonius_graph_hierarchy_2<Gt>;
+  std::vector<Gt::Site_2> sites;
+  for (const ApolloniusSite& x : apollonius_sites(static_cast<std::size_t>(state.range(0))))
+    sites.emplace_back(K::Point_2(x.x, x.y), x.w);
+  double sort_seconds = 0;
+  if constexpr (Sorted) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<K::Point_2> points;
+    for (const Gt::Site_2& x : sites) points.push_back(x.point());
+    std::vector<std::size_t> order(sites.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    CGAL::spatial_sort(order.begin(), order.end(),
+                       CGAL::Spatial_sort_traits_adapter_2<K, decltype(CGAL::make_property_map(points))>(
+                           CGAL::make_property_map(points)),
+                       CGAL::Hilbert_sort_median_policy());
+    std::vector<Gt::Site_2> sorted;
+    for (const std::size_t i : order) sorted.push_back(sites[i]);
+    sites.swap(sorted);
+    sort_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  std::size_t vertices = 0;
+  for (auto _ : state) {
+    Ag ag;
+    for (const Gt::Site_2& x : sites) ag.insert(x);
+    vertices = ag.number_of_vertices();
+    benchmark::DoNotOptimize(vertices);
+  }
+  state.counters["visible"] = static_cast<double>(vertices);
+  state.counters["sort_s"] = sort_seconds;
+}
+
 void BM_AnisotropicVertices(benchmark::State& state) {
   const auto sites = anisotropic_sites(static_cast<std::size_t>(state.range(0)));
   std::size_t vertices = 0, candidates = 0;
@@ -65,6 +111,12 @@ void BM_AnisotropicVertices(benchmark::State& state) {
 
 BENCHMARK_TEMPLATE(BM_Apollonius, apollonius_diagram_cgal)
     ->Name("BM_ApolloniusCgal")->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000)
+    ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_TEMPLATE(BM_CgalApolloniusRaw, false)
+    ->Name("BM_CgalApolloniusRaw")->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000)
+    ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_TEMPLATE(BM_CgalApolloniusRaw, true)
+    ->Name("BM_CgalApolloniusRawHilbert")->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000)
     ->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_TEMPLATE(BM_Apollonius, apollonius_diagram_linearized)
     ->Name("BM_ApolloniusLinearized")->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000)
