@@ -218,15 +218,20 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
   sim::InPlaceRunner in_place;
   sim::HostRunner& runner = setup.runner != nullptr ? *setup.runner : in_place;
   const sim::RunReport report = runner.run(host, {});
-  const std::vector<std::vector<std::byte>> described = runner.gather([&](sim::NodeIndex v) {
-    std::vector<std::byte> bytes;
-    sim::append_bytes(bytes, summarize(static_cast<const protocols::PackingNode&>(host.node(v))));
-    return bytes;
-  });
   std::vector<PackingNodeSummary> nodes(n);
-  for (core::Vertex v = 0; v < n; ++v) {
-    std::size_t at = 0;
-    nodes[v] = sim::read_bytes<PackingNodeSummary>(described[v], at);
+  const auto summary_of = [&](sim::NodeIndex v) { return summarize(static_cast<const protocols::PackingNode&>(host.node(v))); };
+  if (setup.runner == nullptr) {  // every node is here: no byte copies of the summaries
+    for (core::Vertex v = 0; v < n; ++v) nodes[v] = summary_of(v);
+  } else {
+    const std::vector<std::vector<std::byte>> described = runner.gather([&](sim::NodeIndex v) {
+      std::vector<std::byte> bytes;
+      sim::append_bytes(bytes, summary_of(v));
+      return bytes;
+    });
+    for (core::Vertex v = 0; v < n; ++v) {
+      std::size_t at = 0;
+      nodes[v] = sim::read_bytes<PackingNodeSummary>(described[v], at);
+    }
   }
   collect_packing_summaries(g, nodes, down, out);
   collect_traffic(runner.traffic(), out);
