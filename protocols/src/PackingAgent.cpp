@@ -11,6 +11,10 @@ namespace laguerre::protocols::detail {
 
 // The state of a Newton–Krylov step (see "Newton–Krylov steps" below); allocated in that mode only.
 struct PackingAgent::KrylovState {
+  struct Slot {  // a neighbour's exchanged value of a tree sum
+    std::uint32_t tag = unknown;
+    double h = 0;
+  };
   enum class Stage : std::uint8_t { idle, exchange, sum, decision };
   explicit KrylovState(std::size_t deg) : value(deg), sum_tag(deg, unknown), sum(deg), neighbour(deg, 0.0) {}
   Stage stage = Stage::idle;
@@ -26,45 +30,66 @@ struct PackingAgent::KrylovState {
   std::vector<double> neighbour;           // the exchanged values in neighbour order
 };
 
-PackingAgent::PackingAgent(AgentHost& host, std::size_t index, AgentSpec spec, PackingParams params)
-    : host_(host), index_(index), know_(std::move(spec)), params_(params), deg_(know_.neighbours.size()),
-      accelerator_(params.acceleration) {
-  nbr_depth_.assign(deg_, unknown);
-  nbr_depth_seen_.assign(deg_, 0);
-  nbr_wave_.assign(deg_, unknown);
-  nbr_wave_seen_.assign(deg_, 0);
-  child_.assign(deg_, 0);
-  shape_up_.assign(deg_, 0);
-  radius_.assign(deg_, {});
-  placed_in_.assign(deg_, {});
-  face_in_.assign(deg_, {});
-  star_h_.assign(deg_, std::numeric_limits<double>::infinity());
-  check_circles_.assign(deg_, core::Circle{});
-  // Intersection cosines of the star, as PackingComplex stores them: an edge of K is orthogonal iff
-  // it touches a face vertex. Empty for a tangent-only star (the closed-form update applies).
-  if (know_.polygon_here) {
-    for (std::size_t i = 0; i < deg_; ++i) {
-      spoke_.push_back(cos_spoke(i));
-      rim_.push_back(cos_rim(i));
+PackingAgent::PackingAgent(PackingNode& node, std::size_t index, AgentSpec spec)
+    : node_(node), params_(node.params_), id_(spec.id), index_(static_cast<std::uint32_t>(index)),
+      deg_(static_cast<std::uint32_t>(spec.neighbours.size())), outer_gap_(spec.outer_gap),
+      g_outer_gap_(spec.g_outer_gap), boundary_(spec.boundary), is_face_(spec.is_face),
+      polygon_here_(spec.polygon_here), peers_(std::make_unique<Peer[]>(deg_)),
+      radius_(std::make_unique<double[]>(2 * std::size_t{deg_})) {
+  for (std::size_t i = 0; i < deg_; ++i) {
+    peers_[i].id = spec.neighbours[i];
+    peers_[i].face = spec.face_nbr.empty() ? 0 : spec.face_nbr[i];
+  }
+  // Synchronous mode: boundary neighbours' radii stay ∞ (horocycles), the others are written before
+  // they are read. Asynchronous mode: every interior vertex starts from the same X (version 0);
+  // boundary neighbours' entries become ∞ when the rounds start.
+  std::fill(radius_.get(), radius_.get() + 2 * std::size_t{deg_},
+            params_.asynchronous ? 1.0 : std::numeric_limits<double>::infinity());
+  if (polygon_here_) {
+    poly_ = std::make_unique<Polygon>();
+    poly_->g_k = std::move(spec.g_k);
+    poly_->g_face = std::move(spec.g_face);
+    poly_->face_in.resize(deg_);
+    // Intersection cosines of the star, as PackingComplex stores them: an edge of K is orthogonal iff
+    // it touches a face vertex. Empty for a tangent-only star (the closed-form update applies).
+    if (polygon_here_) {
+      for (std::size_t i = 0; i < deg_; ++i) {
+        poly_->spoke.push_back(cos_spoke(i));
+        poly_->rim.push_back(cos_rim(i));
+      }
     }
   }
-  h_ = know_.boundary ? std::numeric_limits<double>::infinity() : 1.0;  // core::initial_radii
-  // Asynchronous mode: every interior vertex starts from the same X (version 0); boundary
-  // neighbours' entries are never read.
-  latest_h_.assign(deg_, 1.0);
-  latest_step_.assign(deg_, 0);
+  if (params_.acceleration != core::Acceleration::plain)
+    accelerator_ = std::make_unique<core::LocalAccelerator>(params_.acceleration);
+  h_ = boundary_ ? std::numeric_limits<double>::infinity() : 1.0;  // core::initial_radii
   if (params_.acceleration == core::Acceleration::newton_krylov) krylov_ = std::make_unique<KrylovState>(deg_);
+}
+
+std::size_t PackingAgent::index_of(NodeId id) const {
+  std::size_t i = 0;
+  while (i < deg_ && peers_[i].id != id) ++i;
+  return i;
+}
+
+std::vector<std::byte>& PackingAgent::buffer() { return node_.scratch_; }
+PackingCounters& PackingAgent::counters() { return node_.counters_; }
+
+core::StarView PackingAgent::star(const double* h) const {
+  if (!poly_ || poly_->spoke.empty()) return core::StarView{{h, deg_}, {}, {}};
+  return core::StarView{{h, deg_}, poly_->spoke, poly_->rim};
 }
 
 PackingAgent::~PackingAgent() = default;
 
 std::size_t PackingAgent::children() const {
-  return static_cast<std::size_t>(std::count(child_.begin(), child_.end(), std::uint8_t{1}));
+  std::size_t c = 0;
+  for (std::size_t i = 0; i < deg_; ++i) c += peers_[i].child;
+  return c;
 }
 
 VertexState PackingAgent::state() const {
   VertexState s;
-  s.id = know_.id;
+  s.id = id_;
   s.depth = depth_;
   s.is_root = is_root_;
   s.wave = wave_;
@@ -79,14 +104,24 @@ VertexState PackingAgent::state() const {
 }
 
 void PackingAgent::send(std::size_t i, const PackingMessage& m) {
-  encode(m, buffer_);
+  encode(m, buffer());
   send_encoded(i);
 }
 
-void PackingAgent::send_encoded(std::size_t i) { host_.send(index_, i, buffer_); }
+void PackingAgent::send_encoded(std::size_t i) { node_.agent_send(index_, i, buffer()); }
 
 void PackingAgent::broadcast(const PackingMessage& m) {
-  encode(m, buffer_);
+  encode(m, buffer());
+  send_to_all_encoded();
+}
+
+void PackingAgent::send_to_all_encoded() {
+  // Without face vertices the K-neighbours are the node's neighbours: one runtime broadcast (one
+  // stored copy in a simulator), the same messages as one send per neighbour in order.
+  if (index_ == 0 && !polygon_here_) {
+    node_.broadcast_all(buffer());
+    return;
+  }
   for (std::size_t i = 0; i < deg_; ++i) send_encoded(i);
 }
 
@@ -97,8 +132,8 @@ bool PackingAgent::better(std::uint32_t d1, NodeId id1, std::uint32_t d2, NodeId
 void PackingAgent::start() {
   if (phase_ != PackingPhase::idle) return;
   phase_ = PackingPhase::depth;
-  if (know_.boundary) depth_ = 0;
-  broadcast(DepthMsg{0, know_.boundary});
+  if (boundary_) depth_ = 0;
+  broadcast(DepthMsg{0, boundary_});
   advance_depth();
   maybe_candidate();
 }
@@ -109,7 +144,7 @@ void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
   // arrives. It is stale, not unexpected.
   if (phase_ == PackingPhase::finished && params_.asynchronous && std::holds_alternative<RadiusMsg>(m)) return;
   if (phase_ == PackingPhase::idle || phase_ == PackingPhase::finished) {
-    ++host_.counters().unexpected;
+    ++counters().unexpected;
     return;
   }
   std::visit([&](const auto& msg) { handle(i, msg); }, m);
@@ -117,21 +152,21 @@ void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
 
 // ---- Depth: pulse-synchronized BFS from the boundary (over K) -----------------------------------
 
-bool PackingAgent::record_pulse(std::vector<std::uint32_t>& value, std::vector<std::uint32_t>& seen, std::size_t& known,
-                                std::size_t i, std::uint32_t pulse, bool final) {
+bool PackingAgent::record_pulse(std::uint32_t& value, std::uint32_t& seen, std::size_t& known, std::uint32_t pulse,
+                                bool final) {
   if (!final) {
-    seen[i] = std::max(seen[i], pulse + 1);
+    seen = std::max(seen, pulse + 1);
     return true;
   }
-  if (value[i] != unknown) return false;  // a neighbour's final pulse comes once
-  value[i] = pulse;
+  if (value != unknown) return false;  // a neighbour's final pulse comes once
+  value = pulse;
   ++known;
   return true;
 }
 
 void PackingAgent::handle(std::size_t i, const DepthMsg& m) {
-  if (!record_pulse(nbr_depth_, nbr_depth_seen_, nbr_depths_known_, i, m.pulse, m.final)) {
-    ++host_.counters().unexpected;
+  if (!record_pulse(peers_[i].depth, peers_[i].depth_seen, nbr_depths_known_, m.pulse, m.final)) {
+    ++counters().unexpected;
     return;
   }
   advance_depth();
@@ -150,8 +185,8 @@ void PackingAgent::advance_depth() {
     const std::uint32_t p = depth_pulse_;
     bool found = false;
     for (std::size_t i = 0; i < deg_; ++i) {
-      if (nbr_depth_[i] == unknown && nbr_depth_seen_[i] <= p) return;
-      found = found || nbr_depth_[i] <= p;
+      if (peers_[i].depth == unknown && peers_[i].depth_seen <= p) return;
+      found = found || peers_[i].depth <= p;
     }
     ++depth_pulse_;
     if (found) depth_ = depth_pulse_;
@@ -171,21 +206,21 @@ void PackingAgent::maybe_candidate() {
 
 void PackingAgent::start_own_wave() {
   // core::choose_root ranges over the vertices of G: face vertices only relay the election.
-  if (know_.boundary || know_.is_face) return;
+  if (boundary_ || is_face_) return;
   const bool deepest = params_.root == core::RootRule::deepest;
   const std::uint32_t key = deepest ? depth_ : 0;
   // Only local maxima among interior G-neighbours start a wave: the global maximum is one.
   for (std::size_t i = 0; i < deg_; ++i)
-    if (interior_nbr(i) && !know_.face_nbr[i] && !better(key, know_.id, deepest ? nbr_depth_[i] : 0, know_.neighbours[i]))
+    if (interior_nbr(i) && !peers_[i].face && !better(key, id_, deepest ? peers_[i].depth : 0, peers_[i].id))
       return;
-  if (in_wave_ && !better(key, know_.id, best_depth_, best_id_)) return;
+  if (in_wave_ && !better(key, id_, best_depth_, best_id_)) return;
   in_wave_ = true;
   best_depth_ = key;
-  best_id_ = know_.id;
+  best_id_ = id_;
   echo_parent_ = deg_;
   echo_count_ = 0;
   echoed_ = false;
-  broadcast(ElectionMsg{key, know_.id});
+  broadcast(ElectionMsg{key, id_});
 }
 
 void PackingAgent::handle(std::size_t i, const ElectionMsg& m) {
@@ -197,7 +232,7 @@ void PackingAgent::handle(std::size_t i, const ElectionMsg& m) {
     echo_parent_ = i;
     echo_count_ = 1;
     echoed_ = false;
-    encode(m, buffer_);
+    encode(m, buffer());
     for (std::size_t j = 0; j < deg_; ++j)
       if (j != i) send_encoded(j);
   } else if (m.depth == best_depth_ && m.id == best_id_) {
@@ -206,7 +241,7 @@ void PackingAgent::handle(std::size_t i, const ElectionMsg& m) {
     return;  // weaker wave: extinguished here
   }
   if (echo_count_ > deg_) {
-    ++host_.counters().unexpected;
+    ++counters().unexpected;
     return;
   }
   maybe_echo();
@@ -221,7 +256,7 @@ void PackingAgent::maybe_echo() {
   // wave completes, whatever the delays.
   if (!candidate_checked_ || !in_wave_ || echoed_ || echo_count_ < deg_) return;
   echoed_ = true;
-  if (echo_parent_ == deg_) begin_wave(deg_, know_.id, know_.neighbours[0]);
+  if (echo_parent_ == deg_) begin_wave(deg_, id_, peers_[0].id);
   else send(echo_parent_, ElectionMsg{best_depth_, best_id_});
 }
 
@@ -229,7 +264,7 @@ void PackingAgent::maybe_echo() {
 
 void PackingAgent::handle(std::size_t i, const StartMsg& m) {
   if (wave_started_) {
-    if (m.root != root_id_) ++host_.counters().unexpected;
+    if (m.root != root_id_) ++counters().unexpected;
     return;
   }
   begin_wave(i, m.root, m.first);
@@ -239,16 +274,15 @@ void PackingAgent::begin_wave(std::size_t from, NodeId root, NodeId first) {
   wave_started_ = true;
   phase_ = PackingPhase::wave;
   root_id_ = root;
-  is_root_ = root == know_.id;
-  is_first_ = first == know_.id;
-  encode(StartMsg{root, first}, buffer_);
+  is_root_ = root == id_;
+  is_first_ = first == id_;
+  encode(StartMsg{root, first}, buffer());
   for (std::size_t j = 0; j < deg_; ++j)
     if (j != from) send_encoded(j);
-  const auto root_index = static_cast<std::size_t>(
-      std::find(know_.neighbours.begin(), know_.neighbours.end(), root) - know_.neighbours.begin());
+  const std::size_t root_index = index_of(root);
   if (is_root_) {
     wave_ = 0;
-    parent_ = know_.id;
+    parent_ = id_;
     parent_index_ = deg_;
     broadcast(WaveMsg{0, true, parent_});
   } else if (is_first_ && root_index != deg_) {
@@ -264,11 +298,11 @@ void PackingAgent::begin_wave(std::size_t from, NodeId root, NodeId first) {
 }
 
 void PackingAgent::handle(std::size_t i, const WaveMsg& m) {
-  if (!record_pulse(nbr_wave_, nbr_wave_seen_, nbr_waves_known_, i, m.pulse, m.placed)) {
-    ++host_.counters().unexpected;
+  if (!record_pulse(peers_[i].wave, peers_[i].wave_seen, nbr_waves_known_, m.pulse, m.placed)) {
+    ++counters().unexpected;
     return;
   }
-  if (m.placed) child_[i] = m.parent == know_.id ? 1 : 0;
+  if (m.placed) peers_[i].child = m.parent == id_ ? 1 : 0;
   advance_wave();
   maybe_finish_setup();
 }
@@ -281,11 +315,11 @@ void PackingAgent::advance_wave() {
   while (wave_ == unknown) {
     const std::uint32_t p = wave_pulse_;
     for (std::size_t i = 0; i < deg_; ++i)
-      if (nbr_wave_[i] == unknown && nbr_wave_seen_[i] <= p) return;
+      if (peers_[i].wave == unknown && peers_[i].wave_seen <= p) return;
     const auto d = static_cast<std::uint32_t>(deg_);
     const std::uint32_t w = core::choose_placement_wedge(
-        d, [&](std::uint32_t j) { return j != know_.outer_gap; },
-        [&](std::uint32_t j) { return nbr_wave_[j] <= p; }, [&](std::uint32_t j) { return interior_nbr(j); });
+        d, [&](std::uint32_t j) { return j != outer_gap_; },
+        [&](std::uint32_t j) { return peers_[j].wave <= p; }, [&](std::uint32_t j) { return interior_nbr(j); });
     ++wave_pulse_;
     if (w == d) {
       broadcast(WaveMsg{wave_pulse_, false, 0});
@@ -295,7 +329,7 @@ void PackingAgent::advance_wave() {
     anchor_a_ = w;
     anchor_b_ = w + 1 == d ? 0 : w + 1;
     parent_index_ = core::parent_is_first_anchor(interior_nbr(anchor_a_), interior_nbr(anchor_b_)) ? anchor_a_ : anchor_b_;
-    parent_ = know_.neighbours[parent_index_];
+    parent_ = peers_[parent_index_].id;
     broadcast(WaveMsg{wave_pulse_, true, parent_});
   }
 }
@@ -303,6 +337,7 @@ void PackingAgent::advance_wave() {
 void PackingAgent::maybe_finish_setup() {
   if (setup_done_ || wave_ == unknown || nbr_waves_known_ < deg_ || nbr_depths_known_ < deg_) return;
   setup_done_ = true;
+  for (std::size_t i = 0; i < deg_; ++i) interior_nbrs_ += interior_nbr(i);
   advance_shape();
 }
 
@@ -311,16 +346,16 @@ void PackingAgent::maybe_finish_setup() {
 void PackingAgent::handle(std::size_t i, const ShapeMsg& m) {
   if (!m.down) {
     // From a child (checked once the tree is known, in advance_shape); may precede our set-up's end.
-    if (shape_up_[i] != 0) {
-      ++host_.counters().unexpected;
+    if (peers_[i].shape_up != 0) {
+      ++counters().unexpected;
       return;
     }
-    shape_up_[i] = m.polygon ? 2 : 1;
+    peers_[i].shape_up = m.polygon ? 2 : 1;
     advance_shape();
     return;
   }
   if (!setup_done_ || shape_known_ || is_root_ || i != parent_index_) {
-    ++host_.counters().unexpected;
+    ++counters().unexpected;
     return;
   }
   learn_shape(m.polygon);
@@ -328,15 +363,16 @@ void PackingAgent::handle(std::size_t i, const ShapeMsg& m) {
 
 void PackingAgent::advance_shape() {
   if (!setup_done_ || shape_sent_) return;
-  bool any = know_.polygon_here;
+  bool any = polygon_here_;
   for (std::size_t i = 0; i < deg_; ++i) {
-    if (shape_up_[i] != 0 && !child_[i]) {
-      ++host_.counters().unexpected;
-      shape_up_[i] = 0;
+    Peer& p = peers_[i];
+    if (p.shape_up != 0 && !p.child) {
+      ++counters().unexpected;
+      p.shape_up = 0;
     }
-    if (!child_[i]) continue;
-    if (shape_up_[i] == 0) return;
-    any = any || shape_up_[i] == 2;
+    if (!p.child) continue;
+    if (p.shape_up == 0) return;
+    any = any || p.shape_up == 2;
   }
   shape_sent_ = true;
   if (!is_root_) {
@@ -351,10 +387,14 @@ void PackingAgent::learn_shape(bool polygon) {
   // The answer for the whole of K: pass it down the tree and start round 0.
   shape_known_ = true;
   polygon_ = polygon;
-  encode(ShapeMsg{true, polygon_}, buffer_);
+  encode(ShapeMsg{true, polygon_}, buffer());
   for (std::size_t j = 0; j < deg_; ++j)
-    if (child_[j]) send_encoded(j);
+    if (peers_[j].child) send_encoded(j);
   phase_ = PackingPhase::rounds;
+  // Asynchronous mode: boundary neighbours (known by now) count as horocycles in every update.
+  if (params_.asynchronous)
+    for (std::size_t i = 0; i < deg_; ++i)
+      if (!interior_nbr(i)) radius_[i] = std::numeric_limits<double>::infinity();
   round_ = 0;
   begin_round();
 }
@@ -389,14 +429,14 @@ void PackingAgent::handle_async_radius(std::size_t i, const RadiusMsg& m) {
   // are at most one round ahead; a message of an earlier round may still arrive late (reordering) and
   // only refreshes the value if newer. Keep the newest value.
   const std::uint32_t r = m.step == 0 ? 0 : round_of_step(m.step);
-  if (phase_ != PackingPhase::rounds || know_.boundary || !interior_nbr(i) || m.step == 0 ||
+  if (phase_ != PackingPhase::rounds || boundary_ || !interior_nbr(i) || m.step == 0 ||
       m.step > static_cast<std::uint32_t>(params_.max_iterations) || r > round_ + 1) {
-    ++host_.counters().unexpected;
+    ++counters().unexpected;
     return;
   }
-  if (m.step > latest_step_[i]) {
-    latest_step_[i] = m.step;
-    latest_h_[i] = m.h;
+  if (m.step > peers_[i].latest_step) {
+    peers_[i].latest_step = m.step;
+    radius_[i] = m.h;
   }
   if (r >= round_) ++arrivals_[r & 1];
   advance_steps();
@@ -412,10 +452,9 @@ void PackingAgent::advance_async_steps() {
   while (step_ < round_end_step_) {
     const std::uint32_t k = step_ - round_start_step_ + 1;
     if (k >= 2 && any_interior && arrivals_[round_ & 1] < k - 1) return;
-    for (std::size_t i = 0; i < deg_; ++i) star_h_[i] = interior_nbr(i) ? latest_h_[i] : std::numeric_limits<double>::infinity();
-    h_ = core::star_updated_radius(h_, core::StarView{star_h_, spoke_, rim_}, params_.update);
+    h_ = core::star_updated_radius(h_, star(radius_.get()), params_.update);
     ++step_;
-    encode(RadiusMsg{step_, h_}, buffer_);
+    encode(RadiusMsg{step_, h_}, buffer());
     for (std::size_t i = 0; i < deg_; ++i)
       if (interior_nbr(i)) send_encoded(i);
   }
@@ -426,16 +465,18 @@ void PackingAgent::handle(std::size_t i, const RadiusMsg& m) {
     handle_async_radius(i, m);
     return;
   }
-  if (phase_ != PackingPhase::rounds || know_.boundary || !interior_nbr(i) || m.step < step_ || m.step > step_ + 1) {
-    ++host_.counters().unexpected;
+  if (phase_ != PackingPhase::rounds || boundary_ || !interior_nbr(i) || m.step < step_ || m.step > step_ + 1) {
+    ++counters().unexpected;
     return;
   }
-  radius_[i][m.step & 1] = Slot{m.step, m.h};
+  const std::size_t slot = m.step & 1;
+  peers_[i].radius_tag[slot] = m.step;
+  radius_[slot * deg_ + i] = m.h;
   advance_steps();
 }
 
 void PackingAgent::advance_steps() {
-  if (know_.boundary) {
+  if (boundary_) {
     // Horocycles never change; in Newton–Krylov mode the vertex still relays the round's tree sums.
     if (krylov_ && step_ < round_end_step_) {
       krylov_->steps_left = round_end_step_ - step_;
@@ -452,27 +493,26 @@ void PackingAgent::advance_steps() {
     if (krylov_ && krylov_->stage != KrylovState::Stage::idle) return;  // a Newton step is under way
     if (!sent_step_) {
       sent_step_ = true;
-      encode(RadiusMsg{step_, h_}, buffer_);
-      for (std::size_t i = 0; i < deg_; ++i)
-        if (interior_nbr(i)) send_encoded(i);
+      encode(RadiusMsg{step_, h_}, buffer());
+      if (interior_nbrs_ == deg_) {
+        send_to_all_encoded();
+      } else {
+        for (std::size_t i = 0; i < deg_; ++i)
+          if (interior_nbr(i)) send_encoded(i);
+      }
     }
     const std::size_t slot = step_ & 1;
-    for (std::size_t i = 0; i < deg_; ++i) {
-      if (!interior_nbr(i)) {
-        star_h_[i] = std::numeric_limits<double>::infinity();
-        continue;
-      }
-      if (radius_[i][slot].tag != step_) return;
-      star_h_[i] = radius_[i][slot].h;
-    }
+    for (std::size_t i = 0; i < deg_; ++i)
+      if (interior_nbr(i) && peers_[i].radius_tag[slot] != step_) return;
     if (krylov_) {  // the step continues in krylov_apply
       krylov_begin_step();
       return;
     }
-    // The Jacobi update on K: every neighbour value is from step t, the cosines are those of
-    // PackingComplex (spoke_/rim_ empty iff tangent_only), as in core::thurston_sweep; then this
-    // vertex's local acceleration, as core::pack applies it after the sweep.
-    h_ = accelerator_.next(h_, core::star_updated_radius(h_, core::StarView{star_h_, spoke_, rim_}, params_.update));
+    // The Jacobi update on K: every neighbour value is from step t (∞ for boundary neighbours), the
+    // cosines are those of PackingComplex (none iff tangent_only), as in core::thurston_sweep; then
+    // this vertex's local acceleration, as core::pack applies it after the sweep.
+    const double updated = core::star_updated_radius(h_, star(radius_.get() + slot * deg_), params_.update);
+    h_ = accelerator_ ? accelerator_->next(h_, updated) : updated;
     ++step_;
     sent_step_ = false;
   }
@@ -492,13 +532,13 @@ void PackingAgent::advance_steps() {
 void PackingAgent::krylov_begin_step() {
   KrylovState& k = *krylov_;
   k.root.reset();
-  if (know_.boundary) {
+  if (boundary_) {
     k.own = {};
     k.stage = KrylovState::Stage::sum;
     krylov_advance();
     return;
   }
-  k.vertex.begin(h_, core::StarView{star_h_, spoke_, rim_});
+  k.vertex.begin(h_, star(radius_.get() + (step_ & 1) * deg_));
   k.trial = false;
   krylov_exchange();
 }
@@ -506,7 +546,7 @@ void PackingAgent::krylov_begin_step() {
 void PackingAgent::krylov_exchange() {
   KrylovState& k = *krylov_;
   k.stage = KrylovState::Stage::exchange;
-  encode(KrylovValueMsg{k.seq, k.vertex.value()}, buffer_);
+  encode(KrylovValueMsg{k.seq, k.vertex.value()}, buffer());
   for (std::size_t i = 0; i < deg_; ++i)
     if (interior_nbr(i)) send_encoded(i);
   krylov_advance();
@@ -520,19 +560,19 @@ void PackingAgent::krylov_advance() {
         k.neighbour[i] = k.trial ? std::numeric_limits<double>::infinity() : 0.0;
         continue;
       }
-      const Slot& v = k.value[i][k.seq & 1];
+      const KrylovState::Slot& v = k.value[i][k.seq & 1];
       if (v.tag != k.seq) return;
       k.neighbour[i] = v.h;
     }
-    k.own = k.trial ? k.vertex.trial_sums(core::StarView{k.neighbour, spoke_, rim_}) : k.vertex.cg_sums(k.neighbour);
+    k.own = k.trial ? k.vertex.trial_sums(star(k.neighbour.data())) : k.vertex.cg_sums(k.neighbour);
     k.stage = KrylovState::Stage::sum;
   }
   if (k.stage != KrylovState::Stage::sum) return;
   for (std::size_t i = 0; i < deg_; ++i)
-    if (child_[i] && k.sum_tag[i] != k.seq) return;
+    if (peers_[i].child && k.sum_tag[i] != k.seq) return;
   core::KrylovSums total = k.own;
   for (std::size_t i = 0; i < deg_; ++i)
-    if (child_[i]) core::combine(total, k.sum[i]);
+    if (peers_[i].child) core::combine(total, k.sum[i]);
   k.stage = KrylovState::Stage::decision;
   if (!is_root_) {
     send(parent_index_, KrylovSumMsg{k.seq, total.sum[0], total.sum[1], total.sum[2], total.max});
@@ -545,12 +585,12 @@ void PackingAgent::krylov_advance() {
 void PackingAgent::krylov_apply(const KrylovDecisionMsg& m) {
   KrylovState& k = *krylov_;
   ++k.seq;
-  encode(m, buffer_);
+  encode(m, buffer());
   for (std::size_t i = 0; i < deg_; ++i)
-    if (child_[i]) send_encoded(i);
+    if (peers_[i].child) send_encoded(i);
   const core::KrylovDecision d{static_cast<core::KrylovAction>(m.action), m.a, m.b};
   const bool done = d.action == core::KrylovAction::accept || d.action == core::KrylovAction::reject;
-  if (know_.boundary) {
+  if (boundary_) {
     k.own = {};
     k.stage = done ? KrylovState::Stage::idle : KrylovState::Stage::sum;
     if (!done) krylov_advance();
@@ -559,7 +599,7 @@ void PackingAgent::krylov_apply(const KrylovDecisionMsg& m) {
   }
   // On rejection the plain Jacobi update of this step, from the star of the radius exchange.
   const double plain = d.action == core::KrylovAction::reject
-                           ? core::star_updated_radius(h_, core::StarView{star_h_, spoke_, rim_}, params_.update)
+                           ? core::star_updated_radius(h_, star(radius_.get() + (step_ & 1) * deg_), params_.update)
                            : h_;
   const double h = k.vertex.apply(d, plain);
   switch (d.action) {
@@ -585,18 +625,18 @@ void PackingAgent::krylov_apply(const KrylovDecisionMsg& m) {
 }
 
 void PackingAgent::handle(std::size_t i, const KrylovValueMsg& m) {
-  if (!krylov_ || phase_ != PackingPhase::rounds || know_.boundary || !interior_nbr(i) ||
+  if (!krylov_ || phase_ != PackingPhase::rounds || boundary_ || !interior_nbr(i) ||
       (m.seq != krylov_->seq && m.seq != krylov_->seq + 1)) {
-    ++host_.counters().unexpected;
+    ++counters().unexpected;
     return;
   }
-  krylov_->value[i][m.seq & 1] = Slot{m.seq, m.value};
+  krylov_->value[i][m.seq & 1] = KrylovState::Slot{m.seq, m.value};
   if (krylov_->stage == KrylovState::Stage::exchange) krylov_advance();
 }
 
 void PackingAgent::handle(std::size_t i, const KrylovSumMsg& m) {
-  if (!krylov_ || phase_ != PackingPhase::rounds || !child_[i] || m.seq != krylov_->seq || krylov_->sum_tag[i] == m.seq) {
-    ++host_.counters().unexpected;
+  if (!krylov_ || phase_ != PackingPhase::rounds || !peers_[i].child || m.seq != krylov_->seq || krylov_->sum_tag[i] == m.seq) {
+    ++counters().unexpected;
     return;
   }
   krylov_->sum_tag[i] = m.seq;
@@ -607,7 +647,7 @@ void PackingAgent::handle(std::size_t i, const KrylovSumMsg& m) {
 void PackingAgent::handle(std::size_t i, const KrylovDecisionMsg& m) {
   if (!krylov_ || phase_ != PackingPhase::rounds || is_root_ || i != parent_index_ ||
       krylov_->stage != KrylovState::Stage::decision || m.seq != krylov_->seq) {
-    ++host_.counters().unexpected;
+    ++counters().unexpected;
     return;
   }
   krylov_apply(m);
@@ -615,18 +655,31 @@ void PackingAgent::handle(std::size_t i, const KrylovDecisionMsg& m) {
 
 void PackingAgent::handle(std::size_t i, const PlacedMsg& m) {
   if (m.round != round_ && m.round != round_ + 1) {
-    ++host_.counters().unexpected;
+    ++counters().unexpected;
     return;
   }
-  placed_in_[i][m.round & 1] = PlacedSlot{m.round, m.h, {{m.centre_re, m.centre_im}, {m.cx, m.cy, m.cr}}};
+  const std::size_t slot = m.round & 1;
+  peers_[i].placed_tag[slot] = m.round;
+  peers_[i].circle[slot] = {m.cx, m.cy, m.cr};
+  // What placing needs of the anchors (known since the set-up, which every node ends before any
+  // round starts).
+  if (wave_ != unknown && !is_root_) {
+    const AnchorSlot a{m.round, m.h, {m.centre_re, m.centre_im}};
+    if (is_first_) {
+      if (i == parent_index_) anchors_[0][slot] = a;
+    } else {
+      if (i == anchor_a_) anchors_[0][slot] = a;
+      if (i == anchor_b_) anchors_[1][slot] = a;
+    }
+  }
   if (params_.asynchronous && interior_nbr(i)) {
     // The sender's X after its last update of round m.round: version min(round·N, cap).
     const auto version = static_cast<std::uint32_t>(std::min<std::uint64_t>(
         std::uint64_t{m.round} * static_cast<std::uint64_t>(params_.steps_per_check),
         static_cast<std::uint64_t>(params_.max_iterations)));
-    if (version > latest_step_[i]) {
-      latest_step_[i] = version;
-      latest_h_[i] = m.h;
+    if (version > peers_[i].latest_step) {
+      peers_[i].latest_step = version;
+      radius_[i] = m.h;
     }
   }
   if (phase_ == PackingPhase::rounds) advance_layout();
@@ -635,11 +688,11 @@ void PackingAgent::handle(std::size_t i, const PlacedMsg& m) {
 void PackingAgent::handle(std::size_t i, const FaceCirclesMsg& m) {
   // Only from a face vertex, with one circle per member of its face (its degree is not known here:
   // the size is checked against the walk when used), at most one round ahead.
-  if (!know_.face_nbr[i] || know_.is_face || (m.round != round_ && m.round != round_ + 1)) {
-    ++host_.counters().unexpected;
+  if (!peers_[i].face || is_face_ || (m.round != round_ && m.round != round_ + 1)) {
+    ++counters().unexpected;
     return;
   }
-  FaceSlot& s = face_in_[i][m.round & 1];
+  FaceSlot& s = poly_->face_in[i][m.round & 1];
   s.tag = m.round;
   s.circles.clear();
   for (const FaceCircle& c : m.circles) s.circles.push_back({c.x, c.y, c.r});
@@ -649,22 +702,25 @@ void PackingAgent::handle(std::size_t i, const FaceCirclesMsg& m) {
 void PackingAgent::advance_layout() {
   if (step_ < round_end_step_ || phase_ != PackingPhase::rounds) return;
   const std::size_t slot = round_ & 1;
-  auto heard = [&](std::size_t i) { return placed_in_[i][slot].tag == round_; };
+  auto heard = [&](std::size_t i) { return peers_[i].placed_tag[slot] == round_; };
+  auto anchor_heard = [&](std::size_t k) { return anchors_[k][slot].tag == round_; };
   if (!placed_this_round_) {
-    const core::LayoutVertex me{h_, !know_.boundary};
+    const core::LayoutVertex me{h_, !boundary_};
     if (is_root_) {
       placed_ = core::place_root(h_);
     } else if (is_first_) {
-      if (!heard(parent_index_)) return;
-      placed_ = core::place_first_neighbour(placed_in_[parent_index_][slot].h, me, polygon_ ? cos_spoke(parent_index_) : 1.0);
+      if (!anchor_heard(0)) return;
+      placed_ = core::place_first_neighbour(anchors_[0][slot].h, me, polygon_ ? cos_spoke(parent_index_) : 1.0);
     } else {
-      if (!heard(anchor_a_) || !heard(anchor_b_)) return;
-      const PlacedSlot& a = placed_in_[anchor_a_][slot];
-      const PlacedSlot& b = placed_in_[anchor_b_][slot];
+      if (!anchor_heard(0) || !anchor_heard(1)) return;
+      const AnchorSlot& a = anchors_[0][slot];
+      const AnchorSlot& b = anchors_[1][slot];
+      const core::PlacedCircle a_at{a.centre, peers_[anchor_a_].circle[slot]};
+      const core::PlacedCircle b_at{b.centre, peers_[anchor_b_].circle[slot]};
       // lay_out's cosines: 1 everywhere for a triangulation, else those of K, with the overlap formula.
       const core::FaceCosines c = polygon_ ? core::FaceCosines{cos_spoke(anchor_a_), cos_spoke(anchor_b_), cos_rim(anchor_a_), true}
                                            : core::FaceCosines{};
-      placed_ = core::place_in_face(me, {a.h, interior_nbr(anchor_a_)}, a.at, {b.h, interior_nbr(anchor_b_)}, b.at, c);
+      placed_ = core::place_in_face(me, {a.h, interior_nbr(anchor_a_)}, a_at, {b.h, interior_nbr(anchor_b_)}, b_at, c);
     }
     placed_this_round_ = true;
     broadcast(PlacedMsg{round_, h_, placed_.centre.real(), placed_.centre.imag(), placed_.circle.x,
@@ -681,12 +737,12 @@ void PackingAgent::advance_layout() {
 
 bool PackingAgent::check() {
   const std::size_t slot = round_ & 1;
-  if (know_.is_face) {
+  if (is_face_) {
     // core checks G only: a face vertex's part is to hand its members the circles of the face.
     FaceCirclesMsg fc;
     fc.round = round_;
     for (std::size_t i = 0; i < deg_; ++i) {
-      const core::Circle& c = placed_in_[i][slot].at.circle;
+      const core::Circle& c = peers_[i].circle[slot];
       fc.circles.push_back({c.x, c.y, c.r});
     }
     broadcast(fc);
@@ -695,61 +751,66 @@ bool PackingAgent::check() {
   }
   if (!polygon_) {
     // LPD lists a boundary vertex's neighbours from w1, just after the outer wedge (lpd_first_dart).
-    const std::size_t start = know_.boundary ? (know_.outer_gap + 1) % deg_ : 0;
-    for (std::size_t j = 0; j < deg_; ++j) check_circles_[j] = placed_in_[(start + j) % deg_][slot].at.circle;
-    local_ = core::check_lpd_at(placed_.circle, check_circles_, know_.boundary);
+    const std::size_t start = boundary_ ? (outer_gap_ + 1) % deg_ : 0;
+    constexpr std::size_t on_stack = 32;  // no allocation for the usual degrees
+    std::array<core::Circle, on_stack> stack;
+    std::vector<core::Circle> heap(deg_ > on_stack ? deg_ : 0);
+    const std::span<core::Circle> circles = deg_ > on_stack ? std::span<core::Circle>(heap) : std::span<core::Circle>(stack.data(), deg_);
+    for (std::size_t j = 0; j < deg_; ++j) circles[j] = peers_[(start + j) % deg_].circle[slot];
+    local_ = core::check_lpd_at(placed_.circle, circles, boundary_);
     return true;
   }
   // GLPD (core::check_all's choice when some inner face is not a triangle), from the circles of the
   // G-neighbours and, per polygon face, the face vertex's FaceCirclesMsg of this round.
-  const std::size_t gdeg = know_.g_k.size();
+  const std::size_t gdeg = g_degree();
+  auto g_face = [&](std::size_t i) -> const std::vector<NodeId>* { return poly_ ? poly_->g_face[i] : nullptr; };
   for (std::size_t i = 0; i < gdeg; ++i)
-    if (know_.g_face[i] != nullptr) {
-      const FaceSlot& s = face_in_[know_.g_k[i] + 1][slot];
+    if (g_face(i) != nullptr) {
+      const FaceSlot& s = poly_->face_in[k_of_g(i) + 1][slot];
       if (s.tag != round_) return false;
-      if (s.circles.size() != know_.g_face[i]->size()) {
-        ++host_.counters().unexpected;
+      if (s.circles.size() != g_face(i)->size()) {
+        ++counters().unexpected;
         return false;  // a malformed face message: never decide on it
       }
     }
   std::vector<core::Circle> nb(gdeg);
   std::vector<std::uint64_t> nid(gdeg);
   for (std::size_t i = 0; i < gdeg; ++i) {
-    nb[i] = placed_in_[know_.g_k[i]][slot].at.circle;
-    nid[i] = know_.neighbours[know_.g_k[i]];
+    nb[i] = peers_[k_of_g(i)].circle[slot];
+    nid[i] = peers_[k_of_g(i)].id;
   }
   std::vector<std::vector<core::Circle>> fc(gdeg);
   std::vector<std::vector<std::uint64_t>> fid(gdeg);
   std::vector<GlpdWedge> wedges(gdeg);
   for (std::size_t i = 0; i < gdeg; ++i) {
     const std::size_t j = i + 1 == gdeg ? 0 : i + 1;
-    if (know_.boundary && i == know_.g_outer_gap) {
+    if (boundary_ && i == g_outer_gap_) {
       wedges[i].outer = true;
       continue;
     }
-    if (const std::vector<NodeId>* walk = know_.g_face[i]) {
+    if (const std::vector<NodeId>* walk = g_face(i)) {
       // Rotate the host-ordered circles to start at this vertex: walk[p] is the host.
       const std::size_t m = walk->size();
       const std::size_t p = static_cast<std::size_t>(std::min_element(walk->begin(), walk->end()) - walk->begin());
-      const FaceSlot& s = face_in_[know_.g_k[i] + 1][slot];
+      const FaceSlot& s = poly_->face_in[k_of_g(i) + 1][slot];
       for (std::size_t k = 0; k < m; ++k) {
         fc[i].push_back(s.circles[(k + m - p) % m]);
         fid[i].push_back((*walk)[k]);
       }
     } else {
       fc[i] = {placed_.circle, nb[i], nb[j]};
-      fid[i] = {know_.id, nid[i], nid[j]};
+      fid[i] = {id_, nid[i], nid[j]};
     }
     wedges[i].circles = fc[i];
     wedges[i].ids = fid[i];
   }
-  local_ = check_glpd_local(placed_.circle, know_.id, nb, nid, know_.boundary, know_.g_outer_gap, wedges);
+  local_ = check_glpd_local(placed_.circle, id_, nb, nid, boundary_, g_outer_gap_, wedges);
   return true;
 }
 
 void PackingAgent::handle(std::size_t i, const ReportMsg& m) {
-  if (phase_ != PackingPhase::rounds || !child_[i] || m.round != round_) {
-    ++host_.counters().unexpected;
+  if (phase_ != PackingPhase::rounds || !peers_[i].child || m.round != round_) {
+    ++counters().unexpected;
     return;
   }
   ++reports_;
@@ -772,16 +833,16 @@ void PackingAgent::advance_convergecast() {
 
 void PackingAgent::handle(std::size_t i, const DecisionMsg& m) {
   if (phase_ != PackingPhase::rounds || is_root_ || i != parent_index_ || m.round != round_ || !reported_) {
-    ++host_.counters().unexpected;
+    ++counters().unexpected;
     return;
   }
   apply_decision(m.verdict);
 }
 
 void PackingAgent::apply_decision(Verdict v) {
-  encode(DecisionMsg{round_, v}, buffer_);
+  encode(DecisionMsg{round_, v}, buffer());
   for (std::size_t i = 0; i < deg_; ++i)
-    if (child_[i]) send_encoded(i);
+    if (peers_[i].child) send_encoded(i);
   if (v == Verdict::next) {
     ++round_;
     begin_round();

@@ -1,9 +1,16 @@
 #pragma once
 // One protocol vertex of K (a node's own vertex or a face vertex it hosts): the state machine of
-// docs/protocol.md, addressing its K-neighbours by index through an AgentHost. It handles
+// docs/protocol.md, addressing its K-neighbours by index through its PackingNode. It handles
 // PackingMessage only (relays, frames and failure notices are PackingNode's). Private to the library.
+//
+// Memory layout (docs/protocol.md, "Node state"): what every mode needs lives in the agent and in
+// one array of Peer records (one per K-neighbour) plus one array of radii; what only some runs need
+// is allocated only for them, each behind its own pointer: Polygon (a node on or hosting a polygon
+// face: the G-structure, the face circles, the cosines), core::LocalAccelerator (a local
+// acceleration). A further mode adds its own per-node struct the same way.
 
 #include <array>
+#include <complex>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -14,6 +21,7 @@
 namespace laguerre::protocols::detail {
 
 // What a protocol vertex knows statically: its star in K and, for an original vertex, its G-faces.
+// The constructor's input; the agent keeps it in its own compact form.
 struct AgentSpec {
   NodeId id = 0;
   std::vector<NodeId> neighbours;            // K-neighbours, counter-clockwise from core's first dart
@@ -29,22 +37,9 @@ struct AgentSpec {
   std::uint32_t g_outer_gap = LocalKnowledge::no_gap;
 };
 
-// How an agent reaches its K-neighbours and its node's counters.
-class AgentHost {
-public:
-  explicit AgentHost(PackingNode& node) : node_(node) {}
-  void send(std::size_t agent, std::size_t k_index, std::span<const std::byte> bytes) {
-    node_.agent_send(agent, k_index, bytes);
-  }
-  PackingCounters& counters() { return node_.counters_; }
-
-private:
-  PackingNode& node_;
-};
-
 class PackingAgent {
 public:
-  PackingAgent(AgentHost& host, std::size_t index, AgentSpec spec, PackingParams params);
+  PackingAgent(PackingNode& node, std::size_t index, AgentSpec spec);
   ~PackingAgent();
 
   void start();
@@ -56,36 +51,69 @@ public:
   bool polygon() const { return polygon_; }
   VertexState state() const;
   const core::PlacedCircle& placement() const { return placed_; }
-  const AgentSpec& spec() const { return know_; }
+  NodeId id() const { return id_; }
+  std::size_t degree() const { return deg_; }
+  NodeId neighbour(std::size_t i) const { return peers_[i].id; }
+  bool face_neighbour(std::size_t i) const { return peers_[i].face != 0; }
+  // The K index of neighbour `id`, or degree() if it is none.
+  std::size_t index_of(NodeId id) const;
+  // Number of G-neighbours (original vertices) and the K index of G-neighbour g.
+  std::size_t g_degree() const { return poly_ ? poly_->g_k.size() : deg_; }
+  std::uint32_t k_of_g(std::size_t g) const { return poly_ ? poly_->g_k[g] : static_cast<std::uint32_t>(g); }
+  // Whether it is or touches a face vertex (else its K-neighbours are its G-neighbours, in order).
+  bool touches_faces() const { return polygon_here_; }
   // Circle of K-neighbour i in the current round's layout (as heard).
-  const core::Circle& neighbour_circle(std::size_t i) const { return placed_in_[i][round_ & 1].at.circle; }
+  const core::Circle& neighbour_circle(std::size_t i) const { return peers_[i].circle[round_ & 1]; }
 
 private:
   static constexpr std::uint32_t unknown = 0xffffffffu;
 
-  struct Slot {
-    std::uint32_t tag = unknown;
-    double h = 0;
+  // Per K-neighbour state, one record each (set-up pulses, tree, the latest radius and circle tags).
+  struct Peer {
+    NodeId id = 0;
+    std::uint32_t depth = unknown;    // its final depth
+    std::uint32_t depth_seen = 0;     // depth pulses it has passed
+    std::uint32_t wave = unknown;     // its final wave
+    std::uint32_t wave_seen = 0;      // wave pulses it has passed
+    std::uint32_t radius_tag[2] = {unknown, unknown};  // step of the radius in radius_[parity][i]
+    std::uint32_t placed_tag[2] = {unknown, unknown};  // round of circle[parity]
+    core::Circle circle[2];           // its circle in the layout of a round, by parity
+    std::uint32_t latest_step = 0;    // asynchronous mode: version of its newest radius
+    std::uint8_t face = 0;            // 1 if it is a face vertex
+    std::uint8_t child = 0;           // 1 if it is a child in the layout tree
+    std::uint8_t shape_up = 0;        // its shape report: 0 none, 1 false, 2 true
   };
-  struct PlacedSlot {
+  // What placing needs of an anchor (the first neighbour's parent, or anchor a / b) in a round.
+  struct AnchorSlot {
     std::uint32_t tag = unknown;
     double h = 0;
-    core::PlacedCircle at;
+    std::complex<double> centre;
   };
   struct FaceSlot {
     std::uint32_t tag = unknown;
     std::vector<core::Circle> circles;  // host walk order
   };
+  // Only for a vertex that is or touches a face vertex (3-connected graphs with polygon faces).
+  struct Polygon {
+    std::vector<std::uint32_t> g_k;                  // AgentSpec::g_k
+    std::vector<const std::vector<NodeId>*> g_face;  // AgentSpec::g_face
+    std::vector<double> spoke, rim;                  // the star's intersection cosines
+    std::vector<std::array<FaceSlot, 2>> face_in;    // per K-neighbour (used for face-vertex neighbours)
+  };
 
   void send(std::size_t i, const PackingMessage& m);
   void send_encoded(std::size_t i);
   void broadcast(const PackingMessage& m);
-  bool interior_nbr(std::size_t i) const { return nbr_depth_[i] != 0; }
-  double cos_spoke(std::size_t i) const { return know_.is_face || know_.face_nbr[i] ? 0.0 : 1.0; }
+  void send_to_all_encoded();  // the encoded message to every K-neighbour
+  std::vector<std::byte>& buffer();
+  PackingCounters& counters();
+  bool interior_nbr(std::size_t i) const { return peers_[i].depth != 0; }
+  double cos_spoke(std::size_t i) const { return is_face_ || peers_[i].face ? 0.0 : 1.0; }
   double cos_rim(std::size_t i) const {
     const std::size_t j = i + 1 == deg_ ? 0 : i + 1;
-    return know_.face_nbr[i] || know_.face_nbr[j] ? 0.0 : 1.0;
+    return peers_[i].face || peers_[j].face ? 0.0 : 1.0;
   }
+  core::StarView star(const double* h) const;
 
   void handle(std::size_t i, const DepthMsg& m);
   void handle(std::size_t i, const ElectionMsg& m);
@@ -101,10 +129,9 @@ private:
   void handle(std::size_t i, const KrylovSumMsg& m);
   void handle(std::size_t i, const KrylovDecisionMsg& m);
 
-  // Neighbour i's status at a pulse (depth or wave): `final` fixes its value to `pulse`, otherwise it
-  // has passed `pulse`; false for a second final pulse.
-  static bool record_pulse(std::vector<std::uint32_t>& value, std::vector<std::uint32_t>& seen, std::size_t& known,
-                           std::size_t i, std::uint32_t pulse, bool final);
+  // Neighbour status at a pulse (depth or wave): `final` fixes `value` to `pulse`, otherwise the
+  // neighbour has passed `pulse` (`seen`); false for a second final pulse.
+  static bool record_pulse(std::uint32_t& value, std::uint32_t& seen, std::size_t& known, std::uint32_t pulse, bool final);
   void advance_depth();
   void maybe_candidate();
   void start_own_wave();
@@ -131,49 +158,55 @@ private:
   void apply_decision(Verdict v);
   bool better(std::uint32_t d1, NodeId id1, std::uint32_t d2, NodeId id2) const;
 
-  AgentHost& host_;
-  std::size_t index_;
-  AgentSpec know_;
-  PackingParams params_;
-  std::size_t deg_ = 0;
-  std::vector<std::byte> buffer_;
+  PackingNode& node_;
+  const PackingParams& params_;  // the node's
+  NodeId id_ = 0;
+  std::uint32_t index_ = 0;      // in the node's agents
+  std::uint32_t deg_ = 0;
+  std::uint32_t outer_gap_ = LocalKnowledge::no_gap;
+  std::uint32_t g_outer_gap_ = LocalKnowledge::no_gap;
+  bool boundary_ = false;
+  bool is_face_ = false;
+  bool polygon_here_ = false;
   PackingPhase phase_ = PackingPhase::idle;
   PackingOutcome outcome_ = PackingOutcome::running;
+  std::unique_ptr<Peer[]> peers_;
+  // Radii heard, by step parity: radius_[p·deg + i] of neighbour i (∞ for boundary neighbours, which
+  // never send one), so that a step reads its star in place. Asynchronous mode: the first deg entries
+  // hold the newest radius of each neighbour.
+  std::unique_ptr<double[]> radius_;
+  std::unique_ptr<Polygon> poly_;
+  std::unique_ptr<core::LocalAccelerator> accelerator_;  // a local acceleration only
 
   // Depth phase.
   std::uint32_t depth_ = unknown;
   std::uint32_t depth_pulse_ = 0;
-  std::vector<std::uint32_t> nbr_depth_;
-  std::vector<std::uint32_t> nbr_depth_seen_;
   std::size_t nbr_depths_known_ = 0;
 
   // Election.
   bool candidate_checked_ = false;
   bool in_wave_ = false;
+  bool echoed_ = false;  // the current wave's echo (or win) is done
   std::uint32_t best_depth_ = 0;
   NodeId best_id_ = 0;
   std::size_t echo_parent_ = 0;
   std::size_t echo_count_ = 0;
-  bool echoed_ = false;  // the current wave's echo (or win) is done
 
   // Wave set-up.
   bool wave_started_ = false;
   bool is_root_ = false;
   bool is_first_ = false;
+  bool setup_done_ = false;
   NodeId root_id_ = 0;
   std::uint32_t wave_ = unknown;
   std::uint32_t wave_pulse_ = 0;
   NodeId parent_ = 0;
   std::size_t parent_index_ = 0;
   std::size_t anchor_a_ = 0, anchor_b_ = 0;
-  std::vector<std::uint32_t> nbr_wave_;
-  std::vector<std::uint32_t> nbr_wave_seen_;
-  std::vector<std::uint8_t> child_;
   std::size_t nbr_waves_known_ = 0;
-  bool setup_done_ = false;
+  std::uint32_t interior_nbrs_ = 0;  // known at the end of the set-up
 
   // Shape.
-  std::vector<std::uint8_t> shape_up_;  // per neighbour: 0 none, 1 false, 2 true
   bool shape_sent_ = false;
   bool shape_known_ = false;
   bool polygon_ = false;
@@ -183,27 +216,20 @@ private:
   std::uint32_t step_ = 0;
   std::uint32_t round_end_step_ = 0;
   std::uint32_t round_start_step_ = 0;
-  // Asynchronous mode: newest known radius h of each neighbour and its version (update count), and the
-  // number of radius messages received per round (by parity).
-  std::vector<double> latest_h_;
-  std::vector<std::uint32_t> latest_step_;
+  // Asynchronous mode: the number of radius messages received per round (by parity).
   std::array<std::uint32_t, 2> arrivals_{};
   bool sent_step_ = false;
-  double h_ = 0;
-  core::LocalAccelerator accelerator_;  // plain: returns the update unchanged
   std::unique_ptr<KrylovState> krylov_;  // Newton–Krylov mode only
-  std::vector<std::array<Slot, 2>> radius_;
-  std::vector<double> star_h_, spoke_, rim_;
-  std::vector<std::array<PlacedSlot, 2>> placed_in_;
-  std::vector<std::array<FaceSlot, 2>> face_in_;  // per K-neighbour (used for face-vertex neighbours)
   bool placed_this_round_ = false;
   bool checked_this_round_ = false;
   bool reported_ = false;
+  bool reports_ok_ = true;
+  double h_ = 0;
+  // The anchors' records by parity: [0] anchor a (or the first neighbour's parent), [1] anchor b.
+  AnchorSlot anchors_[2][2];
   core::PlacedCircle placed_;
   core::LocalCondition local_ = core::LocalCondition::unrepresentable;
   std::size_t reports_ = 0;
-  bool reports_ok_ = true;
-  std::vector<core::Circle> check_circles_;
 };
 
 }  // namespace laguerre::protocols::detail

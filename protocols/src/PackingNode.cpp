@@ -79,7 +79,9 @@ private:
 PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingParams params)
     : rt_(&runtime), params_(params), know_(std::move(knowledge)), deg_(know_.neighbours.size()) {
   const std::string who = "Node " + std::to_string(know_.id);
+  // Checks the list (throws); kept for the lookup only at high degrees, where a scan would be slow.
   sorted_ids_ = detail::sorted_neighbours(know_.id, know_.neighbours);
+  if (deg_ < sorted_from) sorted_ids_ = {};
   if (know_.boundary && know_.outer_gap >= deg_)
     throw core::InternalError(who + " is on the boundary but its outer-face wedge is not one of its wedges.");
   if (!know_.boundary && know_.outer_gap != LocalKnowledge::no_gap)
@@ -130,8 +132,7 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
   for (std::size_t i = 0, k = 0; i < deg_; ++i)
     if (!know_.faces.empty() && !know_.faces[i].empty()) own.g_face[i] = &wedges_[k++].walk;
 
-  host_ = std::make_unique<detail::AgentHost>(*this);
-  agents_.push_back(std::make_unique<detail::PackingAgent>(*host_, 0, std::move(own), params));
+  own_ = std::make_unique<detail::PackingAgent>(*this, 0, std::move(own));
   // Hosted face vertices: neighbours = the face's walk from the host (docs/protocol.md, "Face vertices").
   for (Wedge& w : wedges_) {
     if (w.host != know_.id) continue;
@@ -141,9 +142,10 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
     fs.polygon_here = true;
     fs.neighbours = w.walk;
     fs.face_nbr.assign(w.walk.size(), 0);
-    w.agent = agents_.size();
-    agents_.push_back(std::make_unique<detail::PackingAgent>(*host_, w.agent, std::move(fs), params));
+    w.agent = faces_.size() + 1;
+    faces_.push_back(std::make_unique<detail::PackingAgent>(*this, w.agent, std::move(fs)));
   }
+  know_.faces = {};  // copied into wedges_
   if (params.retransmit_after > 0)
     link_ = std::make_unique<ReliableNode>(runtime, know_.neighbours, params, [this](Runtime& rt) {
       rt_ = &rt;
@@ -153,7 +155,12 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
 
 PackingNode::~PackingNode() = default;
 
-std::size_t PackingNode::index_of(NodeId id) const { return detail::neighbour_index(sorted_ids_, id); }
+std::size_t PackingNode::index_of(NodeId id) const {
+  if (!sorted_ids_.empty()) return detail::neighbour_index(sorted_ids_, id);
+  std::size_t i = 0;
+  while (i < deg_ && know_.neighbours[i] != id) ++i;
+  return i;
+}
 
 const PackingNode::Wedge* PackingNode::wedge_of_face(NodeId face_id) const {
   for (const Wedge& w : wedges_)
@@ -162,23 +169,22 @@ const PackingNode::Wedge* PackingNode::wedge_of_face(NodeId face_id) const {
 }
 
 void PackingNode::agent_send(std::size_t agent, std::size_t k_index, std::span<const std::byte> bytes) {
-  const detail::AgentSpec& s = agents_[agent]->spec();
-  const NodeId to = s.neighbours[k_index];
-  if (agent == 0 && !s.face_nbr[k_index]) {  // an edge of G: a plain message
-    transmit(index_of(to), bytes);
+  const detail::PackingAgent& s = this->agent(agent);
+  const NodeId to = s.neighbour(k_index);
+  if (agent == 0 && !s.face_neighbour(k_index)) {  // an edge of G: a plain message
+    transmit(s.touches_faces() ? index_of(to) : k_index, bytes);  // K = G without face vertices
     return;
   }
-  const NodeId face = agent == 0 ? to : s.id;
+  const NodeId face = agent == 0 ? to : s.id();
   const Wedge& w = *wedge_of_face(face);
   const NodeId target_node = agent == 0 ? w.host : to;
   if (target_node == know_.id) {  // between this node's own vertex and a face vertex it hosts
     const std::size_t target_agent = agent == 0 ? w.agent : 0;
-    const auto& tn = agents_[target_agent]->spec().neighbours;
-    const auto from = static_cast<std::size_t>(std::find(tn.begin(), tn.end(), s.id) - tn.begin());
+    const std::size_t from = this->agent(target_agent).index_of(s.id());
     local_.push_back({target_agent, from, {bytes.begin(), bytes.end()}});
     return;
   }
-  send_relay(w, s.id, to, bytes);
+  send_relay(w, s.id(), to, bytes);
 }
 
 void PackingNode::send_relay(const Wedge& w, NodeId source, NodeId target, std::span<const std::byte> payload) {
@@ -212,9 +218,8 @@ void PackingNode::handle_relay(std::size_t from, RelayMsg& m) {
     return;
   }
   const std::size_t agent = m.target == m.face ? w->agent : 0;
-  const auto& nb = agents_[agent]->spec().neighbours;
-  const auto i = static_cast<std::size_t>(std::find(nb.begin(), nb.end(), m.source) - nb.begin());
-  if (i == nb.size()) {
+  const std::size_t i = this->agent(agent).index_of(m.source);
+  if (i == this->agent(agent).degree()) {
     ++counters_.unexpected;
     return;
   }
@@ -227,13 +232,13 @@ void PackingNode::deliver_payload(std::size_t agent, std::size_t from_index, std
     ++counters_.bad_payload;
     return;
   }
-  agents_[agent]->receive(from_index, m);
+  this->agent(agent).receive(from_index, m);
 }
 
 void PackingNode::handle_hop(std::size_t from, PackingHop& m) {
   // A plain message comes from G-neighbour `from`, which is K-neighbour g_k[from] of the own vertex.
   if (auto* r = std::get_if<RelayMsg>(&m)) handle_relay(from, *r);
-  else agents_[0]->receive(agents_[0]->spec().g_k[from], std::get<PackingMessage>(m));
+  else own_->receive(own_->k_of_g(from), std::get<PackingMessage>(m));
 }
 
 void PackingNode::drain() {
@@ -244,7 +249,7 @@ void PackingNode::drain() {
     Local l = std::move(local_[next]);  // receive() may append to local_
     PackingMessage m;
     if (decode(l.bytes, m) != DecodeStatus::ok) continue;  // our own encoding: cannot happen
-    agents_[l.agent]->receive(l.from_index, m);
+    agent(l.agent).receive(l.from_index, m);
   }
   local_.clear();
   if (finished_at_ < 0 && is_final()) finished_at_ = rt_->now();
@@ -256,7 +261,8 @@ void PackingNode::on_start() {
 }
 
 void PackingNode::start() {
-  for (auto& a : agents_) a->start();
+  own_->start();
+  for (auto& a : faces_) a->start();
   drain();
 }
 
@@ -294,6 +300,12 @@ void PackingNode::transmit(std::size_t i, std::span<const std::byte> bytes) {
   counters_.bytes_sent += bytes.size();
 }
 
+void PackingNode::broadcast_all(std::span<const std::byte> bytes) {
+  rt_->broadcast(bytes);
+  counters_.sent += deg_;
+  counters_.bytes_sent += deg_ * bytes.size();
+}
+
 void PackingNode::on_failure(NodeId suspect) {
   // The layer declared a failure: the run is abandoned, local deliveries are dropped.
   failed_ = true;
@@ -302,7 +314,7 @@ void PackingNode::on_failure(NodeId suspect) {
   if (finished_at_ < 0) finished_at_ = rt_->now();
 }
 
-bool PackingNode::is_final() const { return failed_ || agents_[0]->phase() == PackingPhase::finished; }
+bool PackingNode::is_final() const { return failed_ || own_->phase() == PackingPhase::finished; }
 
 PackingCounters PackingNode::counters() const {
   if (!link_) return counters_;
@@ -317,28 +329,32 @@ PackingCounters PackingNode::counters() const {
 }
 
 Duration PackingNode::rto(std::size_t i) const { return link_ && i < deg_ ? link_->rto(i) : 0; }
-PackingPhase PackingNode::phase() const { return agents_[0]->phase(); }
+PackingPhase PackingNode::phase() const { return own_->phase(); }
 PackingOutcome PackingNode::outcome() const {
-  return failed_ ? PackingOutcome::neighbour_failed : agents_[0]->outcome();
+  return failed_ ? PackingOutcome::neighbour_failed : own_->outcome();
 }
-std::uint32_t PackingNode::depth() const { return agents_[0]->state().depth; }
-bool PackingNode::is_root() const { return agents_[0]->state().is_root; }
-std::uint32_t PackingNode::wave() const { return agents_[0]->state().wave; }
-NodeId PackingNode::parent() const { return agents_[0]->state().parent; }
-std::size_t PackingNode::children() const { return agents_[0]->children(); }
-std::uint32_t PackingNode::steps() const { return agents_[0]->state().steps; }
-std::uint32_t PackingNode::round() const { return agents_[0]->state().round; }
-double PackingNode::h() const { return agents_[0]->state().h; }
-const core::PlacedCircle& PackingNode::placement() const { return agents_[0]->placement(); }
-core::LocalCondition PackingNode::local_condition() const { return agents_[0]->state().local; }
-bool PackingNode::polygon_faces() const { return agents_[0]->polygon(); }
-VertexState PackingNode::state() const { return agents_[0]->state(); }
+std::uint32_t PackingNode::depth() const { return own_->state().depth; }
+bool PackingNode::is_root() const { return own_->state().is_root; }
+std::uint32_t PackingNode::wave() const { return own_->state().wave; }
+NodeId PackingNode::parent() const { return own_->state().parent; }
+std::size_t PackingNode::children() const { return own_->children(); }
+std::uint32_t PackingNode::steps() const { return own_->state().steps; }
+std::uint32_t PackingNode::round() const { return own_->state().round; }
+double PackingNode::h() const { return own_->state().h; }
+const core::PlacedCircle& PackingNode::placement() const { return own_->placement(); }
+core::LocalCondition PackingNode::local_condition() const { return own_->state().local; }
+bool PackingNode::polygon_faces() const { return own_->polygon(); }
+VertexState PackingNode::state() const { return own_->state(); }
 std::vector<core::Circle> PackingNode::neighbour_circles() const {
   std::vector<core::Circle> out;
-  for (std::uint32_t k : agents_[0]->spec().g_k) out.push_back(agents_[0]->neighbour_circle(k));
+  for (std::size_t g = 0; g < own_->g_degree(); ++g) out.push_back(own_->neighbour_circle(own_->k_of_g(g)));
   return out;
 }
-VertexState PackingNode::hosted_face_state(std::size_t k) const { return agents_.at(k + 1)->state(); }
-const std::vector<NodeId>& PackingNode::hosted_face_walk(std::size_t k) const { return agents_.at(k + 1)->spec().neighbours; }
+VertexState PackingNode::hosted_face_state(std::size_t k) const { return faces_.at(k)->state(); }
+const std::vector<NodeId>& PackingNode::hosted_face_walk(std::size_t k) const {
+  for (const Wedge& w : wedges_)
+    if (w.agent == k + 1) return w.walk;
+  throw std::out_of_range("PackingNode::hosted_face_walk: no hosted face " + std::to_string(k) + ".");
+}
 
 }  // namespace laguerre::protocols

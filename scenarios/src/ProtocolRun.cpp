@@ -2,6 +2,7 @@
 #include "laguerre/scenarios/ProtocolRun.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 
 #include "laguerre/core/Error.hpp"
@@ -143,6 +144,40 @@ void collect_traffic(const sim::TrafficMetrics& traffic, ProtocolOutcome& out) {
   for (std::size_t p = 0; p < traffic.phase_count(); ++p) out.by_phase.push_back(traffic.phase_total(static_cast<sim::Phase>(p)));
 }
 
+namespace {
+// Observes `host` between events and reports its progress to `report` every `period` seconds: the
+// clock is read every 2^16 events (a few microseconds per ~50 ms of simulation), the nodes scanned
+// only when a report is due.
+void watch_progress(sim::SimHost& host, const std::function<void(const ProtocolProgress&)>& report, double period) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  const auto every = std::chrono::duration<double>(period);
+  host.simulator().set_observer(std::uint64_t{1} << 16, [&host, report, start, every, last = start]() mutable {
+    const auto now = clock::now();
+    if (now - last < every) return;
+    last = now;
+    const sim::Simulator& sim = host.simulator();
+    ProtocolProgress p;
+    p.nodes = sim.network().node_count();
+    p.phase = protocols::PackingPhase::finished;
+    p.rounds = p.iterations = std::numeric_limits<std::uint32_t>::max();
+    for (sim::NodeIndex v = 0; v < p.nodes; ++v) {
+      const auto& node = static_cast<const protocols::PackingNode&>(host.node(v));
+      p.phase = std::min(p.phase, node.phase());
+      p.rounds = std::min(p.rounds, node.round());
+      p.iterations = std::min(p.iterations, node.steps());
+      p.holds_nodes += node.local_condition() == core::LocalCondition::holds;
+      p.final_nodes += node.is_final();
+    }
+    if (p.nodes == 0) p.rounds = p.iterations = 0;
+    p.events = sim.kernel().events_processed();
+    p.wall_seconds = std::chrono::duration<double>(now - start).count();
+    p.simulated_time = sim.now();
+    report(p);
+  });
+}
+}  // namespace
+
 ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
                                      const ProtocolSetup& setup) {
   const std::size_t n = g.num_vertices();
@@ -179,19 +214,25 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
         return std::make_unique<protocols::PackingNode>(rt, protocols::local_knowledge(g, v), params);
       },
       traffic_phase);
+  if (setup.on_progress && setup.runner == nullptr) watch_progress(host, setup.on_progress, setup.progress_period);
   // The nodes' results, read where each node lives (every node here, or its MPI rank's).
   sim::InPlaceRunner in_place;
   sim::HostRunner& runner = setup.runner != nullptr ? *setup.runner : in_place;
   const sim::RunReport report = runner.run(host, {});
-  const std::vector<std::vector<std::byte>> described = runner.gather([&](sim::NodeIndex v) {
-    std::vector<std::byte> bytes;
-    sim::append_bytes(bytes, summarize(static_cast<const protocols::PackingNode&>(host.node(v))));
-    return bytes;
-  });
   std::vector<PackingNodeSummary> nodes(n);
-  for (core::Vertex v = 0; v < n; ++v) {
-    std::size_t at = 0;
-    nodes[v] = sim::read_bytes<PackingNodeSummary>(described[v], at);
+  const auto summary_of = [&](sim::NodeIndex v) { return summarize(static_cast<const protocols::PackingNode&>(host.node(v))); };
+  if (setup.runner == nullptr) {  // every node is here: no byte copies of the summaries
+    for (core::Vertex v = 0; v < n; ++v) nodes[v] = summary_of(v);
+  } else {
+    const std::vector<std::vector<std::byte>> described = runner.gather([&](sim::NodeIndex v) {
+      std::vector<std::byte> bytes;
+      sim::append_bytes(bytes, summary_of(v));
+      return bytes;
+    });
+    for (core::Vertex v = 0; v < n; ++v) {
+      std::size_t at = 0;
+      nodes[v] = sim::read_bytes<PackingNodeSummary>(described[v], at);
+    }
   }
   collect_packing_summaries(g, nodes, down, out);
   collect_traffic(runner.traffic(), out);
@@ -202,6 +243,7 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
   out.peak_memory_bytes = report.peak_memory_bytes;
   return out;
 }
+
 
 std::string verify_against_core(const core::PlanarGraph& g, core::GraphKind kind, const ProtocolSetup& setup,
                                 const ProtocolOutcome& outcome) {

@@ -80,7 +80,7 @@ core::CircleEmbedding point_circles(const std::vector<core::Point2>& positions) 
 }  // namespace
 
 RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifacts* artifacts,
-                      sim::HostRunner* host_runner) {
+                      sim::HostRunner* host_runner, const std::function<void(const ProtocolProgress&)>& on_progress) {
   const auto start = std::chrono::steady_clock::now();
   const ScenarioConfig& cfg = scenario.points.at(plan.point).config;
   RunRecord r;
@@ -125,6 +125,7 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
     setup.retransmit_after = cfg.network.retransmit_after;
     setup.seed = plan.seed;
     setup.runner = host_runner;
+    setup.on_progress = on_progress;
     ProtocolOutcome po;
     if (cfg.protocol.central) {
       // The same Jacobi iteration, centrally (core::pack), possibly accelerated; no messages.
@@ -356,7 +357,13 @@ ScenarioResults run_scenario(const Scenario& scenario, const RunnerOptions& opti
       const std::size_t i = mine[k];
       const bool keep = options.keep_artifacts && options.keep_artifacts(plans[i]);
       RunArtifacts art;
-      RunRecord rec = execute_run(scenario, plans[i], keep ? &art : nullptr, options.host_runner);
+      std::function<void(const ProtocolProgress&)> progress;
+      if (options.on_protocol_progress)
+        progress = [&, i](const ProtocolProgress& p) {
+          std::lock_guard<std::mutex> guard(lock);
+          options.on_protocol_progress(plans[i], p);
+        };
+      RunRecord rec = execute_run(scenario, plans[i], keep ? &art : nullptr, options.host_runner, progress);
       const bool has = keep && (rec.status == RunStatus::ok || rec.status == RunStatus::not_converged);
       std::lock_guard<std::mutex> guard(lock);
       out.records[i] = std::move(rec);

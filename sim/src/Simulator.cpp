@@ -92,7 +92,18 @@ RunReport Simulator::run(const RunLimits& limits) {
   const std::uint64_t before = kernel_.events_processed();
   const auto start = std::chrono::steady_clock::now();
   RunReport report;
-  report.reason = kernel_.run(limits);
+  if (!observer_) {
+    report.reason = kernel_.run(limits);
+  } else {
+    // The same run in slices of observe_every_ events, the observer called between them.
+    for (std::uint64_t left = limits.max_events;;) {
+      const std::uint64_t at = kernel_.events_processed();
+      report.reason = kernel_.run({limits.until, std::min(left, observe_every_)});
+      left -= kernel_.events_processed() - at;
+      if (report.reason != StopReason::event_limit || left == 0) break;
+      observer_();
+    }
+  }
   report.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   report.simulated_time = kernel_.now();
   report.events_processed = kernel_.events_processed() - before;
@@ -101,6 +112,12 @@ RunReport Simulator::run(const RunLimits& limits) {
                                  : 0;
   report.peak_memory_bytes = peak_memory_bytes();
   return report;
+}
+
+void Simulator::set_observer(std::uint64_t every, std::function<void()> observer) {
+  LAGUERRE_PRECONDITION(every >= 1 || !observer, "Simulator::set_observer needs a period of at least one event.");
+  observe_every_ = every;
+  observer_ = std::move(observer);
 }
 
 std::span<const std::byte> Simulator::bytes_of(std::uint32_t message) {

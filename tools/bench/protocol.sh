@@ -1,63 +1,102 @@
 #!/usr/bin/env bash
-# The distributed packing protocol in the simulator on random Delaunay triangulations: wall time,
-# events/s, messages and bytes per node, peak memory (total and per node), iterations to LPD.
-#   tools/bench/protocol.sh [--cap ITERATIONS] [--cap-from NODES] [SIZES…]
-# Defaults: sizes 1000 10000 100000; N = n/1000 Thurston steps per round (at least 1).
-# Convergence to LPD at 10^5 nodes takes tens of thousands of sweeps, so sizes ≥ --cap-from (default
-# 100000) run a fixed budget of --cap Thurston steps (default 100: one round of N = 100 steps, with its
-# layout wave and convergecast; `laguerre simulate --max-iterations`) and their row says "capped@K":
-# the per-node figures are then those of K steps, not of a converged run, and the bit-for-bit check
-# against core::pack is skipped. An uncapped row that does not converge says "NOT converged".
-# cpu_s is the CPU time of the whole `laguerre simulate` process (set-up and forwarding included): on a
-# shared machine wall_s − cpu_s is time the cores spent on other processes, and the load averages
-# (uptime) are printed before and after the table.
+# The distributed packing protocol at scale, every message simulated and no iteration cap: per graph
+# family, size and mode one `laguerre simulate` run to LPD/GLPD, printing mode, N, rounds, iterations,
+# messages and bytes per node, simulated time, wall and CPU time, events/s, peak memory per node
+# (the process's peak RSS at the end of the protocol, graph included, / nodes) and whether the result
+# equals core::pack bit for bit; then, per family and mode, the growth law of messages per node fitted
+# on the converged rows (least squares on log msgs/node = a + b·log n: msgs/node ∝ n^b).
+#   tools/bench/protocol.sh [--families "…"] [--modes "…"] [-N STEPS] [--timeout SECONDS]
+#                           [--verify-to NODES] [--seed S] [SIZES…]
+# Defaults: sizes 1000 10000; families uniform-triangulation uniform-three-connected delaunay
+# unit-disk-field (`laguerre generate`: unit-disk-field = LDel² of a unit-disk field, 3-connected core);
+# modes chebyshev (the best local acceleration; also plain, local-superstep); N = max(1, n/1000)
+# Thurston steps per round unless -N; timeout 900 s per run (a row that times out says so, with
+# the figures of nothing); rows up to --verify-to nodes (default 10000) are checked against core::pack.
+# cpu_s is the CPU time of the whole `laguerre simulate` process: on a shared machine wall_s − cpu_s
+# is time the cores spent on other processes; the load averages (uptime) are printed before and after.
 # LAGUERRE_EXE=path uses that program instead of building the release preset with tools/bootstrap.sh.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
-cap=100 cap_from=100000 sizes=()
+families="uniform-triangulation uniform-three-connected delaunay unit-disk-field" modes="chebyshev"
+steps="" timeout_s=900 verify_to=10000 seed=42 sizes=()
 while [ $# -gt 0 ]; do
   case "$1" in
-    --cap) cap=$2; shift 2 ;;
-    --cap-from) cap_from=$2; shift 2 ;;
-    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    --families) families=$2; shift 2 ;;
+    --modes) modes=$2; shift 2 ;;
+    -N) steps=$2; shift 2 ;;
+    --timeout) timeout_s=$2; shift 2 ;;
+    --verify-to) verify_to=$2; shift 2 ;;
+    --seed) seed=$2; shift 2 ;;
+    -h|--help) sed -n '2,18p' "$0"; exit 0 ;;
     *) sizes+=("$1"); shift ;;
   esac
 done
-[ ${#sizes[@]} -eq 0 ] && sizes=(1000 10000 100000)
+[ ${#sizes[@]} -eq 0 ] && sizes=(1000 10000)
 
 . tools/bench/common.sh
 echo "load before: $(uptime)"
-printf '%8s %4s %10s %6s %13s %9s %8s %10s %10s %11s %10s %13s %12s\n' nodes N iterations rounds status wall_s cpu_s \
-  events/s msgs/node bytes/node peak_MiB peak_KiB/node verify
-for n in "${sizes[@]}"; do
-  steps=$(( n / 1000 )); [ "$steps" -lt 1 ] && steps=1
-  "$laguerre" generate delaunay -n "$n" --seed 42 -o "$dir/g$n.txt" 2>/dev/null
-  if [ "$n" -ge "$cap_from" ]; then
-    args=(--max-iterations "$cap" --pairs 10) label="capped@$cap"
-  else
-    args=(--pairs 1000 --verify) label=""
-  fi
-  rc=0
-  start_cpu=$(awk '{print $14 + $15 + $16 + $17}' /proc/$$/stat)
-  "$laguerre" simulate "$dir/g$n.txt" -N "$steps" "${args[@]}" --json > "$dir/r$n.json" || rc=$?
-  # Children's user + system time (cutime + cstime, fields 16 and 17 of /proc/PID/stat, in clock ticks).
-  cpu=$(awk -v t0="$start_cpu" -v hz="$(getconf CLK_TCK)" '{printf "%.2f", ($14 + $15 + $16 + $17 - t0) / hz}' /proc/$$/stat)
-  # Exit status 3: not converged (expected when capped); anything else is a real failure.
-  if [ "$rc" -ne 0 ] && [ "$rc" -ne 3 ]; then
-    echo "protocol.sh: laguerre simulate failed on $n nodes (exit status $rc)" >&2
-    exit "$rc"
-  fi
-  [ -z "$label" ] && label=$([ "$rc" -eq 0 ] && echo converged || echo "NOT converged")
-  python3 - "$dir/r$n.json" "$n" "$steps" "$label" "$cpu" <<'PY'
+: >"$dir/rows"
+printf '%-24s %7s %-15s %4s %6s %6s %10s %11s %9s %9s %8s %9s %8s %-13s %s\n' family nodes mode N rounds iters \
+  msgs/node bytes/node sim_s wall_s cpu_s events/s KiB/node status '=core'
+for family in $families; do
+  for n in "${sizes[@]}"; do
+    g="$dir/$family-$n.txt"
+    format=coords; case "$family" in uniform-*) format=edges ;; esac
+    "$laguerre" generate "$family" -n "$n" --seed "$seed" --format "$format" -o "$g" 2>/dev/null
+    for mode in $modes; do
+      N=${steps:-$(( n / 1000 ))}; [ "$N" -lt 1 ] && N=1
+      verify=(); [ "$n" -le "$verify_to" ] && verify=(--verify)
+      rc=0
+      start_cpu=$(awk '{print $16 + $17}' /proc/$$/stat)
+      timeout "$timeout_s" "$laguerre" simulate "$g" --accelerate "$mode" -N "$N" --pairs 10 --json "${verify[@]}" \
+        >"$dir/out.json" 2>/dev/null || rc=$?
+      # Children's user + system time (cutime + cstime, fields 16 and 17 of /proc/PID/stat, in clock ticks).
+      cpu=$(awk -v t0="$start_cpu" -v hz="$(getconf CLK_TCK)" '{printf "%.1f", ($16 + $17 - t0) / hz}' /proc/$$/stat)
+      if [ "$rc" -eq 124 ]; then
+        printf '%-24s %7s %-15s %4s %6s   (did not finish within %s s, cpu %s s)\n' "$family" "$n" "$mode" "$N" - \
+          "$timeout_s" "$cpu"
+        continue
+      fi
+      # Exit status 3: not converged; anything else is a real failure.
+      if [ "$rc" -ne 0 ] && [ "$rc" -ne 3 ]; then
+        echo "protocol.sh: laguerre simulate failed on $family $n ($mode, exit status $rc)" >&2
+        exit "$rc"
+      fi
+      python3 - "$dir/out.json" "$family" "$mode" "$N" "$rc" "$cpu" >>"$dir/rows" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
-n, steps, label, cpu = int(sys.argv[2]), sys.argv[3], sys.argv[4], float(sys.argv[5])
+family, mode, N, rc, cpu = sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), float(sys.argv[6])
+n = d["nodes"]
 v = d.get("verify")
-verify = "n/a (capped)" if v is None else ("bit-exact" if "identical" in v else v)
-print(f"{n:>8} {steps:>4} {d['iterations']:>10} {d['rounds']:>6} {label:>13} {d['wall_seconds']:>9.2f} {cpu:>8.2f} "
-      f"{d['events_per_second']:>10.3g} {d['messages_per_node_mean']:>10.1f} {d['bytes_per_node_mean']:>11.0f} "
-      f"{d['peak_memory_bytes'] / 2**20:>10.1f} {d['peak_memory_bytes'] / 1024 / n:>13.2f} {verify:>12}")
+same = "-" if v is None else ("bit-exact" if "identical" in v else "DIFFERS")
+status = "converged" if rc == 0 else "NOT converged"
+print(family, n, mode, N, d["rounds"], d["iterations"], d["messages_per_node_mean"], d["bytes_per_node_mean"],
+      d["simulated_seconds"], d["wall_seconds"], cpu, d["events_per_second"], d["peak_memory_bytes"] / 1024 / n,
+      status.replace(" ", "_"), same)
 PY
+      tail -1 "$dir/rows" | awk '{printf "%-24s %7s %-15s %4s %6s %6s %10.0f %11.0f %9.2f %9.1f %8.1f %9.3g %8.2f %-13s %s\n",
+        $1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15}' | sed 's/NOT_converged/NOT converged/'
+    done
+  done
 done
+echo "growth of messages per node (converged rows, least squares in log-log):"
+python3 - "$dir/rows" <<'PY'
+import math, sys
+rows = [l.split() for l in open(sys.argv[1]) if l.strip()]
+groups = {}
+for r in rows:
+    if r[13] == "converged":
+        groups.setdefault((r[0], r[2]), []).append((float(r[1]), float(r[6])))
+for (family, mode), pts in sorted(groups.items()):
+    if len(pts) < 2:
+        print(f"  {family:<24} {mode:<15} (one size only)")
+        continue
+    xs = [math.log(n) for n, _ in pts]
+    ys = [math.log(m) for _, m in pts]
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    b = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+    a = math.exp(my - b * mx)
+    print(f"  {family:<24} {mode:<15} msgs/node ≈ {a:.3g} · n^{b:.2f}  (sizes {', '.join(str(int(n)) for n, _ in pts)})")
+PY
 echo "load after: $(uptime)"

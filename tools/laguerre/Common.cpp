@@ -1,6 +1,9 @@
 #include "Common.hpp"
 
+#include <unistd.h>
+
 #include <charconv>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
@@ -116,5 +119,22 @@ void check_writable(const std::string& path, bool force) {
 }
 
 std::string file_stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+TerminalLine::TerminalLine() : tty_(::isatty(STDERR_FILENO) != 0), last_(std::chrono::steady_clock::now()) {}
+
+bool TerminalLine::due() const { return tty_ && std::chrono::steady_clock::now() - last_ >= std::chrono::seconds(1); }
+
+void TerminalLine::draw(const std::string& text, bool force) {
+  if (!tty_ || (!force && !due())) return;
+  std::fprintf(stderr, "\r%s\033[K", text.c_str());  // \033[K: erase the rest of a longer previous line
+  std::fflush(stderr);
+  drawn_ = true;
+  last_ = std::chrono::steady_clock::now();
+}
+
+void TerminalLine::finish() {
+  if (drawn_) std::fprintf(stderr, "\n");
+  drawn_ = false;
+}
 
 }  // namespace laguerre::tools

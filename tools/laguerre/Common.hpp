@@ -1,10 +1,11 @@
 #pragma once
 /// @file
 /// Pieces shared by the subcommands: the graph-file options and loading a graph ready for packing,
-/// the option parsers and validators several commands use, output paths.
+/// the option parsers and validators several commands use, output paths, the terminal progress line.
 
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -107,5 +108,30 @@ void check_writable(const std::string& path, bool force);
 
 /// "dir/name.ext" → "name".
 std::string file_stem(const std::string& path);
+
+/// The progress line of a long command on stderr, redrawn in place: drawn only when stderr is a
+/// terminal (progress is for people watching, not for logs) and, unless forced, at most once a
+/// second. The destructor ends a drawn line.
+class TerminalLine {
+public:
+  /// A line, active if stderr is a terminal.
+  TerminalLine();
+  TerminalLine(const TerminalLine&) = delete;
+  TerminalLine& operator=(const TerminalLine&) = delete;
+  ~TerminalLine() { finish(); }
+  /// Whether anything will ever be drawn (stderr is a terminal).
+  bool active() const { return tty_; }
+  /// Whether a redraw is due: active, and a second has passed since the last draw (or the construction).
+  bool due() const;
+  /// Replaces the line with `text` if active and (`force` or) due.
+  void draw(const std::string& text, bool force = false);
+  /// Ends a drawn line with a newline (the next draw starts a new one).
+  void finish();
+
+private:
+  bool tty_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point last_;
+};
 
 }  // namespace laguerre::tools

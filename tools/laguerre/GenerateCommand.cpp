@@ -1,4 +1,5 @@
 // `laguerre generate`: write a random graph of one of the documented families to a file.
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -47,8 +48,20 @@ bool uniform_family(const std::string& family) { return family.rfind("uniform-",
 
 // The uniform samplers of scenarios/ (the scenario generators of the same name, default parameters:
 // punctured triangulations, 3-connected maps with their largest face outside), with the outer face
-// the packing uses; they have no positions.
+// the packing uses; they have no positions. unit-disk-field: the scenario generator `field` with n
+// sensors uniform in the unit square joined by LDel² of the unit-disk graph of radius 2.236/√n
+// (about 15.7 sensors in range on average, as comparison-5000.yaml's 0.0316 at n = 5000), repaired
+// to its 3-connected core.
 core::GraphInput make(const GenerateArgs& a, std::uint64_t seed) {
+  if (a.family == "unit-disk-field") {
+    scenarios::TopologyParams params;
+    params.set("n", static_cast<std::int64_t>(a.size));
+    params.set("graph", std::string("local-delaunay"));
+    params.set("radius", 2.236 / std::sqrt(static_cast<double>(a.size)));
+    params.set("repair", std::string("three-connected-core"));
+    scenarios::Topology t = scenarios::build_topology("field", params, seed);
+    return core::GraphInput{std::move(t.graph), std::move(t.positions), t.name + " seed " + std::to_string(seed)};
+  }
   if (uniform_family(a.family)) {
     scenarios::TopologyParams params;
     params.set("n", static_cast<std::int64_t>(a.size));
@@ -88,8 +101,11 @@ Action add_generate_command(CLI::App& app) {
   const auto c = add_command<GenerateArgs>(app, generate_help);
   c.cmd->add_option("family", c.args->family,
                   "delaunay (triangulated disc), three-connected, uniform-triangulation (Poulalhon-Schaeffer, punctured) "
-                  "or uniform-three-connected (Fusy, largest face outside); the uniform ones have no positions")
-      ->required()->check(CLI::IsMember({"delaunay", "three-connected", "uniform-triangulation", "uniform-three-connected"}));
+                  "uniform-three-connected (Fusy, largest face outside; the uniform ones have no positions) or "
+                  "unit-disk-field (n sensors in the unit square, LDel^2 of the unit-disk graph of radius 2.236/sqrt(n), "
+                  "3-connected core)")
+      ->required()->check(CLI::IsMember({"delaunay", "three-connected", "uniform-triangulation", "uniform-three-connected",
+                                         "unit-disk-field"}));
   c.cmd->add_option("--size,-n", c.args->size, "Number of vertices")->check(CLI::Range(4, 100000000))->capture_default_str();
   c.cmd->add_option("--seed", c.args->seed, "Random seed")->check(seed_validator())->capture_default_str();
   c.cmd->add_option("--format", c.args->format, "coords (with positions), edges or planar_code (binary)")

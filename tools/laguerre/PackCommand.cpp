@@ -6,8 +6,6 @@
 #include <fstream>
 #include <iostream>
 
-#include <unistd.h>
-
 #include "Commands.hpp"
 #include "Common.hpp"
 #include "EmbeddingJson.hpp"
@@ -40,33 +38,27 @@ struct PackArgs {
 
 class ProgressPrinter : public core::PackVisitor {
 public:
-  explicit ProgressPrinter(std::size_t n)
-      : n_(n), tty_(::isatty(2) != 0), start_(std::chrono::steady_clock::now()), last_(start_) {}
+  explicit ProgressPrinter(std::size_t n) : n_(n), start_(std::chrono::steady_clock::now()) {}
   void on_layout(int /*iteration*/, const core::Layout& layout) override {
     smallest_ = layout.smallest_radius;
     degraded_ = layout.precision != core::Precision::ok;
   }
   void on_check(int iteration, double angle_error, std::size_t ok) override {
-    if (!tty_) return;  // progress is for people watching a terminal, not for logs
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_ < std::chrono::seconds(1)) return;
-    last_ = now;
-    std::fprintf(stderr, "\r  iteration %d, %.0f s: %zu/%zu vertices satisfy LPD, angle error %.3g, smallest radius %.3g%s   ",
-                 iteration, std::chrono::duration<double>(now - start_).count(), ok, n_, angle_error, smallest_,
-                 degraded_ ? " (precision degraded)" : "");
-    shown_ = true;
-  }
-  ~ProgressPrinter() override {
-    if (shown_) std::fprintf(stderr, "\n");
+    if (!line_.due()) return;
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "  iteration %d, %.0f s: %zu/%zu vertices satisfy LPD, angle error %.3g, smallest radius %.3g%s",
+                  iteration, std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(), ok, n_,
+                  angle_error, smallest_, degraded_ ? " (precision degraded)" : "");
+    line_.draw(text);
   }
 
 private:
   std::size_t n_;
-  bool tty_;
-  std::chrono::steady_clock::time_point start_, last_;
+  std::chrono::steady_clock::time_point start_;
+  TerminalLine line_;
   double smallest_ = 0;
   bool degraded_ = false;
-  bool shown_ = false;
 };
 
 int run_pack(const PackArgs& a) {

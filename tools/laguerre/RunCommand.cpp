@@ -44,6 +44,11 @@ int run_run(const RunArgs& a) {
   options.jobs = a.run.jobs;
   set_parallel(a.run, s, options);
   options.on_progress = [&](const scenarios::RunProgress& p) { progress.update(p); };
+  options.on_protocol_progress = [&](const scenarios::RunPlan& plan, const scenarios::ProtocolProgress& p) {
+    const scenarios::ProtocolSpec& protocol = s.points[plan.point].config.protocol;
+    progress.update(plan, p, protocol.max_iterations, protocol.steps_per_round);
+  };
+  progress.update(scenarios::RunProgress{0, scenarios::plan_runs(s).size(), 0});
   options.keep_artifacts = [&](const scenarios::RunPlan& p) {
     return p.repetition == 0 && s.points[p.point].config.outputs.pictures;
   };

@@ -1,15 +1,21 @@
 #pragma once
 /// @file
 /// Pieces shared by `laguerre run` and `laguerre compare`: loading scenarios with their messages,
-/// the output folder rule, terminal progress and the runner options.
+/// the output folder rule, terminal progress (also of one protocol simulation, for `laguerre
+/// simulate`) and the runner options.
 
 #include <CLI/CLI.hpp>
 
+#include <chrono>
+#include <cstdint>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "Common.hpp"
+#include "laguerre/scenarios/ProtocolRun.hpp"
 #include "laguerre/scenarios/Runner.hpp"
 #include "laguerre/scenarios/Scenario.hpp"
 
@@ -48,20 +54,52 @@ std::optional<std::vector<scenarios::Scenario>> load_scenarios(const std::vector
 /// `pictures` and `charts` subfolders), then creates it.
 void prepare_output_dir(const std::string& dir, bool force, const std::vector<std::string>& managed);
 
-/// A progress line with an ETA on stderr, drawn only if stderr is a terminal.
+/// The progress text of one protocol simulation: its set-up phase, or the rounds done and the nodes
+/// whose check holds; events/s; and what is left: the time until every node holds at the rate of the
+/// last ten seconds, and the most it can take (to the iteration cap at the current round rate).
+class ProtocolMeter {
+public:
+  /// A meter of runs with that cap and N (ProtocolSetup::max_iterations, steps_per_round).
+  ProtocolMeter(int max_iterations, int steps_per_round);
+  /// The text for sample `p` (samples in time order).
+  std::string text(const scenarios::ProtocolProgress& p);
+
+private:
+  struct Sample {
+    double wall;
+    std::size_t holds;
+    std::uint32_t iterations;
+    std::uint64_t events;
+  };
+  int max_iterations_;
+  int steps_;
+  std::deque<Sample> window_;  // the last ten seconds of samples
+};
+
+/// A progress line with an ETA on stderr, drawn only if stderr is a terminal (TerminalLine): the
+/// runs done and, while a run's protocol simulation is long, its ProtocolMeter text.
 class Progress {
 public:
   /// A reporter prefixed by `label`.
   explicit Progress(std::string label);
-  /// Redraws the line (runner callback).
+  /// Redraws the line (runner callback; report {0, total, 0} first to show the total from the start).
   void update(const scenarios::RunProgress& p);
+  /// Redraws the line with the protocol progress of run `plan` (runner callback), whose protocol
+  /// has that iteration cap and N.
+  void update(const scenarios::RunPlan& plan, const scenarios::ProtocolProgress& p, int max_iterations,
+              int steps_per_round);
   /// Ends the line.
   void finish();
 
 private:
+  void draw(bool force);
   std::string label_;
-  bool tty_;
-  bool drawn_ = false;
+  std::chrono::steady_clock::time_point start_;
+  TerminalLine line_;
+  scenarios::RunProgress runs_;
+  std::string protocol_;  // the latest protocol text, "" if none
+  std::optional<ProtocolMeter> meter_;
+  std::optional<scenarios::RunPlan> metered_;  // the run meter_ follows
 };
 
 /// Writes `text` to `path` (throws std::runtime_error with the path on failure).

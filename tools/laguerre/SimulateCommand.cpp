@@ -15,6 +15,7 @@
 #include "Common.hpp"
 #include "Parallel.hpp"
 #include "ProtocolSummary.hpp"
+#include "ScenarioCli.hpp"
 #include "laguerre/core/packing/PackingNames.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/protocols/Codec.hpp"
@@ -36,6 +37,8 @@ constexpr CommandHelp simulate_help{
     "takes the hops it takes without loss (only the timing differs).\n"
     "A recovering node keeps its state: an outage shorter than the detection time is masked (the run\n"
     "converges); after a longer one it ends with neighbour_failed as well.\n"
+    "On a terminal, stderr shows the progress of the protocol: rounds done, nodes whose check holds,\n"
+    "events/s and an estimate of what is left.\n"
     "Exit status: 0 converged, 3 not converged or a node failed, 2 bad input."};
 
 struct SimulateArgs {
@@ -92,11 +95,16 @@ int run_simulate(const SimulateArgs& a) {
   const std::vector<core::Scheme> schemes = parse_schemes(a.scheme, "--scheme");
   scenarios::require_forwarding_schemes(schemes);  // before the packing, not after it
   const core::PairSelection selection = parse_pairs(a.pairs, a.seed, "--pairs");
-  const scenarios::ProtocolSetup setup = setup_of(a);
+  scenarios::ProtocolSetup setup = setup_of(a);
   const LoadedGraph loaded = load_graph(a.graph);
   const core::PlanarGraph& g = loaded.input.graph;
   const std::size_t n = g.num_vertices();
+  // Progress on a terminal: rounds, nodes that hold, events/s, what is left.
+  TerminalLine line;
+  ProtocolMeter meter(a.max_iterations, a.steps);
+  if (line.active()) setup.on_progress = [&](const scenarios::ProtocolProgress& p) { line.draw(meter.text(p), true); };
   const scenarios::ProtocolOutcome po = scenarios::run_packing_protocol(g, loaded.input.positions, setup);
+  line.finish();
   const std::string verify = a.verify ? scenarios::verify_against_core(g, loaded.kind, setup, po) : "";
 
   // Forward packets hop by hop on the final embedding, one simulation per scheme. Greedy power uses

@@ -114,6 +114,37 @@ TEST(DeterminismTest, CuttingTheRunIntoTimeSlicesChangesNothing) {
   EXPECT_EQ(a.total, b.total);
 }
 
+TEST(DeterminismTest, AnObserverSeesTheRunInSlicesAndChangesNothing) {
+  const Outcome a = run_gossip(3);
+  Gossip g(36);
+  Simulator sim(gossip_network(), SimConfig{.seed = 3, .trace = TraceMode::hash_only}, g);
+  std::vector<std::uint64_t> seen;  // events processed at each call
+  sim.set_observer(97, [&] { seen.push_back(sim.kernel().events_processed()); });
+  const RunReport r = sim.run();
+  EXPECT_EQ(r.reason, StopReason::queue_empty);
+  EXPECT_EQ(sim.trace().hash(), a.hash);
+  EXPECT_EQ(sim.traffic().total(), a.total);
+  EXPECT_EQ(sim.now(), a.end);
+  // Called after every 97 events.
+  ASSERT_EQ(seen.size(), r.events_processed / 97);
+  for (std::size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i], 97 * (i + 1));
+}
+
+TEST(DeterminismTest, AnObserverKeepsTheEventBudget) {
+  Gossip g(36);
+  Simulator sim(gossip_network(), SimConfig{.seed = 3, .trace = TraceMode::hash_only}, g);
+  int calls = 0;
+  sim.set_observer(10, [&] { ++calls; });
+  const RunReport r = sim.run({.max_events = 25});
+  EXPECT_EQ(r.reason, StopReason::event_limit);
+  EXPECT_EQ(r.events_processed, 25u);
+  EXPECT_EQ(calls, 2);
+  sim.set_observer(0, {});  // removed: the rest runs without it
+  sim.run();
+  EXPECT_EQ(calls, 2);
+  EXPECT_EQ(sim.trace().hash(), run_gossip(3).hash);
+}
+
 TEST(DeterminismTest, RecordsModeHashesTheSameAndWritesTheTrace) {
   Gossip g(36);
   Simulator sim(gossip_network(), SimConfig{.seed = 3, .trace = TraceMode::records}, g);

@@ -118,7 +118,6 @@ struct VertexState {
 
 namespace detail {
 class PackingAgent;
-class AgentHost;
 }  // namespace detail
 
 /// One node of the packing protocol: its own protocol vertex plus the face vertices it hosts, and (on
@@ -195,7 +194,7 @@ public:
   /// Message statistics (the protocol's and, on lossy links, the reliability layer's).
   PackingCounters counters() const;
   /// Number of face vertices this node hosts.
-  std::size_t hosted_faces() const { return agents_.size() - 1; }
+  std::size_t hosted_faces() const { return faces_.size(); }
   /// The walk (ids, from this node) of hosted face k < hosted_faces().
   const std::vector<NodeId>& hosted_face_walk(std::size_t k) const;
   /// The state of hosted face vertex k < hosted_faces().
@@ -207,12 +206,13 @@ public:
   std::vector<core::Circle> neighbour_circles() const;
 
 private:
-  friend class detail::AgentHost;
+  friend class detail::PackingAgent;
   struct Wedge;     // a non-triangle inner face at this node
   struct Local;     // a message between two agents of this node, delivered after the callback
   class Protocol;   // the protocol as the reliability layer's inner node
 
   std::size_t index_of(NodeId id) const;
+  detail::PackingAgent& agent(std::size_t k) const { return k == 0 ? *own_ : *faces_[k - 1]; }
   const Wedge* wedge_of_face(NodeId face_id) const;
   void agent_send(std::size_t agent, std::size_t k_index, std::span<const std::byte> bytes);
   void send_relay(const Wedge& w, NodeId source, NodeId target, std::span<const std::byte> payload);
@@ -223,16 +223,21 @@ private:
   void start();
   void receive(NodeId from, std::span<const std::byte> bytes);
   void transmit(std::size_t i, std::span<const std::byte> bytes);
+  void broadcast_all(std::span<const std::byte> bytes);  // transmit to every neighbour, in order
+  static constexpr std::size_t sorted_from = 17;  // degree from which index_of searches sorted_ids_
 
+  // What a node holds (docs/protocol.md, "Node state"): O(degree) in a few arrays; the polygon-face,
+  // lossy-link and acceleration state only in the runs that need it.
   Runtime* rt_;  // the host's runtime, or the reliability layer's
-  PackingParams params_;
-  LocalKnowledge know_;
+  PackingParams params_;  // the agents read it from here
+  LocalKnowledge know_;   // its `faces` moved into wedges_
   std::size_t deg_ = 0;
-  std::vector<std::pair<NodeId, std::uint32_t>> sorted_ids_;  // (id, index) for lookup
+  std::vector<std::pair<NodeId, std::uint32_t>> sorted_ids_;  // (id, index) for lookup; only past sorted_from
   std::vector<Wedge> wedges_;                                 // polygon faces at this node
-  std::vector<std::unique_ptr<detail::PackingAgent>> agents_; // [0]: own vertex; then hosted faces
-  std::unique_ptr<detail::AgentHost> host_;
+  std::unique_ptr<detail::PackingAgent> own_;                 // agent 0: the node's own vertex
+  std::vector<std::unique_ptr<detail::PackingAgent>> faces_;  // agents 1, 2, …: hosted face vertices
   std::vector<Local> local_;                                  // FIFO, emptied by drain()
+  std::vector<std::byte> scratch_;                            // the agents' encoding buffer
   std::vector<std::byte> relay_buffer_;
   std::unique_ptr<ReliableNode> link_;                        // lossy mode: the layer under the protocol
   bool failed_ = false;

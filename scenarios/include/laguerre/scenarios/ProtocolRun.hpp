@@ -36,6 +36,19 @@
 
 namespace laguerre::scenarios {
 
+/// Where a running packing protocol simulation stands (ProtocolSetup::on_progress).
+struct ProtocolProgress {
+  std::size_t nodes = 0;                 ///< nodes of the network
+  protocols::PackingPhase phase = protocols::PackingPhase::idle;  ///< the least advanced node's phase
+  std::uint32_t rounds = 0;              ///< rounds every node has completed (the smallest current round)
+  std::uint32_t iterations = 0;          ///< Thurston steps every node has done (the smallest count)
+  std::size_t holds_nodes = 0;           ///< nodes whose latest local check holds
+  std::size_t final_nodes = 0;           ///< nodes in a final state
+  std::uint64_t events = 0;              ///< simulator events processed so far
+  double wall_seconds = 0;               ///< wall-clock time since the simulation started
+  sim::Time simulated_time = 0;          ///< the simulated clock
+};
+
 /// How to run the packing protocol.
 struct ProtocolSetup {
   bool asynchronous = false;                    ///< asynchronous Thurston updates
@@ -49,6 +62,11 @@ struct ProtocolSetup {
   bool adaptive_rto = true;                     ///< false: the timeout stays at the period (no RTT estimation)
   std::uint64_t seed = 1;                       ///< root of the simulator's random streams
   sim::HostRunner* runner = nullptr;            ///< how the simulation runs (nullptr: in this process)
+  /// Called between events, every `progress_period` seconds of wall time (checked every 2^16 events),
+  /// while the simulation runs in this process (not with a `runner`); empty: no observer at all (the
+  /// simulator's loop runs alone). The run is the same with or without it.
+  std::function<void(const ProtocolProgress&)> on_progress;
+  double progress_period = 1.0;                 ///< seconds between on_progress calls
   /// Whether the reliability layer runs: loss, duplication, outages or an explicit period.
   bool lossy() const {
     return link.loss > 0 || link.duplication > 0 || !crashes.empty() || retransmit_after.has_value();

@@ -28,6 +28,7 @@
 #include "laguerre/core/geometry/Circle.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 #include "laguerre/core/random/Random.hpp"
+#include "laguerre/scenarios/ProtocolRun.hpp"
 #include "laguerre/scenarios/Scenario.hpp"
 #include "laguerre/scenarios/Topology.hpp"
 #include "laguerre/scenarios/fields/SensorNetwork.hpp"
@@ -166,6 +167,9 @@ RunRecord decode_record(std::span<const std::byte> in, std::size_t& at);
 struct RunnerOptions {
   unsigned jobs = 0;                                        ///< worker threads (0 = hardware threads)
   std::function<void(const RunProgress&)> on_progress;      ///< called under a lock, any thread
+  /// A run's protocol simulation in progress (ProtocolSetup::on_progress: about once a second, in-process
+  /// simulations only); called under the same lock as on_progress, any thread.
+  std::function<void(const RunPlan&, const ProtocolProgress&)> on_protocol_progress;
   std::function<bool(const RunPlan&)> keep_artifacts;       ///< which runs keep RunArtifacts
   /// How the protocol simulations run (nullptr: in this process). With one (e.g. sim/mpi's, every MPI
   /// rank making the same calls), runs go one at a time in plan order and `jobs` is ignored.
@@ -183,9 +187,11 @@ struct ScenarioResults {
 };
 
 /// Executes one run. Never throws for a bad topology or a failing protocol (see RunStatus).
-/// The protocol simulation runs on `host_runner` (nullptr: in this process).
+/// The protocol simulation runs on `host_runner` (nullptr: in this process) and reports to
+/// `on_progress` (ProtocolSetup::on_progress) if given.
 RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifacts* artifacts = nullptr,
-                      sim::HostRunner* host_runner = nullptr);
+                      sim::HostRunner* host_runner = nullptr,
+                      const std::function<void(const ProtocolProgress&)>& on_progress = {});
 
 /// Executes every run of `scenario` on `options.jobs` threads; the result does not depend on jobs.
 ScenarioResults run_scenario(const Scenario& scenario, const RunnerOptions& options = {});

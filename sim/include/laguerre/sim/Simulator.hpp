@@ -27,6 +27,7 @@
 ///    timers at one node, send/schedule_timer throw std::length_error.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -93,6 +94,12 @@ public:
   RunReport run(const RunLimits& limits = {});
   /// Asks run() to return after the current event.
   void request_stop() { kernel_.request_stop(); }
+  /// Calls `observer` between events during run(), each time `every` ≥ 1 more events have been
+  /// processed (e.g. to draw progress); it may read anything but must not send, schedule or stop.
+  /// An empty observer (the default) removes it: run() is then the kernel's loop alone, at no cost.
+  /// The run is the same with or without an observer (a kernel run stopped and resumed between events
+  /// equals one never stopped).
+  void set_observer(std::uint64_t every, std::function<void()> observer);
 
   /// Current simulated time.
   Time now() const { return kernel_.now(); }
@@ -201,6 +208,8 @@ private:
   Trace trace_;
   std::uint64_t timers_dropped_ = 0;
   bool launched_ = false;
+  std::uint64_t observe_every_ = 0;     // set_observer
+  std::function<void()> observer_;
   RemoteOutbox* outbox_ = nullptr;      // set by partition()
   std::vector<std::uint8_t> owned_;     // partitioned runs: owned_[v] != 0 if v is this part's
   std::vector<std::uint64_t> trace_keys_;
