@@ -53,11 +53,11 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   // Termination::radius_only (docs/radius-only.md): the radius-only test gates the layout; the exact
   // check on the layout still decides. PackingAgent does the same, round by round.
   const bool radius_only = options.termination == Termination::radius_only && options.stop == StopRule::lpd;
-  RadiusOnlyTolerance tolerance = options.radius_only;
+  double gap = options.radius_only_gap;
   auto check = [&](int iteration) {
     // Returns whether the requested rule holds; records first occurrences of tracked rules.
     // At the cap the layout is made whatever the test says: the run ends with coordinates.
-    if (radius_only && iteration < options.max_iterations && !radius_only_everywhere(k, result.radii, tolerance))
+    if (radius_only && iteration < options.max_iterations && !radius_only_everywhere(k, result.radii, gap))
       return false;
     ++result.layouts;
     result.layout = lay_out(k, result.radii, root);
@@ -88,7 +88,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     }
     if (visitor) visitor->on_layout(iteration, result.layout);
     if (visitor) visitor->on_check(iteration, result.angle_error, result.local_ok);
-    if (radius_only && !lpd) tolerance.angle_gap /= 2;
+    if (radius_only && !lpd) gap /= 2;
     switch (options.stop) {
       case StopRule::lpd: return lpd;
       case StopRule::exact: return exact;

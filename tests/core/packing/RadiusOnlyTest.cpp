@@ -4,12 +4,11 @@
 //    in every Möbius normalization. Random stars are laid out from random radii (boundary stars are
 //    always consistent; interior stars are closed by solving θ(v) = 2π for h_v), moved by random
 //    disc automorphisms, and `check_lpd_at` on the moved circles is compared with
-//    `check_radius_only`. Every consistent star satisfies LPD (the note's Lemma 3), so the outcome
-//    is "holds" in every frame, and breaking the consistency (shrinking one neighbour, which opens
-//    the star) makes both tests fail together where the layout check fails.
-// 2. Before convergence: on random triangulations and 3-connected graphs after 0 … 400 Thurston
-//    sweeps, radius-only everywhere is compared with the exact check on the global layout. Counts of
-//    the four outcomes are printed.
+//    the radius-only test. Every consistent star satisfies LPD (the note's Lemma 3): "holds" in
+//    every frame, and every corner test in the local frame of two triangles passes (Lemma 2).
+// 2. core::pack with Termination::radius_only never claims LPD on a failed check and ends with the
+//    same embedding guarantee as the layout termination.
+// The agreement before convergence is tests/core/property/RadiusOnlyAgreementProperty.cpp.
 
 #include <gtest/gtest.h>
 
@@ -24,6 +23,7 @@
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/packing/Placement.hpp"
+#include "laguerre/core/packing/PackingNames.hpp"
 #include "laguerre/core/packing/RadiusOnly.hpp"
 #include "laguerre/core/random/Random.hpp"
 
@@ -71,13 +71,39 @@ std::vector<Circle> chain(double hv, const std::vector<double>& hw) {
   return out;
 }
 
-// The smallest |corner inversive distance| of a star (how close to degenerate it is).
-double closest_corner(double hv, const std::vector<double>& hw, bool boundary) {
-  const std::size_t n = hw.size();
-  double m = inf;
-  for (std::size_t i = boundary ? 1 : 0; i < (boundary ? n - 1 : n); ++i)
-    m = std::min(m, std::abs(corner_inversive_distance(hv, hw[(i + n - 1) % n], hw[i], hw[(i + 1) % n])));
-  return m;
+// The corner test of the brief's local frame: the inversive distance between w_{i+1} = c and the orthocircle of (v, a = w_{i−1},
+// b = w_i), for circles laid out consistently from the radii (two tangent triangles (v, a, b),
+// (v, b, c), counter-clockwise), rooted at an interior one of them. NaN if all four are horocycles.
+double corner_inversive_distance(double hv, double ha, double hb, double hc) {
+  auto lv = [](double h) { return LayoutVertex{h, std::isfinite(h)}; };
+  const LayoutVertex V = lv(hv), A = lv(ha), B = lv(hb), C = lv(hc);
+  PlacedCircle pv, pa, pb, pc;
+  if (V.interior || B.interior) {
+    pv = V.interior ? place_root(hv) : place_first_neighbour(hb, V, 1.0);
+    pb = V.interior ? place_first_neighbour(hv, B, 1.0) : place_root(hb);
+    pa = place_in_face(A, B, pb, V, pv, {});  // (a, b, v) counter-clockwise
+    pc = place_in_face(C, V, pv, B, pb, {});  // (c, v, b)
+  } else if (A.interior) {
+    pa = place_root(ha);
+    pv = place_first_neighbour(ha, V, 1.0);
+    pb = place_in_face(B, V, pv, A, pa, {});
+    pc = place_in_face(C, V, pv, B, pb, {});
+  } else if (C.interior) {
+    pc = place_root(hc);
+    pv = place_first_neighbour(hc, V, 1.0);
+    pb = place_in_face(B, C, pc, V, pv, {});
+    pa = place_in_face(A, B, pb, V, pv, {});
+  } else {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  const Circle &v = pv.circle, &a = pa.circle, &b = pb.circle, &c = pc.circle;
+  // Radical centre q of (v, a, b) and ρ² = pow(q, v); I = (pow(q, c) − ρ²) / (2 r_c ρ).
+  auto z = [](const Circle& x) { return x.x * x.x + x.y * x.y - x.r * x.r; };
+  const double ax = 2 * (a.x - v.x), ay = 2 * (a.y - v.y), bx = 2 * (b.x - v.x), by = 2 * (b.y - v.y);
+  const double ra = z(a) - z(v), rb = z(b) - z(v), det = ax * by - ay * bx;
+  const double qx = (ra * by - ay * rb) / det, qy = (ax * rb - ra * bx) / det;
+  const double rho2 = power(qx, qy, v);
+  return (power(qx, qy, c) - rho2) / (2 * c.r * std::sqrt(rho2));
 }
 
 double solve_closed(const std::vector<double>& hw) {
@@ -106,8 +132,7 @@ std::ostream& operator<<(std::ostream& o, const Outcomes& c) {
 TEST(RadiusOnly, ConsistentStarsDecideLpdInEveryMoebiusFrame) {
   SplitMix64 rng(17);
   Outcomes interior, boundary;
-  int skipped = 0;
-  const RadiusOnlyTolerance tol{1e-9, 1e-9};
+  double min_corner = inf;
   for (int trial = 0; trial < 4000; ++trial) {
     const bool is_boundary = trial % 2 == 1;
     const std::size_t n = (is_boundary ? 2 : 3) + rng.next() % 7;
@@ -121,14 +146,15 @@ TEST(RadiusOnly, ConsistentStarsDecideLpdInEveryMoebiusFrame) {
     } else {
       hv = solve_closed(hw);
     }
-    // Near-degenerate corners are decided by rounding in either frame: leave them out.
-    if (closest_corner(hv, hw, is_boundary) < 1e-6) {
-      ++skipped;
-      continue;
+    // Lemma 2: every corner test of two consistent triangles passes, in a frame laid out from the
+    // radii (the brief's local normalized layout): its inversive distance is positive.
+    for (std::size_t i = is_boundary ? 1 : 0; i < (is_boundary ? n - 1 : n); ++i) {
+      const double d = corner_inversive_distance(hv, hw[(i + n - 1) % n], hw[i], hw[(i + 1) % n]);
+      ASSERT_GT(d, 0) << "trial " << trial << " corner " << i;
+      min_corner = std::min(min_corner, d);
     }
-    const std::vector<double> star = hw;
-    const LocalCondition r = check_radius_only(hv, StarView{star, {}, {}}, is_boundary, tol);
-    ASSERT_NE(r, LocalCondition::unrepresentable);
+    const bool r = radius_only_holds(hv, StarView{hw, {}, {}}, is_boundary, 1e-9);
+    ASSERT_TRUE(r) << "a closed star has no closing gap";
     const std::vector<Circle> c = chain(hv, hw);
     for (int m = 0; m < 4; ++m) {
       const double rad = 0.9 * std::sqrt(rng.uniform01()), ang = 2 * std::numbers::pi * rng.uniform01();
@@ -136,50 +162,43 @@ TEST(RadiusOnly, ConsistentStarsDecideLpdInEveryMoebiusFrame) {
       std::vector<Circle> moved_star;
       for (std::size_t i = 1; i < c.size(); ++i) moved_star.push_back(moved(c[i], a));
       const LocalCondition l = check_lpd_at(moved(c[0], a), moved_star, is_boundary);
-      (is_boundary ? boundary : interior).add(r == LocalCondition::holds, l == LocalCondition::holds);
-      EXPECT_EQ(r == LocalCondition::holds, l == LocalCondition::holds)
-          << "trial " << trial << " frame " << m << " radius-only " << to_string(r) << " layout " << to_string(l);
+      (is_boundary ? boundary : interior).add(r, l == LocalCondition::holds);
+      EXPECT_EQ(l, LocalCondition::holds) << "trial " << trial << " frame " << m;
     }
   }
   std::cout << "consistent interior stars: " << interior << "\nconsistent boundary stars: " << boundary
-            << "\nnear-degenerate stars skipped: " << skipped << "\n";
-  // docs/radius-only.md, Lemma 3: a consistent star satisfies LPD, in every frame (thesis Thm 5.2.5
-  // is local). So every corner test is positive and both checks agree on "holds" everywhere.
+            << "\nsmallest corner inversive distance: " << min_corner << "\n";
+  // docs/radius-only.md, Lemma 3: a consistent star satisfies LPD in every frame.
   EXPECT_EQ(interior.both, interior.total());
   EXPECT_EQ(boundary.both, boundary.total());
   EXPECT_GT(interior.total(), 7000);
 }
 
-TEST(RadiusOnly, BeforeConvergenceAgainstTheLayoutCheck) {
-  Outcomes graphs, vertices;
-  const RadiusOnlyTolerance tol{};
-  for (int kind = 0; kind < 2; ++kind)
-    for (std::uint64_t seed = 1; seed <= 30; ++seed) {
-      const std::size_t n = 20 + 7 * seed;
-      const PlanarGraph g = prepare_for_packing(kind == 0 ? random_delaunay_triangulation(n, seed)
-                                                          : random_three_connected(n, seed));
-      const PackingComplex k = PackingComplex::from_graph(g);
-      Radii h = initial_radii(k), scratch;
-      const Vertex root = choose_root(k, RootRule::deepest);
-      int done = 0;
-      for (int it : {0, 1, 2, 4, 8, 16, 32, 64, 128, 256, 400}) {
-        for (; done < it; ++done) thurston_sweep(k, h, Sweep::jacobi, UpdateRule::uniform_neighbour, scratch);
-        const Layout lay = lay_out(k, h, root);
-        const CircleEmbedding phi(lay.circles.begin(), lay.circles.begin() + static_cast<long>(g.num_vertices()));
-        const std::vector<LocalCondition> exact = check_all(g, phi);
-        bool all_r = true, all_l = true;
-        for (Vertex v = 0; v < k.graph.num_vertices(); ++v)
-          all_r = all_r && check_radius_only(k, h, v, tol) == LocalCondition::holds;
-        for (Vertex v = 0; v < g.num_vertices(); ++v) {
-          const bool r = check_radius_only(k, h, v, tol) == LocalCondition::holds;
-          vertices.add(r, exact[v] == LocalCondition::holds);
-          all_l = all_l && exact[v] == LocalCondition::holds;
-        }
-        graphs.add(all_r, all_l);
-      }
-    }
-  std::cout << "configurations (radius-only everywhere vs layout LPD/GLPD everywhere): " << graphs
-            << "\nvertices: " << vertices << "\n";
-  EXPECT_GT(graphs.both, 0);
-  EXPECT_GT(graphs.neither, 0);
+TEST(RadiusOnly, PackWithRadiusOnlyTerminationClaimsOnlyCheckedLpd) {
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const PlanarGraph g = prepare_for_packing(seed % 2 ? random_delaunay_triangulation(60, seed)
+                                                       : random_three_connected(60, seed));
+    PackOptions layout, radius;
+    radius.termination = Termination::radius_only;
+    const PackResult a = pack(g, layout), b = pack(g, radius);
+    ASSERT_EQ(b.status, PackStatus::converged) << seed;
+    EXPECT_EQ(b.local_ok, g.num_vertices());
+    EXPECT_EQ(check_all(g, b.circles), b.local);  // the claim is the exact check on the final layout
+    // The radius-only run stops no earlier than the layout run (it checks a subset of the
+    // iterations), and computes fewer layouts.
+    EXPECT_GE(b.iterations, a.iterations);
+    EXPECT_LT(b.layouts, a.layouts);
+    EXPECT_EQ(a.layouts, a.iterations + 1);
+  }
+  // At the cap the run still ends with a checked layout.
+  PackOptions capped;
+  capped.termination = Termination::radius_only;
+  capped.max_iterations = 3;
+  const PlanarGraph g = prepare_for_packing(random_delaunay_triangulation(200, 3));
+  const PackResult c = pack(g, capped);
+  EXPECT_EQ(c.status, PackStatus::iteration_cap);
+  EXPECT_EQ(c.layouts, 1);
+  EXPECT_EQ(check_all(g, c.circles), c.local);
+  EXPECT_EQ(parse_termination("radius-only"), Termination::radius_only);
+  EXPECT_EQ(to_string(Termination::layout), "layout");
 }

@@ -32,8 +32,8 @@ StopRule parse_stop_rule(std::string_view name);
 /// What each check of StopRule::lpd costs (docs/radius-only.md).
 enum class Termination {
   layout,      ///< lay out and check LPD/GLPD exactly at every check (thesis §5.3)
-  radius_only  ///< check the radius-only test first; lay out and check exactly only where it holds
-               ///< everywhere; after a failed exact check the closing-gap tolerance halves
+  radius_only  ///< the radius-only test (RadiusOnly.hpp) first; lay out and check exactly only when it
+               ///< holds everywhere (and at the cap); each failed exact check halves its tolerance
 };
 
 /// Name of a termination test ("layout", "radius-only").
@@ -65,7 +65,7 @@ struct PackOptions {
   Acceleration acceleration = Acceleration::plain;  ///< sweep acceleration (see Accelerator)
   NewtonSolver newton_solver = NewtonSolver::cholesky;  ///< linear solver of Acceleration::newton
   Termination termination = Termination::layout;  ///< for StopRule::lpd: see Termination
-  RadiusOnlyTolerance radius_only{};              ///< Termination::radius_only's initial tolerances
+  double radius_only_gap = 1e-2;                  ///< Termination::radius_only's initial closing gap (radians)
 };
 
 /// Result of a packing run.
