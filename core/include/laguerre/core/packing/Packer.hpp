@@ -29,13 +29,6 @@ std::string_view to_string(StopRule rule);
 /// Parses a stopping rule name; throws InputError listing the valid names (PackingNames.hpp).
 StopRule parse_stop_rule(std::string_view name);
 
-/// What each check of StopRule::lpd costs (docs/radius-only.md).
-enum class Termination {
-  layout,      ///< lay out and check LPD/GLPD exactly at every check (thesis §5.3)
-  radius_only  ///< the radius-only test (RadiusOnly.hpp) first; lay out and check exactly only when it
-               ///< holds everywhere (and at the cap); each failed exact check halves its tolerance
-};
-
 /// Name of a termination test ("layout", "radius-only").
 std::string_view to_string(Termination t);
 /// Parses a termination test name; throws InputError listing the valid names (PackingNames.hpp).

@@ -17,6 +17,13 @@
 
 namespace laguerre::core {
 
+/// What each check of StopRule::lpd costs (names: PackingNames.hpp).
+enum class Termination {
+  layout,      ///< lay out and check LPD/GLPD exactly at every check (thesis §5.3)
+  radius_only  ///< the radius-only test first; lay out and check exactly only when it holds everywhere
+               ///< (and at the cap); each failed exact check halves its tolerance
+};
+
 /// Whether the closing gap of a star is within `angle_gap` radians: |θ(v) − 2π| ≤ angle_gap for an
 /// interior vertex (θ by `star_angle_sum`, so bit for bit what the iteration computes), always for a
 /// boundary vertex (a horocycle's star has no closing condition). False if θ is not finite.
