@@ -42,6 +42,7 @@ struct SimulateArgs {
   GraphArgs graph;
   std::string mode = "sync";
   std::string accelerate = "plain";
+  std::string termination = "layout";
   std::string latency = "constant:1ms";
   double loss = 0;
   double dup = 0;
@@ -74,6 +75,11 @@ scenarios::ProtocolSetup setup_of(const SimulateArgs& a) {
     throw core::InputError("--accelerate", 0,
                            "found '" + a.accelerate + "' with --mode async; expected plain (the local accelerations "
                            "extrapolate along consistent synchronous iterates: use --mode sync)");
+  setup.termination = core::parse_name(core::termination_names, a.termination, "--termination");
+  if (setup.asynchronous && setup.termination != core::Termination::layout)
+    throw core::InputError("--termination", 0,
+                           "found '" + a.termination + "' with --mode async; expected layout (radius-only runs in "
+                           "--mode sync)");
   setup.link.latency = scenarios::parse_latency(a.latency, "--latency");
   setup.link.loss = a.loss;
   setup.link.duplication = a.dup;
@@ -146,6 +152,11 @@ Action add_simulate_command(CLI::App& app) {
              "plain (Thurston's Jacobi), chebyshev (adaptive second-order iteration, ~14-17x fewer steps on "
              "500-node uniform maps) or local-superstep (Collins-Stephenson with local ratios); superstep, "
              "anderson and newton need global sums and are refused");
+  add_choice(*c.cmd, "--termination", c.args->termination, core::termination_names,
+             "Termination test of each round (sync mode, bit for bit with core::pack): layout (layout wave and "
+             "exact LPD/GLPD check every round) or radius-only (one radius exchange and the closing gap each "
+             "round; the wave and the exact check run only when the gap is small everywhere, and LPD is claimed "
+             "only when that check passes; docs/radius-only.md)");
   c.cmd->add_option("--pairs", c.args->pairs, "'all' ordered pairs, or a number sampled with --seed")->capture_default_str();
   c.cmd->add_option("--scheme", c.args->scheme, "Forwarding scheme: greedy-power, greedy-euclid, compass, gfg or all")
       ->capture_default_str();
