@@ -4,8 +4,8 @@
 //    in every Möbius normalization. Random stars are laid out from random radii (boundary stars are
 //    always consistent; interior stars are closed by solving θ(v) = 2π for h_v), moved by random
 //    disc automorphisms, and `check_lpd_at` on the moved circles is compared with
-//    the radius-only test. Every consistent star satisfies LPD (the note's Lemma 3): "holds" in
-//    every frame, and every corner test in the local frame of two triangles passes (Lemma 2).
+//    the radius-only test. Every consistent star satisfies LPD (docs/radius-only.md, Theorem 1): "holds" in
+//    every frame, and every corner test in the local frame of two triangles passes (Lemma 1).
 // 2. core::pack with Termination::radius_only never claims LPD on a failed check and ends with the
 //    same embedding guarantee as the layout termination.
 // The agreement before convergence is tests/core/property/RadiusOnlyAgreementProperty.cpp.
@@ -146,7 +146,7 @@ TEST(RadiusOnly, ConsistentStarsDecideLpdInEveryMoebiusFrame) {
     } else {
       hv = solve_closed(hw);
     }
-    // Lemma 2: every corner test of two consistent triangles passes, in a frame laid out from the
+    // Lemma 1 (b): every corner test of two consistent triangles passes, in a frame laid out from the
     // radii (the brief's local normalized layout): its inversive distance is positive.
     for (std::size_t i = is_boundary ? 1 : 0; i < (is_boundary ? n - 1 : n); ++i) {
       const double d = corner_inversive_distance(hv, hw[(i + n - 1) % n], hw[i], hw[(i + 1) % n]);
@@ -168,7 +168,7 @@ TEST(RadiusOnly, ConsistentStarsDecideLpdInEveryMoebiusFrame) {
   }
   std::cout << "consistent interior stars: " << interior << "\nconsistent boundary stars: " << boundary
             << "\nsmallest corner inversive distance: " << min_corner << "\n";
-  // docs/radius-only.md, Lemma 3: a consistent star satisfies LPD in every frame.
+  // docs/radius-only.md, Theorem 1: a consistent star satisfies LPD in every frame.
   EXPECT_EQ(interior.both, interior.total());
   EXPECT_EQ(boundary.both, boundary.total());
   EXPECT_GT(interior.total(), 7000);
