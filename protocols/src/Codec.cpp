@@ -59,7 +59,7 @@ template <class Ar, Is<PlacedMsg> M> void fields(Ar& ar, M& m) {
 }
 template <class Ar, Is<ReportMsg> M> void fields(Ar& ar, M& m) { ar(m.round, m.ok); }
 template <class Ar, Is<DecisionMsg> M> void fields(Ar& ar, M& m) {
-  ar(m.round, code(m.verdict, Verdict::next, Verdict::cap));
+  ar(m.round, code(m.verdict, Verdict::next, Verdict::layout));
 }
 template <class Ar, Is<ShapeMsg> M> void fields(Ar& ar, M& m) { ar(m.down, m.polygon); }
 template <class Ar, Is<FaceCirclesMsg> M> void fields(Ar& ar, M& m) {

@@ -5,6 +5,7 @@
 
 #include "laguerre/core/packing/HyperbolicTriangle.hpp"
 #include "laguerre/core/packing/NewtonKrylov.hpp"
+#include "laguerre/core/packing/RadiusOnly.hpp"
 #include "laguerre/protocols/LocalChecks.hpp"
 
 namespace laguerre::protocols::detail {
@@ -63,6 +64,8 @@ PackingAgent::PackingAgent(PackingNode& node, std::size_t index, AgentSpec spec)
     accelerator_ = std::make_unique<core::LocalAccelerator>(params_.acceleration);
   h_ = boundary_ ? std::numeric_limits<double>::infinity() : 1.0;  // core::initial_radii
   if (params_.acceleration == core::Acceleration::newton_krylov) krylov_ = std::make_unique<KrylovState>(deg_);
+  radius_only_ = params_.termination == core::Termination::radius_only;
+  gap_ = params_.radius_only_gap;
 }
 
 std::size_t PackingAgent::index_of(NodeId id) const {
@@ -411,7 +414,7 @@ void PackingAgent::begin_round() {
   const auto n = static_cast<std::uint32_t>(params_.steps_per_check);
   round_end_step_ = round_ == 0 ? step_ : step_ + std::min(n, cap - std::min(cap, step_));
   round_start_step_ = step_;
-  sent_step_ = false;
+  sent_step_ = final_sent_ == step_;  // radius-only: the end-of-round exchange already sent X(step_)
   // Asynchronous mode: the counter of round r + 1 (that of round r − 1, done) starts afresh; no
   // neighbour can be in round r + 1 before this node has reported round r.
   arrivals_[(round_ + 1) & 1] = 0;
@@ -465,13 +468,21 @@ void PackingAgent::handle(std::size_t i, const RadiusMsg& m) {
     handle_async_radius(i, m);
     return;
   }
-  if (phase_ != PackingPhase::rounds || boundary_ || !interior_nbr(i) || m.step < step_ || m.step > step_ + 1) {
+  // Radius-only: round 0 ends with an exchange of X(0), which may reach a node still in set-up.
+  const bool early = radius_only_ && phase_ == PackingPhase::wave && m.step == 0;
+  if ((phase_ != PackingPhase::rounds && !early) || boundary_ || !interior_nbr(i) || m.step < step_ ||
+      m.step > step_ + 1) {
     ++counters().unexpected;
     return;
   }
   const std::size_t slot = m.step & 1;
   peers_[i].radius_tag[slot] = m.step;
   radius_[slot * deg_ + i] = m.h;
+  if (early) return;
+  if (radius_only_ && !layout_round_ && step_ == round_end_step_) {
+    advance_radius_check();
+    return;
+  }
   advance_steps();
 }
 
@@ -516,7 +527,33 @@ void PackingAgent::advance_steps() {
     ++step_;
     sent_step_ = false;
   }
+  if (radius_only_ && !layout_round_) {
+    advance_radius_check();
+    return;
+  }
   advance_layout();
+}
+
+void PackingAgent::advance_radius_check() {
+  // One radius exchange ends the round: X(step_) to the interior neighbours (it is also the next
+  // round's first exchange, which therefore is not sent again), then the closing gap with every
+  // neighbour's X(step_) — the same star, cosines and function as core::pack's check.
+  if (checked_this_round_ || phase_ != PackingPhase::rounds) return;
+  const std::size_t slot = step_ & 1;
+  if (!boundary_) {
+    if (!sent_step_) {
+      sent_step_ = true;
+      final_sent_ = step_;
+      encode(RadiusMsg{step_, h_}, buffer());
+      for (std::size_t i = 0; i < deg_; ++i)
+        if (interior_nbr(i)) send_encoded(i);
+    }
+    for (std::size_t i = 0; i < deg_; ++i)
+      if (interior_nbr(i) && peers_[i].radius_tag[slot] != step_) return;
+  }
+  radius_ok_ = core::radius_only_holds(h_, star(radius_.get() + slot * deg_), boundary_, gap_);
+  checked_this_round_ = true;
+  advance_convergecast();
 }
 
 // ---- Newton–Krylov steps (PackingParams::acceleration = newton_krylov) --------------------------------
@@ -700,7 +737,7 @@ void PackingAgent::handle(std::size_t i, const FaceCirclesMsg& m) {
 }
 
 void PackingAgent::advance_layout() {
-  if (step_ < round_end_step_ || phase_ != PackingPhase::rounds) return;
+  if (step_ < round_end_step_ || phase_ != PackingPhase::rounds || (radius_only_ && !layout_round_)) return;
   const std::size_t slot = round_ & 1;
   auto heard = [&](std::size_t i) { return peers_[i].placed_tag[slot] == round_; };
   auto anchor_heard = [&](std::size_t k) { return anchors_[k][slot].tag == round_; };
@@ -821,18 +858,24 @@ void PackingAgent::handle(std::size_t i, const ReportMsg& m) {
 void PackingAgent::advance_convergecast() {
   if (!checked_this_round_ || reported_ || reports_ < children()) return;
   reported_ = true;
-  const bool ok = reports_ok_ && local_ == core::LocalCondition::holds;
+  const bool radius_phase = radius_only_ && !layout_round_;
+  const bool ok = reports_ok_ && (radius_phase ? radius_ok_ : local_ == core::LocalCondition::holds);
   if (!is_root_) {
     send(parent_index_, ReportMsg{round_, ok});
     return;
   }
-  const Verdict v = ok ? Verdict::converged
-                       : (step_ >= static_cast<std::uint32_t>(params_.max_iterations) ? Verdict::cap : Verdict::next);
+  const bool at_cap = step_ >= static_cast<std::uint32_t>(params_.max_iterations);
+  // Radius-only: the layout is made when the test holds everywhere, and at the cap (coordinates).
+  const Verdict v = radius_phase ? (ok || at_cap ? Verdict::layout : Verdict::next)
+                                 : (ok ? Verdict::converged : (at_cap ? Verdict::cap : Verdict::next));
   apply_decision(v);
 }
 
 void PackingAgent::handle(std::size_t i, const DecisionMsg& m) {
-  if (phase_ != PackingPhase::rounds || is_root_ || i != parent_index_ || m.round != round_ || !reported_) {
+  // A radius-only round's report is answered by next or layout, any other report by next, converged or cap.
+  const bool radius_phase = radius_only_ && !layout_round_;
+  const bool fits = radius_phase ? m.verdict == Verdict::next || m.verdict == Verdict::layout : m.verdict != Verdict::layout;
+  if (phase_ != PackingPhase::rounds || is_root_ || i != parent_index_ || m.round != round_ || !reported_ || !fits) {
     ++counters().unexpected;
     return;
   }
@@ -843,7 +886,18 @@ void PackingAgent::apply_decision(Verdict v) {
   encode(DecisionMsg{round_, v}, buffer());
   for (std::size_t i = 0; i < deg_; ++i)
     if (peers_[i].child) send_encoded(i);
+  if (v == Verdict::layout) {  // the same round, laid out and checked exactly
+    layout_round_ = true;
+    checked_this_round_ = false;
+    reported_ = false;
+    reports_ = 0;
+    reports_ok_ = true;
+    advance_layout();
+    return;
+  }
   if (v == Verdict::next) {
+    if (layout_round_) gap_ /= 2;  // a failed exact check (core::pack halves alike)
+    layout_round_ = false;
     ++round_;
     begin_round();
     return;

@@ -153,6 +153,7 @@ private:
   void handle_async_radius(std::size_t i, const RadiusMsg& m);
   std::uint32_t round_of_step(std::uint32_t s) const;
   void advance_layout();
+  void advance_radius_check();  // radius-only termination: the round's end without a layout
   bool check();  // false while waiting for data
   void advance_convergecast();
   void apply_decision(Verdict v);
@@ -230,6 +231,14 @@ private:
   core::PlacedCircle placed_;
   core::LocalCondition local_ = core::LocalCondition::unrepresentable;
   std::size_t reports_ = 0;
+  // Radius-only termination (docs/radius-only.md): whether this round's layout was asked for (by a
+  // Verdict::layout), the step whose radii the end-of-round exchange sent, the round's test outcome
+  // and the current gap tolerance (halved by every failed exact check, at every node alike).
+  bool radius_only_ = false;
+  bool layout_round_ = false;
+  std::uint32_t final_sent_ = unknown;
+  bool radius_ok_ = false;
+  double gap_ = 0;
 };
 
 }  // namespace laguerre::protocols::detail

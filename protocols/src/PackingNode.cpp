@@ -92,6 +92,9 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
     throw core::InternalError("the packing protocol runs plain, local accelerations or newton-krylov only.");
   if (params.asynchronous && params.acceleration != core::Acceleration::plain)
     throw core::InternalError("the accelerations run in synchronous mode only.");
+  if (params.termination == core::Termination::radius_only &&
+      (params.asynchronous || !(params.radius_only_gap > 0) || params.acceleration == core::Acceleration::newton_krylov))
+    throw core::InternalError("radius-only termination runs in synchronous mode with a positive gap, and not with newton-krylov.");
   validate(params);
   if (!know_.faces.empty() && know_.faces.size() != deg_)
     throw core::InternalError(who + " lists faces for some but not all of its wedges.");

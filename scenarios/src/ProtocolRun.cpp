@@ -54,6 +54,7 @@ protocols::PackingParams packing_params(const ProtocolSetup& setup) {
   params.root = setup.root;
   params.asynchronous = setup.asynchronous;
   params.acceleration = setup.acceleration;
+  params.termination = setup.termination;
   return params;
 }
 
@@ -262,6 +263,7 @@ std::string verify_against_core(const core::PlanarGraph& g, core::GraphKind kind
   opt.max_iterations = setup.max_iterations;
   opt.root = setup.root;
   opt.acceleration = setup.acceleration;
+  opt.termination = setup.termination;
   const core::PackResult r = core::pack(g, opt);
   const core::CircleEmbedding& phi = outcome.circles;
   bool same = r.iterations == static_cast<int>(outcome.iterations);

@@ -118,6 +118,7 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
     setup.max_iterations = cfg.protocol.max_iterations;
     setup.root = cfg.protocol.root;
     setup.acceleration = cfg.protocol.acceleration;
+    setup.termination = cfg.protocol.termination;
     setup.link.latency = cfg.network.latency;
     setup.link.loss = cfg.network.loss;
     setup.link.duplication = cfg.network.duplication;
@@ -135,6 +136,7 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
       opt.max_iterations = cfg.protocol.max_iterations;
       opt.root = cfg.protocol.root;
       opt.acceleration = cfg.protocol.acceleration;
+      opt.termination = cfg.protocol.termination;
       const auto t0 = std::chrono::steady_clock::now();
       core::PackResult pr = core::pack(g, opt);
       po.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

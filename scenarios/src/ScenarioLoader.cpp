@@ -437,7 +437,8 @@ void parse_protocol(Context& ctx, const YAML::Node& n, ProtocolSpec& out) {
   if (!n.IsDefined()) return;
   if (!expect_map(c, n, "protocol")) return;
   check_keys(c, n, "protocol",
-             {"mode", "steps_per_round", "stop", "max_iterations", "root", "exact_reference", "acceleration"});
+             {"mode", "steps_per_round", "stop", "max_iterations", "root", "exact_reference", "acceleration",
+              "termination"});
   std::string s;
   if (const YAML::Node v = lookup(n, "mode");
       v.IsDefined() && read_choice(c, v, "protocol.mode", core::names_of(protocol_mode_names), s)) {
@@ -455,6 +456,15 @@ void parse_protocol(Context& ctx, const YAML::Node& n, ProtocolSpec& out) {
       c.report(v, "protocol.acceleration", "'" + s + "' with mode sync",
                "plain, chebyshev, local-superstep or newton-krylov, or mode central (the distributed protocol "
                "runs local accelerations and newton-krylov only)");
+  }
+  if (const YAML::Node v = lookup(n, "termination"); v.IsDefined()) {
+    if (read_choice(c, v, "protocol.termination", core::names_of(core::termination_names), s))
+      out.termination = *core::find_name(core::termination_names, s);
+    if (out.asynchronous && out.termination != core::Termination::layout)
+      c.report(v, "protocol.termination", "'" + s + "' with mode async", "layout, or mode sync or central for radius-only");
+    else if (out.acceleration == core::Acceleration::newton_krylov && out.termination != core::Termination::layout)
+      c.report(v, "protocol.termination", "'" + s + "' with acceleration newton-krylov",
+               "layout (a Newton step already lays out and checks once per step)");
   }
   std::int64_t i = 0;
   if (const YAML::Node v = lookup(n, "steps_per_round");

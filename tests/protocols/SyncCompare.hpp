@@ -72,6 +72,8 @@ inline core::PackOptions pack_options(const PackingParams& params) {
   opt.steps_per_check = params.steps_per_check;
   opt.max_iterations = params.max_iterations;
   opt.acceleration = params.acceleration;
+  opt.termination = params.termination;
+  opt.radius_only_gap = params.radius_only_gap;
   return opt;
 }
 

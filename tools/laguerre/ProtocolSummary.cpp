@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/routing/RoutingMetrics.hpp"
 #include "laguerre/protocols/Codec.hpp"
 
@@ -67,6 +68,7 @@ int print_protocol_summary(const ProtocolSummary& s, bool json) {
                           {"local_condition_holds", holds},
                           {"iterations", steps},
                           {"mode", s.mode},
+                          {"termination", std::string(core::to_string(setup.termination))},
                           {"rounds", rounds},
                           {"messages", po.messages},
                           {"bytes", po.bytes},
@@ -137,6 +139,10 @@ int print_protocol_summary(const ProtocolSummary& s, bool json) {
                 converged == n ? "converged" : "did not converge", steps,
                 setup.asynchronous ? "iteration-equivalents (asynchronous)" : "iterations", rounds, setup.steps_per_round, holds, n,
                 loaded.kind == core::GraphKind::triangulated_disc ? "LPD" : "GLPD");
+    if (setup.termination != core::Termination::layout)
+      std::printf("termination  %s: rounds end with one radius exchange; the layout wave ran only where the "
+                  "closing gap allowed, and LPD is claimed only on its exact check\n",
+                  std::string(core::to_string(setup.termination)).c_str());
     if (failed > 0)
       std::printf("failure      %zu/%zu surviving nodes ended with neighbour_failed; suspected: %s\n", failed, po.survivors(),
                   suspect_list.c_str());

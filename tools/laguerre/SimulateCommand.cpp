@@ -45,6 +45,7 @@ struct SimulateArgs {
   GraphArgs graph;
   std::string mode = "sync";
   std::string accelerate = "plain";
+  std::string termination = "layout";
   std::string latency = "constant:1ms";
   double loss = 0;
   double dup = 0;
@@ -79,6 +80,15 @@ scenarios::ProtocolSetup setup_of(const SimulateArgs& a) {
                            "found '" + a.accelerate + "' with --mode async; expected plain (the accelerations need "
                            "consistent synchronous iterates: the local ones extrapolate along them, newton-krylov's "
                            "conjugate gradients combine them in tree sums; use --mode sync)");
+  setup.termination = core::parse_name(core::termination_names, a.termination, "--termination");
+  if (setup.asynchronous && setup.termination != core::Termination::layout)
+    throw core::InputError("--termination", 0,
+                           "found '" + a.termination + "' with --mode async; expected layout (radius-only runs in "
+                           "--mode sync)");
+  if (setup.acceleration == core::Acceleration::newton_krylov && setup.termination != core::Termination::layout)
+    throw core::InputError("--termination", 0,
+                           "found '" + a.termination + "' with --accelerate newton-krylov; expected layout (a "
+                           "Newton step already lays out and checks once per step)");
   setup.link.latency = scenarios::parse_latency(a.latency, "--latency");
   setup.link.loss = a.loss;
   setup.link.duplication = a.dup;
@@ -159,6 +169,11 @@ Action add_simulate_command(CLI::App& app) {
              "newton-krylov (damped Newton steps, each solved by conjugate gradients in the network: one "
              "neighbour exchange plus one sum over the layout tree per CG iteration); --mode async refuses "
              "them all (CG needs consistent iterates); superstep, anderson and newton are central only");
+  add_choice(*c.cmd, "--termination", c.args->termination, core::termination_names,
+             "Termination test of each round (sync mode, bit for bit with core::pack): layout (layout wave and "
+             "exact LPD/GLPD check every round) or radius-only (one radius exchange and the closing gap each "
+             "round; the wave and the exact check run only when the gap is small everywhere, and LPD is claimed "
+             "only when that check passes; docs/radius-only.md; not with newton-krylov)");
   c.cmd->add_option("--pairs", c.args->pairs, "'all' ordered pairs, or a number sampled with --seed")->capture_default_str();
   c.cmd->add_option("--scheme", c.args->scheme, "Forwarding scheme: greedy-power, greedy-euclid, compass, gfg or all")
       ->capture_default_str();

@@ -17,6 +17,10 @@ std::string_view to_string(StopRule rule) { return name_of(stop_rule_names, rule
 
 StopRule parse_stop_rule(std::string_view name) { return parse_name(stop_rule_names, name); }
 
+std::string_view to_string(Termination t) { return name_of(termination_names, t); }
+
+Termination parse_termination(std::string_view name) { return parse_name(termination_names, name); }
+
 std::string_view to_string(PackStatus status) {
   switch (status) {
     case PackStatus::converged: return "converged";
@@ -47,8 +51,16 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   const Vertex root = choose_root(k, options.root);
   const std::size_t n = g.num_vertices();
 
+  // Termination::radius_only (docs/radius-only.md): the radius-only test gates the layout; the exact
+  // check on the layout still decides. PackingAgent does the same, round by round.
+  const bool radius_only = options.termination == Termination::radius_only && options.stop == StopRule::lpd;
+  double gap = options.radius_only_gap;
   auto check = [&](int iteration) {
     // Returns whether the requested rule holds; records first occurrences of tracked rules.
+    // At the cap the layout is made whatever the test says: the run ends with coordinates.
+    if (radius_only && iteration < options.max_iterations && !radius_only_everywhere(k, result.radii, gap))
+      return false;
+    ++result.layouts;
     result.layout = lay_out(k, result.radii, root);
     result.circles.assign(result.layout.circles.begin(), result.layout.circles.begin() + static_cast<long>(n));
     result.angle_error = angle_error(k, result.radii);
@@ -77,6 +89,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     }
     if (visitor) visitor->on_layout(iteration, result.layout);
     if (visitor) visitor->on_check(iteration, result.angle_error, result.local_ok);
+    if (radius_only && !lpd) gap /= 2;
     switch (options.stop) {
       case StopRule::lpd: return lpd;
       case StopRule::exact: return exact;

@@ -29,6 +29,7 @@ std::vector<Message> samples() {
           DecisionMsg{9, Verdict::next},
           DecisionMsg{9, Verdict::converged},
           DecisionMsg{0xffffffff, Verdict::cap},
+          DecisionMsg{3, Verdict::layout},
           ShapeMsg{false, true},
           ShapeMsg{true, false},
           FaceCirclesMsg{3, {{0.1, 0.2, 0.3}, {nan, -inf, 0.0}, {-0.0, 1e300, 5e-324}}},
@@ -125,7 +126,7 @@ TEST(Codec, RejectsOutOfRangeFields) {
   EXPECT_EQ(decode(with(WaveMsg{1, true, 3}, 6, 7), out), DecodeStatus::out_of_range);
   EXPECT_EQ(decode(encode(WaveMsg{1, false, 3}), out), DecodeStatus::out_of_range);  // parent without placement
   EXPECT_EQ(decode(with(ReportMsg{1, true}, 6, 0xff), out), DecodeStatus::out_of_range);
-  EXPECT_EQ(decode(with(DecisionMsg{1, Verdict::cap}, 6, 3), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(with(DecisionMsg{1, Verdict::cap}, 6, 4), out), DecodeStatus::out_of_range);
   EXPECT_EQ(decode(encode(StartMsg{5, 5}), out), DecodeStatus::out_of_range);
   for (double x : {-0.5, 0.0, -0.0, std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::infinity()}) {
     EXPECT_EQ(decode(encode(RadiusMsg{1, x}), out), DecodeStatus::out_of_range) << x;

@@ -477,3 +477,36 @@ TEST(Runner, BundledFieldHolesComparisonRoutesEverySensor) {
   EXPECT_EQ(results_csv(s, a.records), results_csv(s, b.records));
   EXPECT_EQ(comparison_csv(rows), comparison_csv(compare_runs(s, b.records)));
 }
+
+// protocol.termination: radius-only in the network equals radius-only centrally (same iterations),
+// ends with LPD everywhere on its exact check, and stops no earlier than the layout termination (it
+// checks a subset of the same iterates). On graphs this small it can send more messages: the rounds
+// after LPD first holds, until the gap meets its tolerance, cost more than the waves saved.
+TEST(Runner, RadiusOnlyTerminationInScenarioFiles) {
+  const std::string base = "name: r\nseed: 5\nrepetitions: 2\ntopology: {generator: delaunay, n: 80}\n"
+                           "routing: {schemes: [greedy-power], pairs: 100}\n";
+  const ScenarioResults layout = run_scenario(from_text(base + "protocol: {mode: sync}\n"), {});
+  const ScenarioResults sync = run_scenario(from_text(base + "protocol: {mode: sync, termination: radius-only}\n"), {});
+  const ScenarioResults central =
+      run_scenario(from_text(base + "protocol: {mode: central, termination: radius-only}\n"), {});
+  ASSERT_EQ(sync.records.size(), central.records.size());
+  for (std::size_t i = 0; i < sync.records.size(); ++i) {
+    ASSERT_EQ(sync.records[i].status, RunStatus::ok) << sync.records[i].message;
+    EXPECT_EQ(sync.records[i].iterations, central.records[i].iterations);
+    EXPECT_EQ(sync.records[i].holds_nodes, sync.records[i].nodes);
+    EXPECT_GE(sync.records[i].iterations, layout.records[i].iterations);
+    EXPECT_GT(sync.records[i].messages, 0u);
+  }
+  try {
+    from_text(base + "protocol: {mode: async, termination: radius-only}\n");
+    ADD_FAILURE() << "async radius-only accepted";
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("protocol.termination"), std::string::npos) << e.what();
+  }
+  try {
+    from_text(base + "protocol: {termination: soon}\n");
+    ADD_FAILURE() << "an unknown termination accepted";
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("radius-only"), std::string::npos) << e.what();
+  }
+}

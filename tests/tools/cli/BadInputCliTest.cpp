@@ -57,6 +57,15 @@ TEST_F(CliBadInput, SimulateRefusesAccelerationsTheNetworkCannotRun) {
   }
 }
 
+TEST_F(CliBadInput, SimulateRadiusOnlyTermination) {
+  expect_bad("simulate " + graph + " --termination radius-only --mode async", {"--termination", "--mode async"});
+  expect_bad("simulate " + graph + " --termination soon", {"--termination"});
+  const Outcome r = run("simulate " + graph + " --termination radius-only --verify --pairs 20");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("identical to core::pack, bit for bit"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("termination  radius-only"), std::string::npos) << r.out;
+}
+
 TEST_F(CliBadInput, ParseErrorsExitWith2) {
   expect_bad("simulate " + graph + " --no-such-option", {"--no-such-option"});
   expect_bad("simulate", {"graph"});

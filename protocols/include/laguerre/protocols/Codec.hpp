@@ -145,9 +145,11 @@ enum class Verdict : std::uint8_t {
   next = 0,       ///< run another round
   converged = 1,  ///< stop: LPD holds everywhere
   cap = 2,        ///< stop: the iteration cap is reached
+  layout = 3,     ///< radius-only termination: the radius-only test held everywhere (or the cap is
+                  ///< reached): lay out and check this round exactly, then decide again
 };
 
-/// The root's decision, sent down the layout tree. Fields: u32 round, u8 verdict ∈ {0, 1, 2}.
+/// The root's decision, sent down the layout tree. Fields: u32 round, u8 verdict ∈ {0, 1, 2, 3}.
 struct DecisionMsg {
   std::uint32_t round = 0;           ///< round number
   Verdict verdict = Verdict::next;   ///< what to do

@@ -28,6 +28,7 @@
 #include "laguerre/core/packing/Accelerator.hpp"
 #include "laguerre/core/packing/Layout.hpp"
 #include "laguerre/core/packing/Placement.hpp"
+#include "laguerre/core/packing/RadiusOnly.hpp"
 #include "laguerre/core/packing/Thurston.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 #include "laguerre/protocols/Codec.hpp"
@@ -61,6 +62,13 @@ struct PackingParams : ReliableParams {
   /// each protocol vertex runs a core::LocalAccelerator on its own updates, with no extra message) or
   /// newton_krylov (Newton steps whose CG runs in the network: core/packing/NewtonKrylov.hpp).
   core::Acceleration acceleration = core::Acceleration::plain;
+  /// layout: every round lays out and checks LPD/GLPD (thesis §5.3); radius_only (synchronous mode
+  /// only): every round ends with one radius exchange and the closing-gap test (core/packing/
+  /// RadiusOnly.hpp) instead, the layout wave and exact check run only when it holds everywhere (or
+  /// at the cap), and each failed exact check halves the gap — core::pack with Termination::radius_only
+  /// bit for bit (docs/radius-only.md).
+  core::Termination termination = core::Termination::layout;
+  double radius_only_gap = 1e-2;  ///< initial closing-gap tolerance (radians, > 0) of radius_only
 };
 
 /// Turns the reliability layer on with periods fitted to links whose one-way latency is at most

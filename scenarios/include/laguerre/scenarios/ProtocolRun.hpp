@@ -56,6 +56,7 @@ struct ProtocolSetup {
   int max_iterations = 100000;                  ///< cap on steps
   core::RootRule root = core::RootRule::deepest;  ///< root election
   core::Acceleration acceleration = core::Acceleration::plain;  ///< core::runs_in_network (local kinds, newton_krylov), sync only
+  core::Termination termination = core::Termination::layout;    ///< radius_only: sync only, not newton_krylov (docs/radius-only.md)
   sim::LinkModel link;                          ///< every link's model
   std::vector<CrashSpec> crashes;               ///< outages, for good or with a recovery
   std::optional<sim::Duration> retransmit_after;  ///< explicit reliability period (else 3 × longest latency)

@@ -14,6 +14,7 @@
 #include "laguerre/core/EnumNames.hpp"
 #include "laguerre/core/packing/Accelerator.hpp"
 #include "laguerre/core/packing/Layout.hpp"
+#include "laguerre/core/packing/RadiusOnly.hpp"
 #include "laguerre/core/routing/Routing.hpp"
 #include "laguerre/scenarios/NetworkModel.hpp"
 #include "laguerre/scenarios/Topology.hpp"
@@ -66,6 +67,7 @@ struct ProtocolSpec {
   /// central only: superstep, anderson, newton; async: plain only.
   core::Acceleration acceleration = core::Acceleration::plain;
   int steps_per_round = 1;                     ///< N, Thurston steps per round
+  core::Termination termination = core::Termination::layout;  ///< the termination test (sync and central)
   StopSpec stop = StopSpec::lpd;               ///< stopping rule
   int max_iterations = 100000;                 ///< cap on Thurston steps
   core::RootRule root = core::RootRule::deepest;  ///< layout root election

@@ -10,6 +10,7 @@
 #include "laguerre/core/packing/Accelerator.hpp"
 #include "laguerre/core/packing/Layout.hpp"
 #include "laguerre/core/packing/Newton.hpp"
+#include "laguerre/core/packing/RadiusOnly.hpp"
 #include "laguerre/core/packing/Thurston.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 
@@ -27,6 +28,11 @@ enum class StopRule {
 std::string_view to_string(StopRule rule);
 /// Parses a stopping rule name; throws InputError listing the valid names (PackingNames.hpp).
 StopRule parse_stop_rule(std::string_view name);
+
+/// Name of a termination test ("layout", "radius-only").
+std::string_view to_string(Termination t);
+/// Parses a termination test name; throws InputError listing the valid names (PackingNames.hpp).
+Termination parse_termination(std::string_view name);
 
 /// How a packing run ended.
 enum class PackStatus {
@@ -51,6 +57,8 @@ struct PackOptions {
   bool track_all = false;                        ///< evaluate every rule at every check (for tables)
   Acceleration acceleration = Acceleration::plain;  ///< sweep acceleration (see Accelerator)
   NewtonSolver newton_solver = NewtonSolver::cholesky;  ///< linear solver of Acceleration::newton
+  Termination termination = Termination::layout;  ///< for StopRule::lpd: see Termination
+  double radius_only_gap = 1e-2;                  ///< Termination::radius_only's initial closing gap (radians)
 };
 
 /// Result of a packing run.
@@ -71,6 +79,7 @@ struct PackResult {
   CircleEmbedding face_circles;   ///< circles of the face vertices (3-connected graphs), per face vertex
   std::vector<LocalCondition> local;  ///< LPD/GLPD outcome per vertex of G at the end
   std::size_t local_ok = 0;           ///< number of vertices where it holds
+  int layouts = 0;                    ///< layouts computed by the checks (one per check unless radius-only)
   Layout layout;                      ///< the final layout of the whole complex
   Radii radii;                        ///< final hyperbolic radius h per vertex of the complex (∞ on the boundary)
 };

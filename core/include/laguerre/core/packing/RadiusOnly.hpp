@@ -1,0 +1,35 @@
+#pragma once
+/// @file
+/// The radius-only termination test (docs/radius-only.md): what a vertex decides from its own
+/// hyperbolic radius and its neighbours' alone, with no layout.
+///
+/// The note proves that on a layout in which a vertex's star is consistent (its tangencies hold), LPD
+/// holds at that vertex in every Möbius normalization: the power tests of the check are Möbius
+/// invariant there, and each corner test has inversive distance ≥ 2. So before convergence LPD fails
+/// only through the layout's inconsistency, which the radii measure locally by the closing gap
+/// |θ(v) − 2π| of each star, and globally by the holonomy of the layout (not a local quantity). The
+/// radius-only test is therefore the closing gap at every interior vertex of K; it gates the layout
+/// and the exact LPD/GLPD check, which still decides (Termination::radius_only in Packer.hpp,
+/// `PackingParams::termination` in the protocol).
+
+#include "laguerre/core/packing/PackingComplex.hpp"
+#include "laguerre/core/packing/Thurston.hpp"
+
+namespace laguerre::core {
+
+/// What each check of StopRule::lpd costs (names: PackingNames.hpp).
+enum class Termination {
+  layout,      ///< lay out and check LPD/GLPD exactly at every check (thesis §5.3)
+  radius_only  ///< the radius-only test first; lay out and check exactly only when it holds everywhere
+               ///< (and at the cap); each failed exact check halves its tolerance
+};
+
+/// Whether the closing gap of a star is within `angle_gap` radians: |θ(v) − 2π| ≤ angle_gap for an
+/// interior vertex (θ by `star_angle_sum`, so bit for bit what the iteration computes), always for a
+/// boundary vertex (a horocycle's star has no closing condition). False if θ is not finite.
+bool radius_only_holds(double h_v, const StarView& star, bool boundary, double angle_gap);
+
+/// `radius_only_holds` at every vertex of K with radii h.
+bool radius_only_everywhere(const PackingComplex& k, const Radii& h, double angle_gap);
+
+}  // namespace laguerre::core

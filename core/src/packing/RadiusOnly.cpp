@@ -1,0 +1,36 @@
+#include "laguerre/core/packing/RadiusOnly.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace laguerre::core {
+
+bool radius_only_holds(double h_v, const StarView& star, bool boundary, double angle_gap) {
+  if (boundary || star.neighbour_h.empty()) return true;
+  return std::abs(star_angle_sum(h_v, star) - 2 * std::numbers::pi) <= angle_gap;  // NaN: false
+}
+
+bool radius_only_everywhere(const PackingComplex& k, const Radii& h, double angle_gap) {
+  // The star as PackingAgent holds it: neighbours from the first dart, K's cosines unless tangent-only.
+  const PlanarGraph& g = k.graph;
+  std::vector<double> nh, spoke, rim;
+  for (Vertex v = 0; v < g.num_vertices(); ++v) {
+    if (g.is_boundary(v)) continue;
+    nh.clear();
+    spoke.clear();
+    rim.clear();
+    const Dart first = g.first_dart(v);
+    for (Dart d = first; d < first + g.degree(v); ++d) {
+      nh.push_back(h[g.head(d)]);
+      if (!k.tangent_only[v]) {
+        spoke.push_back(k.cos_angle[d]);
+        rim.push_back(k.cos_angle[g.next_in_face(d)]);
+      }
+    }
+    if (!radius_only_holds(h[v], StarView{nh, spoke, rim}, false, angle_gap)) return false;
+  }
+  return true;
+}
+
+}  // namespace laguerre::core
