@@ -256,7 +256,7 @@ TEST(ScenarioLoader, BadOverridesAreNamed) {
                         "--set nonsense: found no '=', expected KEY.PATH=VALUE such as topology.n=40",
                         "--set topology.n=two: topology.n: found 'two', expected an integer in [3, 10000000]",
                         "--set protocol.bogus=1: protocol.bogus: found an unknown key, expected one of mode, "
-                        "steps_per_round, stop, max_iterations, root, exact_reference or acceleration",
+                        "steps_per_round, stop, max_iterations, root, exact_reference, acceleration or termination",
                         // the three-connected points of the sweep need n >= 4
                         "--set topology.n=two: topology.n: found 'two', expected an integer in [4, 10000000]"}));
 }
