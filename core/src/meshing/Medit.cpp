@@ -244,12 +244,26 @@ TetMesh read_medit_tet_mesh(const std::string& path) {
   return mesh;
 }
 
-std::vector<Metric3> read_medit_sol3(const std::string& path, std::size_t vertex_count) {
+namespace {
+
+/// The metric 1/h² of a scalar size h (solution type 1), which must be positive.
+double size_metric(Tokens& t) {
+  const double h = t.real("a size");
+  if (!(h > 0)) t.fail("a size must be positive, found " + std::to_string(h));
+  return 1 / (h * h);
+}
+
+/// A Medit .sol file of `vertex_count` values in `dimension` (`note` ends the message for another):
+/// one `SolAtVertices` section of one field, scalar sizes (type 1) or symmetric tensors (type 3), each
+/// value read by `value(tokens, type)` and checked symmetric positive definite.
+template <class M, class ReadValue>
+std::vector<M> read_solution(const std::string& path, std::size_t vertex_count, long dimension, const std::string& note,
+                             ReadValue value) {
   Tokens t(path, "Medit solution file");
-  std::vector<Metric3> metrics;
+  std::vector<M> metrics;
   bool have_solution = false;
   for (std::string key = t.keyword(); !key.empty(); key = t.keyword()) {
-    if (long dimension = 0; t.header(key, " (a 3D solution was expected)", dimension, {3})) continue;
+    if (long d = 0; t.header(key, note, d, {dimension})) continue;
     if (key != "SolAtVertices")
       t.fail("unknown keyword '" + key + "' (expected MeshVersionFormatted, Dimension, SolAtVertices or End)");
     const std::size_t n = t.count("a vertex count");
@@ -262,23 +276,28 @@ std::vector<Metric3> read_medit_sol3(const std::string& path, std::size_t vertex
     if (type != 1 && type != 3)
       t.fail("expected solution type 1 (scalar size) or 3 (symmetric tensor), found " + std::to_string(type));
     metrics.resize(n);
-    for (auto& m : metrics) {
-      if (type == 1) {
-        const double h = t.real("a size");
-        if (!(h > 0)) t.fail("a size must be positive, found " + std::to_string(h));
-        const double l = 1 / (h * h);
-        m = {l, 0, 0, l, 0, l};
-      } else {
-        const double m11 = t.real("m11"), m12 = t.real("m12"), m22 = t.real("m22");
-        const double m13 = t.real("m13"), m23 = t.real("m23"), m33 = t.real("m33");
-        m = {m11, m12, m13, m22, m23, m33};
-        if (!is_metric(m)) t.fail("the tensor is not symmetric positive definite");
-      }
+    for (M& m : metrics) {
+      m = value(t, type);
+      if (type == 3 && !is_metric(m)) t.fail("the tensor is not symmetric positive definite");
     }
     have_solution = true;
   }
   if (!have_solution) throw MeshInputError(path, 0, "missing 'SolAtVertices' section");
   return metrics;
+}
+
+}  // namespace
+
+std::vector<Metric3> read_medit_sol3(const std::string& path, std::size_t vertex_count) {
+  return read_solution<Metric3>(path, vertex_count, 3, " (a 3D solution was expected)", [](Tokens& t, long type) {
+    if (type == 1) {
+      const double l = size_metric(t);
+      return Metric3{l, 0, 0, l, 0, l};
+    }
+    const double m11 = t.real("m11"), m12 = t.real("m12"), m22 = t.real("m22");
+    const double m13 = t.real("m13"), m23 = t.real("m23"), m33 = t.real("m33");
+    return Metric3{m11, m12, m13, m22, m23, m33};
+  });
 }
 
 void write_medit_mesh(const std::string& path, const TetMesh& mesh) {
@@ -316,37 +335,14 @@ void write_medit_sol(const std::string& path, const std::vector<Metric3>& metric
 }
 
 std::vector<Metric> read_medit_sol(const std::string& path, std::size_t vertex_count) {
-  Tokens t(path, "Medit solution file");
-  std::vector<Metric> metrics;
-  for (std::string key = t.keyword(); !key.empty(); key = t.keyword()) {
-    if (long dimension = 0; t.header(key, "", dimension)) continue;
-    if (key == "SolAtVertices") {
-      const std::size_t n = t.count("a vertex count");
-      if (n != vertex_count)
-        t.fail("the solution has " + std::to_string(n) + " values but the mesh has " + std::to_string(vertex_count) +
-               " vertices");
-      if (const long fields = t.integer("a field count"); fields != 1)
-        t.fail("expected exactly 1 solution field, found " + std::to_string(fields));
-      const long type = t.integer("a solution type");
-      if (type != 1 && type != 3)
-        t.fail("expected solution type 1 (scalar size) or 3 (symmetric tensor), found " + std::to_string(type));
-      metrics.resize(n);
-      for (auto& m : metrics) {
-        if (type == 1) {
-          const double h = t.real("a size");
-          if (!(h > 0)) t.fail("a size must be positive, found " + std::to_string(h));
-          m = {1 / (h * h), 0, 1 / (h * h)};
-        } else {
-          m = {t.real("m11"), t.real("m12"), t.real("m22")};
-          if (!is_metric(m)) t.fail("the tensor is not symmetric positive definite");
-        }
-      }
-    } else {
-      t.fail("unknown keyword '" + key + "' (expected MeshVersionFormatted, Dimension, SolAtVertices or End)");
+  return read_solution<Metric>(path, vertex_count, 2, "", [](Tokens& t, long type) {
+    if (type == 1) {
+      const double l = size_metric(t);
+      return Metric{l, 0, l};
     }
-  }
-  if (metrics.size() != vertex_count) throw MeshInputError(path, 0, "missing 'SolAtVertices' section");
-  return metrics;
+    const double m11 = t.real("m11"), m12 = t.real("m12"), m22 = t.real("m22");
+    return Metric{m11, m12, m22};
+  });
 }
 
 void write_medit_mesh(const std::string& path, const TriangleMesh& mesh) {
