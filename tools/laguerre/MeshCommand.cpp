@@ -62,14 +62,17 @@ nlohmann::json quality_json(const core::MeshQuality& q) {
           {"edge_length", summary_json(q.edge_length)}};
 }
 
-/// The quality table of `mesh` and `mesh-quality`.
-void print_quality(const core::MeshQuality& q) {
-  std::printf("quality      %-16s %8s %8s %8s %8s %8s\n", "(in the metric)", "min", "p5", "mean", "p95", "max");
-  auto row = [](const char* name, const core::QualitySummary& s) {
-    std::printf("             %-16s %8.3f %8.3f %8.3f %8.3f %8.3f\n", name, s.min, s.p5, s.mean, s.p95, s.max);
+/// The quality table of `mesh` and `mesh-quality`: triangles, or tetrahedra (`solid`: dihedral angles
+/// and sliverity).
+void print_quality(const core::MeshQuality& q, bool solid = false) {
+  const int w = solid ? 18 : 16;
+  std::printf("quality      %-*s %8s %8s %8s %8s %8s\n", w, "(in the metric)", "min", "p5", "mean", "p95", "max");
+  auto row = [w](const char* name, const core::QualitySummary& x) {
+    std::printf("             %-*s %8.3f %8.3f %8.3f %8.3f %8.3f\n", w, name, x.min, x.p5, x.mean, x.p95, x.max);
   };
-  row("smallest angle", q.smallest_angle);
+  row(solid ? "smallest dihedral" : "smallest angle", q.smallest_angle);
   row("radius-edge", q.radius_edge);
+  if (solid) row("sliverity", q.sliverity);
   row("edge length", q.edge_length);
   row("distortion", q.distortion);
 }
@@ -342,15 +345,7 @@ int run_mesh3(MeshArgs& a) {
                 "(snapped %zu, picks rejected %zu)\n",
                 s.edge_splits, s.facet_splits, s.distortion, s.size, s.shape, s.sliver, s.inconsistency, s.snapped,
                 s.rejected_picks);
-    std::printf("quality      %-18s %8s %8s %8s %8s %8s\n", "(in the metric)", "min", "p5", "mean", "p95", "max");
-    auto row = [](const char* name, const core::QualitySummary& x) {
-      std::printf("             %-18s %8.3f %8.3f %8.3f %8.3f %8.3f\n", name, x.min, x.p5, x.mean, x.p95, x.max);
-    };
-    row("smallest dihedral", q.smallest_angle);
-    row("radius-edge", q.radius_edge);
-    row("sliverity", q.sliverity);
-    row("edge length", q.edge_length);
-    row("distortion", q.distortion);
+    print_quality(q, true);
     std::printf("slivers      %zu (smallest dihedral < 10 deg with radius-edge <= 2)\n", q.slivers);
     std::printf("wrote        %s.{mesh,sol,vtk,json%s}\n", stem.c_str(), a.picture ? ",svg,png" : "");
   }
