@@ -108,6 +108,24 @@ void skip_records(Tokens& t, std::size_t count, std::size_t per_record) {
     if (t.next().empty()) t.fail("the file ends inside a section");
 }
 
+/// Skips the sections both readers pass over (Corners, RequiredVertices, RequiredEdges, Ridges: one index
+/// per record; Quadrilaterals); false if `key` is not one of them.
+bool skip_unused_section(Tokens& t, const std::string& key) {
+  if (key == "Corners" || key == "RequiredVertices" || key == "RequiredEdges" || key == "Ridges") {
+    skip_records(t, t.count("a count"), 1);
+    return true;
+  }
+  if (key != "Quadrilaterals") return false;
+  skip_records(t, t.count("a quadrilateral count"), 5);
+  return true;
+}
+
+/// Fails on `key`, naming the keywords a reader accepts: the header, `sections` and the skipped ones.
+[[noreturn]] void unknown_keyword(const Tokens& t, const std::string& key, const char* sections) {
+  t.fail("unknown Medit keyword '" + key + "' (expected MeshVersionFormatted, Dimension, " + sections +
+         ", Corners, RequiredVertices, RequiredEdges, Ridges, Quadrilaterals or End)");
+}
+
 /// Reads a vertex index written from 1 and returns it from 0.
 std::size_t vertex_index(Tokens& t, std::size_t vertex_count) {
   const long v = t.integer("a vertex index");
@@ -131,9 +149,65 @@ void read_elements(Tokens& t, std::size_t vertex_count, const char* count, const
   }
 }
 
-void write_or_throw(std::ofstream& out, const std::string& path) {
+/// Opens `path` and writes the header of a Medit file of `dimension`, at full precision.
+std::ofstream open_medit_output(const std::string& path, std::size_t dimension) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot open the file for writing");
+  out.precision(17);
+  out << "MeshVersionFormatted 2\nDimension " << dimension << "\n\n";
+  return out;
+}
+
+/// Writes `End` and throws std::runtime_error with the path if anything failed.
+void finish_medit_output(std::ofstream& out, const std::string& path) {
+  out << "\nEnd\n";
   out.flush();
   if (!out) throw std::runtime_error(path + ": cannot write the file");
+}
+
+/// A section of elements to write: its keyword, vertex indices (from 0) and references.
+template <std::size_t N>
+struct ElementSection {
+  const char* name;
+  const std::vector<std::array<std::size_t, N>>& items;
+  const std::vector<int>& refs;  ///< 0 is written where it has no entry
+};
+
+template <std::size_t N>
+void write_section(std::ostream& out, const ElementSection<N>& s) {
+  out << '\n' << s.name << '\n' << s.items.size() << '\n';
+  for (std::size_t i = 0; i < s.items.size(); ++i) {
+    for (const std::size_t v : s.items[i]) out << v + 1 << ' ';
+    out << (i < s.refs.size() ? s.refs[i] : 0) << '\n';
+  }
+}
+
+/// A mesh file of dimension D: the vertices (coordinates, then the reference, 0 where `refs` has none),
+/// the `boundary` section when it is not empty, then the `elements` section (indices written from 1).
+template <std::size_t D, std::size_t B, std::size_t E>
+void write_mesh_file(const std::string& path, const std::vector<std::array<double, D>>& points,
+                     const std::vector<int>& refs, const ElementSection<B>& boundary, const ElementSection<E>& elements) {
+  std::ofstream out = open_medit_output(path, D);
+  out << "Vertices\n" << points.size() << '\n';
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (const double x : points[i]) out << x << ' ';
+    out << (i < refs.size() ? refs[i] : 0) << '\n';
+  }
+  if (!boundary.items.empty()) write_section(out, boundary);
+  write_section(out, elements);
+  finish_medit_output(out, path);
+}
+
+/// A solution file of one symmetric-tensor field (type 3), each metric written as `entries` gives it.
+template <class M, class Entries>
+void write_sol_file(const std::string& path, std::size_t dimension, const std::vector<M>& metrics, Entries entries) {
+  std::ofstream out = open_medit_output(path, dimension);
+  out << "SolAtVertices\n" << metrics.size() << "\n1 3\n";
+  for (const M& m : metrics) {
+    const auto e = entries(m);
+    for (std::size_t k = 0; k < e.size(); ++k) out << e[k] << (k + 1 < e.size() ? ' ' : '\n');
+  }
+  finish_medit_output(out, path);
 }
 
 }  // namespace
@@ -162,14 +236,8 @@ TriangleMesh read_medit_mesh(const std::string& path) {
       read_elements(t, mesh.points.size(), "a triangle count", "a triangle reference", mesh.triangles, mesh.triangle_refs);
     } else if (key == "Edges") {
       read_elements(t, mesh.points.size(), "an edge count", "an edge reference", mesh.edges, mesh.edge_refs);
-    } else if (key == "Corners" || key == "RequiredVertices" || key == "RequiredEdges" || key == "Ridges") {
-      skip_records(t, t.count("a count"), 1);  // one index per record
-    } else if (key == "Quadrilaterals") {
-      skip_records(t, t.count("a quadrilateral count"), 5);
-    } else {
-      t.fail("unknown Medit keyword '" + key +
-             "' (expected MeshVersionFormatted, Dimension, Vertices, Triangles, Edges, Corners, "
-             "RequiredVertices, RequiredEdges, Ridges, Quadrilaterals or End)");
+    } else if (!skip_unused_section(t, key)) {
+      unknown_keyword(t, key, "Vertices, Triangles, Edges");
     }
   }
   if (!have_dimension) throw MeshInputError(path, 0, "missing 'Dimension 2'");
@@ -222,14 +290,8 @@ TetMesh read_medit_tet_mesh(const std::string& path) {
                     mesh.tetrahedron_refs);
     } else if (key == "Edges") {
       skip_records(t, t.count("an edge count"), 3);
-    } else if (key == "Corners" || key == "RequiredVertices" || key == "RequiredEdges" || key == "Ridges") {
-      skip_records(t, t.count("a count"), 1);
-    } else if (key == "Quadrilaterals") {
-      skip_records(t, t.count("a quadrilateral count"), 5);
-    } else {
-      t.fail("unknown Medit keyword '" + key +
-             "' (expected MeshVersionFormatted, Dimension, Vertices, Triangles, Tetrahedra, Edges, Corners, "
-             "RequiredVertices, RequiredEdges, Ridges, Quadrilaterals or End)");
+    } else if (!skip_unused_section(t, key)) {
+      unknown_keyword(t, key, "Vertices, Triangles, Tetrahedra, Edges");
     }
   }
   if (!have_dimension) throw MeshInputError(path, 0, "missing 'Dimension 3'");
@@ -301,37 +363,12 @@ std::vector<Metric3> read_medit_sol3(const std::string& path, std::size_t vertex
 }
 
 void write_medit_mesh(const std::string& path, const TetMesh& mesh) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path + ": cannot open the file for writing");
-  out.precision(17);
-  out << "MeshVersionFormatted 2\nDimension 3\n\nVertices\n" << mesh.points.size() << '\n';
-  for (std::size_t i = 0; i < mesh.points.size(); ++i)
-    out << mesh.points[i][0] << ' ' << mesh.points[i][1] << ' ' << mesh.points[i][2] << ' '
-        << (i < mesh.point_refs.size() ? mesh.point_refs[i] : 0) << '\n';
-  if (!mesh.triangles.empty()) {
-    out << "\nTriangles\n" << mesh.triangles.size() << '\n';
-    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-      out << mesh.triangles[i][0] + 1 << ' ' << mesh.triangles[i][1] + 1 << ' ' << mesh.triangles[i][2] + 1 << ' '
-          << (i < mesh.triangle_refs.size() ? mesh.triangle_refs[i] : 0) << '\n';
-  }
-  out << "\nTetrahedra\n" << mesh.tetrahedra.size() << '\n';
-  for (std::size_t i = 0; i < mesh.tetrahedra.size(); ++i) {
-    for (std::size_t v : mesh.tetrahedra[i]) out << v + 1 << ' ';
-    out << (i < mesh.tetrahedron_refs.size() ? mesh.tetrahedron_refs[i] : 0) << '\n';
-  }
-  out << "\nEnd\n";
-  write_or_throw(out, path);
+  write_mesh_file(path, mesh.points, mesh.point_refs, ElementSection<3>{"Triangles", mesh.triangles, mesh.triangle_refs},
+                  ElementSection<4>{"Tetrahedra", mesh.tetrahedra, mesh.tetrahedron_refs});
 }
 
 void write_medit_sol(const std::string& path, const std::vector<Metric3>& metrics) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path + ": cannot open the file for writing");
-  out.precision(17);
-  out << "MeshVersionFormatted 2\nDimension 3\n\nSolAtVertices\n" << metrics.size() << "\n1 3\n";
-  for (const Metric3& m : metrics)
-    out << m.xx << ' ' << m.xy << ' ' << m.yy << ' ' << m.xz << ' ' << m.yz << ' ' << m.zz << '\n';
-  out << "\nEnd\n";
-  write_or_throw(out, path);
+  write_sol_file(path, 3, metrics, [](const Metric3& m) { return std::array<double, 6>{m.xx, m.xy, m.yy, m.xz, m.yz, m.zz}; });
 }
 
 std::vector<Metric> read_medit_sol(const std::string& path, std::size_t vertex_count) {
@@ -346,35 +383,12 @@ std::vector<Metric> read_medit_sol(const std::string& path, std::size_t vertex_c
 }
 
 void write_medit_mesh(const std::string& path, const TriangleMesh& mesh) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path + ": cannot open the file for writing");
-  out.precision(17);
-  out << "MeshVersionFormatted 2\nDimension 2\n\nVertices\n" << mesh.points.size() << '\n';
-  for (std::size_t i = 0; i < mesh.points.size(); ++i)
-    out << mesh.points[i][0] << ' ' << mesh.points[i][1] << ' '
-        << (i < mesh.point_refs.size() ? mesh.point_refs[i] : 0) << '\n';
-  if (!mesh.edges.empty()) {
-    out << "\nEdges\n" << mesh.edges.size() << '\n';
-    for (std::size_t i = 0; i < mesh.edges.size(); ++i)
-      out << mesh.edges[i][0] + 1 << ' ' << mesh.edges[i][1] + 1 << ' '
-          << (i < mesh.edge_refs.size() ? mesh.edge_refs[i] : 0) << '\n';
-  }
-  out << "\nTriangles\n" << mesh.triangles.size() << '\n';
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-    out << mesh.triangles[i][0] + 1 << ' ' << mesh.triangles[i][1] + 1 << ' ' << mesh.triangles[i][2] + 1 << ' '
-        << (i < mesh.triangle_refs.size() ? mesh.triangle_refs[i] : 0) << '\n';
-  out << "\nEnd\n";
-  write_or_throw(out, path);
+  write_mesh_file(path, mesh.points, mesh.point_refs, ElementSection<2>{"Edges", mesh.edges, mesh.edge_refs},
+                  ElementSection<3>{"Triangles", mesh.triangles, mesh.triangle_refs});
 }
 
 void write_medit_sol(const std::string& path, const std::vector<Metric>& metrics) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path + ": cannot open the file for writing");
-  out.precision(17);
-  out << "MeshVersionFormatted 2\nDimension 2\n\nSolAtVertices\n" << metrics.size() << "\n1 3\n";
-  for (const Metric& m : metrics) out << m.a << ' ' << m.b << ' ' << m.c << '\n';
-  out << "\nEnd\n";
-  write_or_throw(out, path);
+  write_sol_file(path, 2, metrics, [](const Metric& m) { return std::array<double, 3>{m.a, m.b, m.c}; });
 }
 
 }  // namespace laguerre::core

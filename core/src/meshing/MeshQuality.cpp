@@ -54,6 +54,33 @@ QualitySummary summarize(std::vector<double> values, double lo, double hi, std::
   return s;
 }
 
+namespace {
+
+/// Fills q's edge lengths (each edge a < b measured in the metric of a, then of b, by `length(v, a, b)`)
+/// and summaries: smallest angles over [0, max_angle] in `angle_bins` bins, sliverity when `slivers`.
+template <class Length>
+void summarize_quality(MeshQuality& q, const std::map<std::pair<std::size_t, std::size_t>, bool>& edges, Length length,
+                       double max_angle, std::size_t angle_bins, bool slivers) {
+  for (const auto& [e, unused] : edges) {
+    q.edge_lengths.push_back(length(e.first, e.first, e.second));
+    q.edge_lengths.push_back(length(e.second, e.first, e.second));
+  }
+  std::vector<double> ratios, angles, gammas, sliverity;
+  for (const auto& e : q.elements) {
+    ratios.push_back(e.radius_edge);
+    angles.push_back(e.smallest_angle);
+    gammas.push_back(e.distortion);
+    sliverity.push_back(e.sliverity);
+  }
+  q.radius_edge = summarize(ratios, 0.5, 3.0, 10);
+  q.smallest_angle = summarize(angles, 0, max_angle, angle_bins);
+  q.distortion = summarize(gammas, 1, 2, 10);
+  q.edge_length = summarize(q.edge_lengths, 0, 3, 12);
+  if (slivers) q.sliverity = summarize(sliverity, 0, 0.12, 12);
+}
+
+}  // namespace
+
 MeshQuality measure_quality(const TriangleMesh& mesh, const std::vector<Metric>& metrics) {
   MeshQuality q;
   std::vector<Matrix2> roots;
@@ -71,22 +98,9 @@ MeshQuality measure_quality(const TriangleMesh& mesh, const std::vector<Metric>&
     }
     q.elements.push_back(e);
   }
-  for (const auto& [e, unused] : edges) {
-    const double dx = mesh.points[e.second][0] - mesh.points[e.first][0];
-    const double dy = mesh.points[e.second][1] - mesh.points[e.first][1];
-    q.edge_lengths.push_back(metric_length(metrics[e.first], dx, dy));
-    q.edge_lengths.push_back(metric_length(metrics[e.second], dx, dy));
-  }
-  std::vector<double> ratios, angles, gammas;
-  for (const auto& e : q.elements) {
-    ratios.push_back(e.radius_edge);
-    angles.push_back(e.smallest_angle);
-    gammas.push_back(e.distortion);
-  }
-  q.radius_edge = summarize(ratios, 0.5, 3.0, 10);
-  q.smallest_angle = summarize(angles, 0, 60, 12);
-  q.distortion = summarize(gammas, 1, 2, 10);
-  q.edge_length = summarize(q.edge_lengths, 0, 3, 12);
+  summarize_quality(q, edges, [&](std::size_t v, std::size_t a, std::size_t b) {
+    return metric_length(metrics[v], mesh.points[b][0] - mesh.points[a][0], mesh.points[b][1] - mesh.points[a][1]);
+  }, 60, 12, false);
   return q;
 }
 
@@ -153,23 +167,9 @@ MeshQuality measure_quality(const TetMesh& mesh, const std::vector<Metric3>& met
     if (e.smallest_angle < 10 && e.radius_edge <= 2) ++q.slivers;
     q.elements.push_back(e);
   }
-  for (const auto& [e, unused] : edges) {
-    const P3 d = minus(mesh.points[e.second], mesh.points[e.first]);
-    q.edge_lengths.push_back(metric_length(metrics[e.first], d));
-    q.edge_lengths.push_back(metric_length(metrics[e.second], d));
-  }
-  std::vector<double> ratios, angles, gammas, slivers;
-  for (const auto& e : q.elements) {
-    ratios.push_back(e.radius_edge);
-    angles.push_back(e.smallest_angle);
-    gammas.push_back(e.distortion);
-    slivers.push_back(e.sliverity);
-  }
-  q.radius_edge = summarize(ratios, 0.5, 3.0, 10);
-  q.smallest_angle = summarize(angles, 0, 90, 18);
-  q.distortion = summarize(gammas, 1, 2, 10);
-  q.edge_length = summarize(q.edge_lengths, 0, 3, 12);
-  q.sliverity = summarize(slivers, 0, 0.12, 12);
+  summarize_quality(q, edges, [&](std::size_t v, std::size_t a, std::size_t b) {
+    return metric_length(metrics[v], minus(mesh.points[b], mesh.points[a]));
+  }, 90, 18, true);
   return q;
 }
 

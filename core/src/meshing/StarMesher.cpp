@@ -2,6 +2,7 @@
 
 #include "detail/BucketGrid.hpp"
 #include "detail/LocalDelaunay.hpp"
+#include "detail/StarRefinement.hpp"
 #include "laguerre/core/random/Random.hpp"
 
 #include <algorithm>
@@ -52,14 +53,13 @@ struct Request {
   }
 };
 
-class StarMesher {
+class StarMesher : detail::StarRefinement<StarMesher, Request, Index> {
 public:
   StarMesher(const Domain& domain, const MetricField& field, const StarMeshOptions& options)
       : domain_(domain), field_(field), options_(options), rng_{options.seed}, box_(expanded_box(domain)),
         sites_grid_(box_, 256), zones_grid_(box_, 128), subs_grid_(box_, 128) {}
 
   StarMeshResult run() {
-    StarMeshResult result;
     // Sites: every constraint endpoint once; subsegments: the constraints.
     std::map<std::pair<double, double>, Index> index_of;
     auto site_of = [&](Point2 p) {
@@ -74,64 +74,27 @@ public:
       add_subsegment(site_of(piece.a), site_of(piece.b), piece.constraint >= boundary_edges);
     for (std::size_t s = 0; s < subs_.size(); ++s) check_subsegment(static_cast<Index>(s));
 
-    while (true) {
-      if (points_.size() > options_.max_vertices) {
-        result.status = "stopped at " + std::to_string(points_.size()) + " vertices (max_vertices)";
-        break;
-      }
-      if (!degenerate_.empty()) {
-        result.status = "stopped: " + degenerate_;
-        break;
-      }
-      if (!split_queue_.empty()) {
-        const Index s = split_queue_.back();
-        split_queue_.pop_back();
-        if (subs_[s].alive && subsegment_is_bad(s)) split(s);
-        continue;
-      }
-      // Refine from clean stars first: a request of a star made dirty by an insertion since is
-      // dropped (its star is re-evaluated when recomputed), so stars are recomputed once per batch of
-      // insertions rather than after every insertion.
-      if (!requests_.empty()) {
-        const Request r = requests_.top();
-        requests_.pop();
-        if (r.version == stars_[r.v].version && !is_dirty_[r.v]) refine(r);
-        continue;
-      }
-      if (!dirty_.empty()) {
-        while (!dirty_.empty()) {
-          const Index v = dirty_.back();
-          dirty_.pop_back();
-          is_dirty_[v] = false;
-          update_star(v);
-        }
-        continue;
-      }
-      if (!consistency_sweep()) {
-        if (options_.no_lonely_corners && refine_lonely_corners()) continue;
-        result.converged = true;
-        result.status = "converged";
-        break;
-      }
-      if (points_.size() == sites_at_last_sweep_) {
-        result.status = "stuck: inconsistent triangles remain but no refinement point could be inserted";
-        break;
-      }
-      sites_at_last_sweep_ = points_.size();
-    }
-    result.stats = stats_;
-    merge(result);
-    // Consistent stars whose union is not a triangulation of Ω would be a bug of the star
-    // computation; never report such a mesh as converged.
-    if (result.converged)
-      if (std::string problem = check_triangulation(result.mesh, domain_); !problem.empty()) {
-        result.converged = false;
-        result.status = "not a triangulation although every star is consistent: " + problem;
-      }
-    return result;
+    return refine_until_done<StarMeshResult>(options_.max_vertices, 0, {"triangles", "triangulation"});
   }
 
 private:
+  friend detail::StarRefinement<StarMesher, Request, Index>;
+
+  // --- the hooks of detail::StarRefinement -------------------------------------------------------
+
+  std::size_t site_count() const { return points_.size(); }
+  std::string stop_reason() const { return degenerate_; }
+  bool split_queued_constraint() {
+    if (split_queue_.empty()) return false;
+    const Index s = split_queue_.back();
+    split_queue_.pop_back();
+    if (subs_[s].alive && subsegment_is_bad(s)) split(s);
+    return true;
+  }
+  std::uint32_t star_version(Index v) const { return stars_[v].version; }
+  bool last_resort() { return options_.no_lonely_corners && refine_lonely_corners(); }
+  std::string check(const StarMeshResult& result) const { return check_triangulation(result.mesh, domain_); }
+
   static std::array<double, 4> expanded_box(const Domain& d) {
     auto b = d.bounding_box();
     const double pad = 1e-6 * std::max(b[2] - b[0], b[3] - b[1]);
@@ -161,13 +124,6 @@ private:
     for (Index s : subs_grid_.at(subs_grid_.ix(p.x), subs_grid_.iy(p.y)))
       if (subs_[s].alive && encroaches(s, p)) split_queue_.push_back(s);
     return v;
-  }
-
-  void mark_dirty(Index v) {
-    if (!is_dirty_[v]) {
-      is_dirty_[v] = true;
-      dirty_.push_back(v);
-    }
   }
 
   bool in_conflict_zone(Index w, Point2 p) const {
@@ -667,6 +623,7 @@ private:
   // --- output --------------------------------------------------------------------------------------
 
   void merge(StarMeshResult& result) const {
+    result.stats = stats_;
     TriangleMesh& mesh = result.mesh;
     for (const Point2& p : points_) mesh.points.push_back({p.x, p.y});
     mesh.point_refs.assign(points_.size(), 0);
@@ -696,8 +653,6 @@ private:
   std::vector<double> largest_size_;
   std::vector<double> hint_;
   std::vector<Star> stars_;
-  std::vector<bool> is_dirty_;
-  std::vector<Index> dirty_;
   std::vector<Subsegment> subs_;
   std::vector<std::uint64_t> sub_seen_;  ///< per subsegment: the last star query that met it
   std::uint64_t sub_epoch_ = 0;
@@ -705,9 +660,7 @@ private:
   std::vector<std::size_t> local_index_;    ///< per site: its index in that query
   std::uint64_t local_epoch_ = 0;
   std::vector<Index> split_queue_;
-  std::priority_queue<Request> requests_;
   StarMeshStats stats_;
-  std::size_t sites_at_last_sweep_ = 0;
   std::string degenerate_;  ///< why the refinement must stop (a star triangle it cannot refine), or ""
 };
 

@@ -2,6 +2,7 @@
 
 #include "detail/BucketGrid.hpp"
 #include "detail/LocalDelaunay3.hpp"
+#include "detail/StarRefinement.hpp"
 #include "laguerre/core/random/Random.hpp"
 
 #include <algorithm>
@@ -160,14 +161,13 @@ bool on_face(const Plane& plane, const P3& a, const P3& b, const P3& c) {
   return false;
 }
 
-class StarMesher3 {
+class StarMesher3 : detail::StarRefinement<StarMesher3, Request, Index> {
 public:
   StarMesher3(const PolyhedralDomain& domain, const MetricField3& field, const StarMesh3Options& options)
       : domain_(domain), field_(field), options_(options), rng_{options.seed}, box_(expanded_box(domain)),
         planes_(face_planes(domain)), sites_grid_(box_, 48), zones_grid_(box_, 24), creases_grid_(box_, 24) {}
 
   StarMesh3Result run() {
-    StarMesh3Result result;
     for (const Point3& p : domain_.vertices()) add_site(p, INFINITY);
     // Constraint edges: input edges between non-coplanar triangles (exact).
     std::map<std::pair<Index, Index>, std::vector<std::size_t>> faces_at;
@@ -185,58 +185,27 @@ public:
     }
     for (Index s = 0; s < creases_.size(); ++s) check_crease(s);
 
-    while (true) {
-      if (points_.size() > options_.max_vertices) {
-        result.status = "stopped at " + std::to_string(points_.size()) + " vertices (max_vertices)";
-        break;
-      }
-      if (!crease_queue_.empty()) {
-        const Index s = crease_queue_.back();
-        crease_queue_.pop_back();
-        if (creases_[s].alive && crease_is_bad(s)) split_crease(s);
-        continue;
-      }
-      if (!requests_.empty()) {
-        const Request r = requests_.top();
-        requests_.pop();
-        if (r.version == stars_[r.v].version && !is_dirty_[r.v]) refine(r);
-        continue;
-      }
-      if (!dirty_.empty()) {
-        while (!dirty_.empty()) {
-          const Index v = dirty_.back();
-          dirty_.pop_back();
-          is_dirty_[v] = false;
-          update_star(v);
-        }
-        continue;
-      }
-      if (!consistency_sweep()) {
-        result.converged = true;
-        result.status = "converged";
-        break;
-      }
-      if (points_.size() == sites_at_last_sweep_) {
-        if (++idle_sweeps_ > 2) {
-          result.status = "stuck: inconsistent tetrahedra remain but no refinement point could be inserted";
-          break;
-        }
-      } else {
-        idle_sweeps_ = 0;
-      }
-      sites_at_last_sweep_ = points_.size();
-    }
-    result.stats = stats_;
-    merge(result);
-    if (result.converged)
-      if (std::string problem = check_tetrahedralization(result.mesh, domain_); !problem.empty()) {
-        result.converged = false;
-        result.status = "not a tetrahedralization although every star is consistent: " + problem;
-      }
-    return result;
+    return refine_until_done<StarMesh3Result>(options_.max_vertices, 2, {"tetrahedra", "tetrahedralization"});
   }
 
 private:
+  friend detail::StarRefinement<StarMesher3, Request, Index>;
+
+  // --- the hooks of detail::StarRefinement -------------------------------------------------------
+
+  std::size_t site_count() const { return points_.size(); }
+  std::string stop_reason() const { return {}; }
+  bool split_queued_constraint() {
+    if (crease_queue_.empty()) return false;
+    const Index s = crease_queue_.back();
+    crease_queue_.pop_back();
+    if (creases_[s].alive && crease_is_bad(s)) split_crease(s);
+    return true;
+  }
+  std::uint32_t star_version(Index v) const { return stars_[v].version; }
+  bool last_resort() { return false; }
+  std::string check(const StarMesh3Result& result) const { return check_tetrahedralization(result.mesh, domain_); }
+
   static std::array<double, 6> expanded_box(const PolyhedralDomain& d) {
     auto b = d.bounding_box();
     const double pad = 1e-6 * std::max({b[3] - b[0], b[4] - b[1], b[5] - b[2]});
@@ -276,13 +245,6 @@ private:
       if (creases_[s].alive && crease_encroached_by(s, v)) crease_queue_.push_back(s);
     });
     return v;
-  }
-
-  void mark_dirty(Index v) {
-    if (!is_dirty_[v]) {
-      is_dirty_[v] = true;
-      dirty_.push_back(v);
-    }
   }
 
   bool in_conflict_zone(Index w, const P3& p) const {
@@ -741,6 +703,7 @@ private:
   // --- output --------------------------------------------------------------------------------------
 
   void merge(StarMesh3Result& result) const {
+    result.stats = stats_;
     TetMesh& mesh = result.mesh;
     mesh.points = points_;
     mesh.point_refs.assign(points_.size(), 0);
@@ -783,14 +746,9 @@ private:
   std::vector<double> hint_;
   std::vector<std::vector<int>> planes_of_;
   std::vector<Star> stars_;
-  std::vector<bool> is_dirty_;
-  std::vector<Index> dirty_;
   std::vector<Crease> creases_;
   std::vector<Index> crease_queue_;
-  std::priority_queue<Request> requests_;
   StarMesh3Stats stats_;
-  std::size_t sites_at_last_sweep_ = 0;
-  int idle_sweeps_ = 0;
 };
 
 }  // namespace
