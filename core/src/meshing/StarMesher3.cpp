@@ -367,8 +367,8 @@ private:
         for (std::size_t k = 0; k < raw.size(); ++k) {
           if (side[k] <= 0) continue;
           const Index a = ids[raw[k][0]], b = ids[raw[k][1]], c = ids[raw[k][2]];
-          // Flat on the input points (the stretched points were rounded off a common plane): not a
-          // tetrahedron; the star stays open there and is refined.
+          // Defensive: the exact stars are positively oriented (LocalDelaunay3.hpp); a flat one would
+          // not be a tetrahedron, and the star would stay open there and be refined.
           if (detail::orientation3(p, points_[a], points_[b], points_[c]) <= 0) continue;
           const P3 sa = multiply(f, sub(points_[a], p)), sb = multiply(f, sub(points_[b], p)), sc = multiply(f, sub(points_[c], p));
           const P3 u = tet_circumcentre(sa, sb, sc);

@@ -1,6 +1,5 @@
 #include "LocalDelaunay3.hpp"
 
-#include "laguerre/core/meshing/Metric3.hpp"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -8,6 +7,8 @@
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #include <CGAL/determinant.h>
+
+#include <cmath>
 
 namespace laguerre::core::detail {
 
@@ -42,8 +43,52 @@ int exact_in_sphere(const P3& p, const P3& q, const P3& r, const P3& s, const P3
   return static_cast<int>(CGAL::sign(in_sphere_determinant<CGAL::Exact_rational>(p, q, r, s, t, m)));
 }
 
-using EuclideanVb = CGAL::Triangulation_vertex_base_with_info_3<std::size_t, Kernel>;
-using EuclideanDt = CGAL::Delaunay_triangulation_3<Kernel, CGAL::Triangulation_data_structure_3<EuclideanVb>>;
+/// CGAL's 3D Delaunay traits with the M-lifting x ↦ xᵀMx in place of |x|²: the two predicates
+/// Delaunay_triangulation_3 decides conflicts with (side_of_oriented_sphere_3 in dimension 3, and
+/// coplanar_side_of_bounded_circle_3 for a point coplanar with a hull facet, which the planar faces of
+/// a domain make the rule, not the exception) are exact in M on the input points; orientations,
+/// lexicographic order and hence CGAL's symbolic perturbation (which only needs orientations) are
+/// the kernel's, metric-independent. (A former attempt that replaced only the first predicate hung in
+/// the walk: the Euclidean coplanar test then disagreed with the metric one and broke the triangulation.)
+struct MetricDelaunayTraits : Kernel {
+  std::array<double, 6> metric{1, 0, 0, 1, 0, 1};
+
+  struct Side_of_oriented_sphere_3 {
+    std::array<double, 6> m;
+    CGAL::Oriented_side operator()(const Point_3& p, const Point_3& q, const Point_3& r, const Point_3& s,
+                                   const Point_3& t) const {
+      return CGAL::Oriented_side(exact_in_sphere(array(p), array(q), array(r), array(s), array(t), m));
+    }
+  };
+  /// t (coplanar with p, q, r) against the M-circle through p, q, r in their plane: that circle is the
+  /// plane's section of every M-sphere through p, q, r, so the test is the in-sphere against (p, q, r, s)
+  /// for any s off the plane (exactly checked), signed by the orientation of (p, q, r, s).
+  struct Coplanar_side_of_bounded_circle_3 {
+    std::array<double, 6> m;
+    CGAL::Bounded_side operator()(const Point_3& p, const Point_3& q, const Point_3& r, const Point_3& t) const {
+      const P3 a = array(p);
+      for (int axis = 0; axis < 3; ++axis) {
+        P3 s = a;
+        s[axis] += 1.0 + 2.0 * std::abs(a[axis]);
+        const int o = orientation3(a, array(q), array(r), s);
+        if (o == 0) continue;
+        const int side = o > 0 ? exact_in_sphere(a, array(q), array(r), s, array(t), m)
+                               : exact_in_sphere(a, array(r), array(q), s, array(t), m);
+        return CGAL::Bounded_side(side);  // ON_BOUNDED_SIDE = 1 = inside
+      }
+      return CGAL::ON_BOUNDARY;  // p, q, r collinear: CGAL's precondition excludes it
+    }
+  };
+  Side_of_oriented_sphere_3 side_of_oriented_sphere_3_object() const { return {metric}; }
+  Coplanar_side_of_bounded_circle_3 coplanar_side_of_bounded_circle_3_object() const { return {metric}; }
+
+  static P3 array(const Point_3& p) { return {p.x(), p.y(), p.z()}; }
+};
+
+using MetricVb = CGAL::Triangulation_vertex_base_with_info_3<std::size_t, MetricDelaunayTraits>;
+using MetricCb = CGAL::Delaunay_triangulation_cell_base_3<MetricDelaunayTraits>;
+using MetricDt =
+    CGAL::Delaunay_triangulation_3<MetricDelaunayTraits, CGAL::Triangulation_data_structure_3<MetricVb, MetricCb>>;
 
 }  // namespace
 
@@ -51,23 +96,22 @@ bool delaunay_star3(const std::vector<P3>& points, std::size_t centre, const std
                     std::vector<std::array<std::size_t, 3>>& star, bool& on_hull) {
   star.clear();
   on_hull = false;
-  // The Euclidean Delaunay triangulation of the stretched points F·p (F = M^{1/2}, rounded), whose
-  // combinatorics is the M-Delaunay one up to the rounding of F·p; see the header for why not the
-  // metric in-sphere on the input points.
-  const Matrix3 f = square_root(Metric3{metric[0], metric[1], metric[2], metric[3], metric[4], metric[5]});
+  // The M-Delaunay triangulation of the input points themselves (exact predicates in M, see
+  // MetricDelaunayTraits): no stretched or rounded coordinates.
+  MetricDelaunayTraits traits;
+  traits.metric = metric;
   std::vector<std::pair<Kernel::Point_3, std::size_t>> input;
   input.reserve(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const P3 q = multiply(f, points[i]);
-    input.emplace_back(Kernel::Point_3(q[0], q[1], q[2]), i);
-  }
-  EuclideanDt dt(input.begin(), input.end());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    input.emplace_back(Kernel::Point_3(points[i][0], points[i][1], points[i][2]), i);
+  MetricDt dt(traits);
+  dt.insert(input.begin(), input.end());
   if (dt.dimension() < 3) return false;
-  EuclideanDt::Vertex_handle v;
+  MetricDt::Vertex_handle v;
   for (auto it = dt.finite_vertices_begin(); it != dt.finite_vertices_end(); ++it)
     if (it->info() == centre) v = it;
-  if (v == EuclideanDt::Vertex_handle()) return false;
-  std::vector<EuclideanDt::Cell_handle> cells;
+  if (v == MetricDt::Vertex_handle()) return false;
+  std::vector<MetricDt::Cell_handle> cells;
   dt.incident_cells(v, std::back_inserter(cells));
   for (const auto& c : cells) {
     if (dt.is_infinite(c)) {

@@ -3,14 +3,10 @@
 /// The CGAL entry points of the 3D star mesher: the star of one point in the Delaunay triangulation of
 /// a small point set for a constant metric M, and the exact 3D predicates the mesher decides with.
 ///
-/// Unlike 2D (LocalDelaunay.hpp), the star is the Euclidean Delaunay triangulation (CGAL, exact
-/// predicates) of the stretched points F·p, F = M^{1/2}, rounded to doubles: a CGAL 3D triangulation
-/// with the metric in-sphere (lifting xᵀMx, `metric_in_sphere`) on the input points hung in
-/// CGAL's point location on stars of the cube (cause not found in the time available). For diagonal
-/// metrics (every built-in field but `sphere`) F·p scales coordinates, so sites on an axis-aligned face
-/// stay exactly coplanar; for others, the rounding can make a flat sliver of four coplanar face sites,
-/// which the mesher's exact classification on the input points puts outside Ω. Every combinatorial
-/// decision of the mesher (faces, sides, the final check) uses the input points.
+/// As in 2D (LocalDelaunay.hpp), the star is computed on the input points with exact predicates in the
+/// metric: a CGAL 3D Delaunay triangulation whose in-sphere and coplanar in-circle tests lift x ↦ xᵀMx
+/// (interval filter, rational fallback), so every combinatorial decision is exact for every metric
+/// (non-diagonal ones included: no stretched, rounded coordinates).
 
 #include <array>
 #include <cstddef>
@@ -20,7 +16,7 @@ namespace laguerre::core::detail {
 
 /// The star of `points[centre]` in the Delaunay triangulation of `points` for the metric with entries
 /// {xx, xy, xz, yy, yz, zz}: each entry {i, j, k} is a finite tetrahedron (centre, i, j, k), positively
-/// oriented (for the stretched points; the same for the input points unless rounding flattened it).
+/// oriented (exactly: never flat).
 /// `on_hull`: the centre is on the convex hull. False when the points span less than 3 dimensions
 /// (`star` is then empty). Cospherical ties are broken by CGAL's symbolic perturbation.
 bool delaunay_star3(const std::vector<std::array<double, 3>>& points, std::size_t centre,

@@ -50,17 +50,15 @@
 /// Honest gaps: boundary points are midpoints and in-plane circumcentres, not random points of the
 /// restricted picking regions of §3.3.3 (off-centre points on a crease cascaded in a first version);
 /// Pick_valid's test of γ₀-cospherical configurations is replaced by the sliver test above; stars are
-/// triangulated on rounded stretched points (LocalDelaunay3.hpp), so under non-diagonal metrics the
-/// stars are M-Delaunay only up to that rounding (the tests check emptiness exactly); points on a face
-/// that is not axis-aligned are rounded off its plane (the bundled domains are axis-aligned, where
+/// M_v-Delaunay exactly (LocalDelaunay3.hpp: exact metric predicates on the input points); points on a
+/// face that is not axis-aligned are rounded off its plane (the bundled domains are axis-aligned, where
 /// midpoints and in-plane circumcentres keep the constant coordinate exactly). Termination is the
 /// thesis's theorem only under its hypotheses (dihedral input angles of at least 90° in the metric,
 /// small δ and σ₀, γ₀ close to 1); otherwise `max_vertices` turns a cascade into a status.
-/// Measured (README, core/meshing): the bundled cube and box with a hole converge under `uniform` and
-/// `shock` fields; under the `sphere` field (non-diagonal metrics) they did not converge within 8000
-/// vertices (inconsistencies cascade where face sites are no longer coplanar once stretched), and
-/// shock-layer meshes come out finer than the metric asks (mean metric edge length 0.3 on the cube
-/// under shock:0.2:0.4:0.5:0.5, most insertions by the inconsistency rule).
+/// Measured (tools/bench/mesh3.sh, README core/meshing): the bundled cube and box with a hole converge
+/// under `uniform` and `shock` fields; under the `sphere` field (non-diagonal metrics) the exact stars
+/// no longer hang, but inconsistencies still cascade (box with a hole: not converged at 4000 vertices,
+/// ~75% of insertions by the inconsistency rule, for γ₀ = 1.5, 2 and 2.5; cause not found).
 
 #include "laguerre/core/meshing/Domain3.hpp"
 #include "laguerre/core/meshing/Medit.hpp"
