@@ -12,6 +12,9 @@
 /// and the exact LPD/GLPD check, which still decides (Termination::radius_only in Packer.hpp,
 /// `PackingParams::termination` in the protocol).
 
+#include <cstdint>
+
+#include "laguerre/core/packing/Layout.hpp"
 #include "laguerre/core/packing/PackingComplex.hpp"
 #include "laguerre/core/packing/Thurston.hpp"
 
@@ -31,5 +34,17 @@ bool radius_only_holds(double h_v, const StarView& star, bool boundary, double a
 
 /// `radius_only_holds` at every vertex of K with radii h.
 bool radius_only_everywhere(const PackingComplex& k, const Radii& h, double angle_gap);
+
+/// The flooded gate (PackOptions::radius_only_flood, docs/radius-only.md §8). D = 2·(largest wave of
+/// the layout tree) + 2 bounds the diameter of K (every vertex is within wave + 1 hops of the root), so
+/// an AND flooded over K for D exchanges has reached every vertex.
+std::uint32_t radius_flood_depth(const Layout& layout);
+
+/// The tested rounds are every `period`-th round (round r tests step r·N): period = ⌈D / (63·N)⌉ at least 1,
+/// so that at most 64 tests are pending at once (one bit each in the radius message).
+int radius_flood_period(int depth, int steps_per_check);
+
+/// Whether step t is tested: t = r·N with r a multiple of `period`.
+bool radius_flood_tested(long long t, int steps_per_check, int period);
 
 }  // namespace laguerre::core
