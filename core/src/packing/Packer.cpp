@@ -55,7 +55,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
 
   // Termination::radius_only (docs/radius-only.md): the radius-only test gates the layout; the exact
   // check on the layout still decides. PackingAgent does the same, round by round.
-  const bool radius_only = options.termination == Termination::radius_only && options.stop == StopRule::lpd;
+  const bool radius_only = options.termination != Termination::layout && options.stop == StopRule::lpd;
   double gap = options.radius_only_gap;
   auto lay_out_and_check = [&](int iteration) {
     // Returns whether the requested rule holds; records first occurrences of tracked rules.
@@ -144,7 +144,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     }
   };
   bool done = false;
-  if (radius_only && options.radius_only_flood) {
+  if (radius_only && options.termination == Termination::radius_flood) {
     // The gate's AND flooded on the radius exchange (docs/radius-only.md, §8): the test of a tested
     // step s is known everywhere at step s + D; the run lays out X(s) then, and goes on from X(s + D)
     // if the check fails (the pending tests, made with the old tolerance, are dropped).

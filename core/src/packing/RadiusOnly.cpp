@@ -37,8 +37,10 @@ bool radius_only_everywhere(const PackingComplex& k, const Radii& h, double angl
 std::uint32_t radius_flood_depth(const Layout& layout) {
   std::uint32_t height = 0;
   for (std::uint32_t w : layout.wave) height = std::max(height, w);
-  return 2 * height + 2;
+  return radius_flood_depth(height);
 }
+
+std::uint32_t radius_flood_depth(std::uint32_t height) { return 2 * height + 2; }
 
 int radius_flood_period(int depth, int steps_per_check) {
   const long long per = 63LL * steps_per_check;

@@ -204,7 +204,7 @@ TEST(RadiusOnly, PackWithRadiusOnlyTerminationClaimsOnlyCheckedLpd) {
   EXPECT_EQ(to_string(Termination::layout), "layout");
 }
 
-// The flooded gate (PackOptions::radius_only_flood, docs/radius-only.md §8): the AND of the gap test
+// The flooded gate (Termination::radius_flood, docs/radius-only.md §8): the AND of the gap test
 // travels on the radius exchange and is known D steps after the tested step, D = 2·(layout-tree
 // height) + 2 ≥ the diameter of K. The run tests the same iterates as the convergecast gate, lays out
 // the tested iterate D steps later, claims LPD only on a passed exact check, and, when the first
@@ -220,7 +220,7 @@ TEST(RadiusOnly, FloodedGateLaysOutTheTestedIterateDStepsLater) {
       gate.steps_per_check = 1 + static_cast<int>(seed % 3);
       gate.radius_only_gap = gap;
       PackOptions flood = gate;
-      flood.radius_only_flood = true;
+      flood.termination = Termination::radius_flood;
       const PackResult a = pack(g, gate), b = pack(g, flood);
       SCOPED_TRACE("seed " + std::to_string(seed) + " gap " + std::to_string(gap));
       ASSERT_EQ(b.status, PackStatus::converged);
@@ -259,8 +259,7 @@ TEST(RadiusOnly, FloodedGateLaysOutTheTestedIterateDStepsLater) {
   EXPECT_GT(failed_checks, 0);  // both outcomes of the exact check occur
   // At the cap the current radii are laid out and checked, pending tests or not.
   PackOptions capped;
-  capped.termination = Termination::radius_only;
-  capped.radius_only_flood = true;
+  capped.termination = Termination::radius_flood;
   capped.max_iterations = 3;
   const PlanarGraph g = prepare_for_packing(random_delaunay_triangulation(200, 3));
   const PackResult c = pack(g, capped);

@@ -58,10 +58,7 @@ struct PackOptions {
   Acceleration acceleration = Acceleration::plain;  ///< sweep acceleration (see Accelerator)
   NewtonSolver newton_solver = NewtonSolver::cholesky;  ///< linear solver of Acceleration::newton
   Termination termination = Termination::layout;  ///< for StopRule::lpd: see Termination
-  double radius_only_gap = 1e-2;                  ///< Termination::radius_only's initial closing gap (radians)
-  /// Termination::radius_only: the gate's AND flooded on the radius exchange, decided D steps after
-  /// each tested step (radius_flood_depth), instead of a convergecast per round (docs/radius-only.md §8).
-  bool radius_only_flood = false;
+  double radius_only_gap = 1e-2;                  ///< the radius-only gate's initial closing gap (radians)
 };
 
 /// Result of a packing run.
@@ -83,8 +80,8 @@ struct PackResult {
   std::vector<LocalCondition> local;  ///< LPD/GLPD outcome per vertex of G at the end
   std::size_t local_ok = 0;           ///< number of vertices where it holds
   int layouts = 0;                    ///< layouts computed by the checks (one per check unless radius-only)
-  int decision_step = 0;  ///< sweeps computed when the run stopped (> iterations with radius_only_flood: the flood's lag)
-  int flood_depth = 0;    ///< radius_only_flood: D, the steps from a test to its decision (0 otherwise)
+  int decision_step = 0;  ///< sweeps computed when the run stopped (iterations + D with Termination::radius_flood)
+  int flood_depth = 0;    ///< Termination::radius_flood: D, the steps from a test to its decision (0 otherwise)
   Layout layout;                      ///< the final layout of the whole complex
   Radii radii;                        ///< final hyperbolic radius h per vertex of the complex (∞ on the boundary)
 };
