@@ -201,6 +201,7 @@ TEST(RadiusOnly, PackWithRadiusOnlyTerminationClaimsOnlyCheckedLpd) {
   EXPECT_EQ(c.layouts, 1);
   EXPECT_EQ(check_all(g, c.circles), c.local);
   EXPECT_EQ(parse_termination("radius-only"), Termination::radius_only);
+  EXPECT_EQ(parse_termination("radius-flood"), Termination::radius_flood);
   EXPECT_EQ(to_string(Termination::layout), "layout");
 }
 
