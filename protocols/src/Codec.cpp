@@ -61,7 +61,7 @@ template <class Ar, Is<ReportMsg> M> void fields(Ar& ar, M& m) { ar(m.round, m.o
 template <class Ar, Is<DecisionMsg> M> void fields(Ar& ar, M& m) {
   ar(m.round, code(m.verdict, Verdict::next, Verdict::layout));
 }
-template <class Ar, Is<ShapeMsg> M> void fields(Ar& ar, M& m) { ar(m.down, m.polygon); }
+template <class Ar, Is<ShapeMsg> M> void fields(Ar& ar, M& m) { ar(m.down, m.polygon, m.height); }
 template <class Ar, Is<FaceCirclesMsg> M> void fields(Ar& ar, M& m) {
   ar(m.round, counted(m.circles, 3, max_face_circles));
 }
@@ -81,6 +81,7 @@ template <class Ar, Is<AckMsg> M> void fields(Ar& ar, M& m) { ar(m.ack.next, m.a
 template <class Ar, Is<FailureMsg> M> void fields(Ar& ar, M& m) { ar(m.suspect); }
 template <class Ar, Is<KrylovValueMsg> M> void fields(Ar& ar, M& m) { ar(m.seq, m.value); }
 template <class Ar, Is<KrylovSumMsg> M> void fields(Ar& ar, M& m) { ar(m.seq, m.s0, m.s1, m.s2, m.max); }
+template <class Ar, Is<GateRadiusMsg> M> void fields(Ar& ar, M& m) { ar(m.step, m.h, m.gate).require(positive(m.h)); }
 template <class Ar, Is<KrylovDecisionMsg> M> void fields(Ar& ar, M& m) {
   ar(m.seq, m.action, m.a, m.b).require(m.action <= 4);
 }
@@ -320,7 +321,7 @@ std::string_view to_string(MessageType t) {
   static constexpr std::string_view names[] = {"?",      "depth",        "election", "start", "wave",  "radius",
                                                "placed", "report",       "decision", "shape", "face_circles",
                                                "relay",  "data",         "frame",    "ack",   "failure", "route",
-                                               "krylov_value", "krylov_sum", "krylov_decision"};
+                                               "krylov_value", "krylov_sum", "krylov_decision", "gate_radius"};
   static_assert(std::size(names) == max_message_type + 1);
   const auto code = static_cast<std::size_t>(t);
   return code <= max_message_type ? names[code] : names[0];
@@ -403,6 +404,7 @@ template void encode(const RouteMsg&, std::vector<std::byte>&);
 template void encode(const KrylovValueMsg&, std::vector<std::byte>&);
 template void encode(const KrylovSumMsg&, std::vector<std::byte>&);
 template void encode(const KrylovDecisionMsg&, std::vector<std::byte>&);
+template void encode(const GateRadiusMsg&, std::vector<std::byte>&);
 
 DecodeStatus decode(std::span<const std::byte> bytes, Message& out) { return decode_set(bytes, out); }
 DecodeStatus decode(std::span<const std::byte> bytes, PackingMessage& out) { return decode_set(bytes, out); }

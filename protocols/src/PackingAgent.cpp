@@ -31,6 +31,24 @@ struct PackingAgent::KrylovState {
   std::vector<double> neighbour;           // the exchanged values in neighbour order
 };
 
+// The state of the radius-flood termination (see "Radius-flood steps" below); allocated in that mode only.
+struct PackingAgent::FloodState {
+  static constexpr std::size_t slots = 64;  // pending tested steps at once (core::radius_flood_period)
+  explicit FloodState(std::size_t deg) : bits(2 * deg, ~std::uint64_t{0}) {}
+  std::uint32_t depth = 0;                   // D: steps from a test to its decision
+  int period = 1;                            // every period-th round is tested
+  std::uint64_t active = 0;                  // slots of pending tested steps
+  std::uint64_t mine = 0;                    // per slot: the AND over the ball heard so far
+  std::uint64_t head = 0, tail = 0;          // ordinals of the oldest pending test and of the next one
+  std::array<std::uint32_t, slots> test_step{};
+  std::array<double, slots> saved_h{};       // this vertex's radius at each pending tested step
+  std::vector<std::uint64_t> bits;           // the neighbours' gate bits by step parity: bits[p·deg + i]
+  bool sent = false;                         // the exchange of step_ is sent
+  bool paused = false;                       // a layout and exact check are under way
+  double current_h = 0;                      // X(step_) while a tested iterate is laid out
+  std::uint32_t layout_step = 0;             // the step whose radii are laid out
+};
+
 PackingAgent::PackingAgent(PackingNode& node, std::size_t index, AgentSpec spec)
     : node_(node), params_(node.params_), id_(spec.id), index_(static_cast<std::uint32_t>(index)),
       deg_(static_cast<std::uint32_t>(spec.neighbours.size())), outer_gap_(spec.outer_gap),
@@ -64,8 +82,9 @@ PackingAgent::PackingAgent(PackingNode& node, std::size_t index, AgentSpec spec)
     accelerator_ = std::make_unique<core::LocalAccelerator>(params_.acceleration);
   h_ = boundary_ ? std::numeric_limits<double>::infinity() : 1.0;  // core::initial_radii
   if (params_.acceleration == core::Acceleration::newton_krylov) krylov_ = std::make_unique<KrylovState>(deg_);
-  radius_only_ = params_.termination == core::Termination::radius_only;
+  radius_only_ = params_.termination != core::Termination::layout;
   gap_ = params_.radius_only_gap;
+  if (params_.termination == core::Termination::radius_flood) flood_ = std::make_unique<FloodState>(deg_);
 }
 
 std::size_t PackingAgent::index_of(NodeId id) const {
@@ -354,6 +373,7 @@ void PackingAgent::handle(std::size_t i, const ShapeMsg& m) {
       return;
     }
     peers_[i].shape_up = m.polygon ? 2 : 1;
+    height_ = std::max(height_, m.height);
     advance_shape();
     return;
   }
@@ -361,7 +381,7 @@ void PackingAgent::handle(std::size_t i, const ShapeMsg& m) {
     ++counters().unexpected;
     return;
   }
-  learn_shape(m.polygon);
+  learn_shape(m.polygon, m.height);
 }
 
 void PackingAgent::advance_shape() {
@@ -378,22 +398,31 @@ void PackingAgent::advance_shape() {
     any = any || p.shape_up == 2;
   }
   shape_sent_ = true;
+  const std::uint32_t height = std::max(height_, wave_);  // the subtree's largest wave
   if (!is_root_) {
-    send(parent_index_, ShapeMsg{false, any});
+    send(parent_index_, ShapeMsg{false, any, height});
     return;
   }
   // The root knows the answer for the whole of K (the tree spans it).
-  learn_shape(any);
+  learn_shape(any, height);
 }
 
-void PackingAgent::learn_shape(bool polygon) {
+void PackingAgent::learn_shape(bool polygon, std::uint32_t height) {
   // The answer for the whole of K: pass it down the tree and start round 0.
   shape_known_ = true;
   polygon_ = polygon;
-  encode(ShapeMsg{true, polygon_}, buffer());
+  height_ = height;
+  encode(ShapeMsg{true, polygon_, height_}, buffer());
   for (std::size_t j = 0; j < deg_; ++j)
     if (peers_[j].child) send_encoded(j);
   phase_ = PackingPhase::rounds;
+  if (flood_) {
+    flood_->depth = core::radius_flood_depth(height_);
+    flood_->period = core::radius_flood_period(static_cast<int>(flood_->depth), params_.steps_per_check);
+    round_ = 0;
+    flood_advance();
+    return;
+  }
   // Asynchronous mode: boundary neighbours (known by now) count as horocycles in every update.
   if (params_.asynchronous)
     for (std::size_t i = 0; i < deg_; ++i)
@@ -554,6 +583,115 @@ void PackingAgent::advance_radius_check() {
   radius_ok_ = core::radius_only_holds(h_, star(radius_.get() + slot * deg_), boundary_, gap_);
   checked_this_round_ = true;
   advance_convergecast();
+}
+
+// ---- Radius-flood steps (Termination::radius_flood, docs/radius-only.md §8) -------------------------
+//
+// Every vertex of K, boundary included, exchanges GateRadiusMsg with every K-neighbour at every step:
+// its radius (∞ on the boundary) and its gate bits. The closing-gap test of a tested step s starts as
+// the vertex's own bit and is ANDed with the neighbours' at every later step, so after the exchange of
+// step s + D every vertex holds the AND over its D-ball — all of K, D bounding the diameter — and all
+// decide alike, with no convergecast: on 1 they lay out their radii of step s (kept for it) and run
+// the exact check as the layout termination does; a failed check halves the gap, drops the pending
+// tests and goes on from step s + D. core::pack with Termination::radius_flood computes the same.
+
+void PackingAgent::handle(std::size_t i, const GateRadiusMsg& m) {
+  // Step 0 may reach a vertex still in set-up; a neighbour is never more than one step ahead.
+  const bool early = phase_ != PackingPhase::rounds && m.step == 0;
+  if (!flood_ || (phase_ != PackingPhase::rounds && !early) || m.step < step_ || m.step > step_ + 1 ||
+      peers_[i].radius_tag[m.step & 1] == m.step) {
+    ++counters().unexpected;
+    return;
+  }
+  const std::size_t slot = m.step & 1;
+  peers_[i].radius_tag[slot] = m.step;
+  radius_[slot * deg_ + i] = m.h;  // ∞ from a boundary neighbour: what the entry holds anyway
+  flood_->bits[slot * deg_ + i] = m.gate;
+  if (phase_ == PackingPhase::rounds) flood_advance();
+}
+
+void PackingAgent::flood_advance() {
+  FloodState& f = *flood_;
+  if (phase_ != PackingPhase::rounds || f.paused) return;
+  const auto cap = static_cast<std::uint32_t>(params_.max_iterations);
+  while (true) {
+    if (step_ >= cap) {  // the cap: the current radii are laid out and checked
+      flood_lay_out(step_, h_);
+      return;
+    }
+    const std::size_t slot = step_ & 1;
+    if (!f.sent) {
+      f.sent = true;
+      encode(GateRadiusMsg{step_, h_, f.mine | ~f.active}, buffer());
+      send_to_all_encoded();
+    }
+    for (std::size_t i = 0; i < deg_; ++i)
+      if (peers_[i].radius_tag[slot] != step_) return;
+    std::uint64_t heard = ~std::uint64_t{0};
+    for (std::size_t i = 0; i < deg_; ++i) heard &= f.bits[slot * deg_ + i];
+    f.mine &= heard;
+    if (f.head != f.tail && f.test_step[f.head % FloodState::slots] + f.depth == step_) {
+      const std::size_t j = f.head % FloodState::slots;
+      ++f.head;
+      f.active &= ~(std::uint64_t{1} << j);
+      if ((f.mine >> j) & 1) {
+        flood_lay_out(f.test_step[j], f.saved_h[j]);
+        return;
+      }
+    }
+    flood_finish_step();
+  }
+}
+
+void PackingAgent::flood_finish_step() {
+  // The test of this step if it is tested (with the gap in force), then the Jacobi update — the star,
+  // cosines and functions of core::pack.
+  FloodState& f = *flood_;
+  const core::StarView s = star(radius_.get() + (step_ & 1) * deg_);
+  if (core::radius_flood_tested(step_, params_.steps_per_check, f.period)) {
+    const std::size_t j = f.tail % FloodState::slots;
+    const std::uint64_t b = std::uint64_t{1} << j;
+    ++f.tail;
+    f.active |= b;
+    f.test_step[j] = step_;
+    f.saved_h[j] = h_;
+    f.mine = core::radius_only_holds(h_, s, boundary_, gap_) ? f.mine | b : f.mine & ~b;
+  }
+  if (!boundary_) {
+    const double updated = core::star_updated_radius(h_, s, params_.update);
+    h_ = accelerator_ ? accelerator_->next(h_, updated) : updated;
+  }
+  ++step_;
+  f.sent = false;
+}
+
+void PackingAgent::flood_lay_out(std::uint32_t step, double h) {
+  FloodState& f = *flood_;
+  f.paused = true;
+  f.current_h = h_;
+  f.layout_step = step;
+  h_ = h;
+  layout_round_ = true;
+  placed_this_round_ = false;
+  checked_this_round_ = false;
+  reported_ = false;
+  reports_ = 0;
+  reports_ok_ = true;
+  round_end_step_ = step_;
+  advance_layout();
+}
+
+void PackingAgent::flood_resume() {
+  // A failed exact check: halve the gap, drop the pending tests, go on from X(step_).
+  FloodState& f = *flood_;
+  gap_ /= 2;
+  f.head = f.tail;
+  f.active = 0;
+  f.mine = 0;
+  h_ = f.current_h;
+  f.paused = false;
+  flood_finish_step();
+  flood_advance();
 }
 
 // ---- Newton–Krylov steps (PackingParams::acceleration = newton_krylov) --------------------------------
@@ -895,6 +1033,12 @@ void PackingAgent::apply_decision(Verdict v) {
     advance_layout();
     return;
   }
+  if (v == Verdict::next && flood_) {
+    layout_round_ = false;
+    ++round_;
+    flood_resume();
+    return;
+  }
   if (v == Verdict::next) {
     if (layout_round_) gap_ /= 2;  // a failed exact check (core::pack halves alike)
     layout_round_ = false;
@@ -903,6 +1047,7 @@ void PackingAgent::apply_decision(Verdict v) {
     return;
   }
   phase_ = PackingPhase::finished;
+  if (flood_) step_ = flood_->layout_step;  // the radii laid out and checked are those of that step
   outcome_ = v == Verdict::converged ? PackingOutcome::converged : PackingOutcome::cap;
 }
 

@@ -128,6 +128,7 @@ private:
   void handle(std::size_t i, const KrylovValueMsg& m);
   void handle(std::size_t i, const KrylovSumMsg& m);
   void handle(std::size_t i, const KrylovDecisionMsg& m);
+  void handle(std::size_t i, const GateRadiusMsg& m);
 
   // Neighbour status at a pulse (depth or wave): `final` fixes `value` to `pulse`, otherwise the
   // neighbour has passed `pulse` (`seen`); false for a second final pulse.
@@ -139,7 +140,7 @@ private:
   void begin_wave(std::size_t from, NodeId root, NodeId first);
   void advance_wave();
   void maybe_finish_setup();
-  void learn_shape(bool polygon);
+  void learn_shape(bool polygon, std::uint32_t height);
   void advance_shape();
   void begin_round();
   void advance_steps();
@@ -154,6 +155,12 @@ private:
   std::uint32_t round_of_step(std::uint32_t s) const;
   void advance_layout();
   void advance_radius_check();  // radius-only termination: the round's end without a layout
+  // Radius-flood termination (PackingAgent.cpp, "Radius-flood steps").
+  struct FloodState;
+  void flood_advance();
+  void flood_finish_step();
+  void flood_lay_out(std::uint32_t step, double h);
+  void flood_resume();
   bool check();  // false while waiting for data
   void advance_convergecast();
   void apply_decision(Verdict v);
@@ -239,6 +246,8 @@ private:
   std::uint32_t final_sent_ = unknown;
   bool radius_ok_ = false;
   double gap_ = 0;
+  std::uint32_t height_ = 0;  // the largest wave of K, from the shape broadcast
+  std::unique_ptr<FloodState> flood_;  // Termination::radius_flood only
 };
 
 }  // namespace laguerre::protocols::detail

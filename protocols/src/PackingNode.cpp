@@ -92,7 +92,7 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
     throw core::InternalError("the packing protocol runs plain, local accelerations or newton-krylov only.");
   if (params.asynchronous && params.acceleration != core::Acceleration::plain)
     throw core::InternalError("the accelerations run in synchronous mode only.");
-  if (params.termination == core::Termination::radius_only &&
+  if (params.termination != core::Termination::layout &&
       (params.asynchronous || !(params.radius_only_gap > 0) || params.acceleration == core::Acceleration::newton_krylov))
     throw core::InternalError("radius-only termination runs in synchronous mode with a positive gap, and not with newton-krylov.");
   validate(params);

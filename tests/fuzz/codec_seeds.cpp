@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
       p::KrylovValueMsg{9, -0.5},
       p::KrylovSumMsg{9, 1, 2, 3, 0.5},
       p::KrylovDecisionMsg{9, 0, 0.25, 0.75},
+      p::GateRadiusMsg{9, 0.5, 0x3},
   };
   for (std::size_t i = 0; i < messages.size(); ++i) {
     const std::vector<std::byte> bytes = p::encode(messages[i]);

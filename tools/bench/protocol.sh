@@ -6,7 +6,7 @@
 # equals core::pack bit for bit; then, per family and mode, the growth law of messages per node fitted
 # on the converged rows (least squares on log msgs/node = a + b·log n: msgs/node ∝ n^b).
 #   tools/bench/protocol.sh [--families "…"] [--modes "…"] [-N STEPS] [--timeout SECONDS]
-#                           [--verify-to NODES] [--seed S] [--termination layout|radius-only|both] [SIZES…]
+#                           [--verify-to NODES] [--seed S] [--termination layout|radius-only|radius-flood|both|all] [SIZES…]
 # Defaults: sizes 1000 10000; families uniform-triangulation uniform-three-connected delaunay
 # unit-disk-field (`laguerre generate`: unit-disk-field = LDel² of a unit-disk field, 3-connected core);
 # modes chebyshev (the best local acceleration; also plain, local-superstep); N = max(1, n/1000)
@@ -15,7 +15,7 @@
 # cpu_s is the CPU time of the whole `laguerre simulate` process: on a shared machine wall_s − cpu_s
 # is time the cores spent on other processes; the load averages (uptime) are printed before and after.
 # --termination radius-only (or both: a row each) runs `simulate --termination radius-only`
-# (docs/radius-only.md); its rows are labelled MODE+ro, and the waves column counts the layout waves
+# (docs/radius-only.md); its rows are labelled MODE+ro (radius-flood: MODE+rf; all: the three), and the waves column counts the layout waves
 # a run made (its PlacedMsg count over the darts, exact on triangulations).
 # LAGUERRE_EXE=path uses that program instead of building the release preset with tools/bootstrap.sh.
 set -euo pipefail
@@ -31,7 +31,8 @@ while [ $# -gt 0 ]; do
     --timeout) timeout_s=$2; shift 2 ;;
     --verify-to) verify_to=$2; shift 2 ;;
     --seed) seed=$2; shift 2 ;;
-    --termination) case "$2" in both) terminations="layout radius-only" ;; *) terminations=$2 ;; esac; shift 2 ;;
+    --termination) case "$2" in both) terminations="layout radius-only" ;; all) terminations="layout radius-only radius-flood" ;;
+                     *) terminations=$2 ;; esac; shift 2 ;;
     -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
     *) sizes+=("$1"); shift ;;
   esac
@@ -50,7 +51,7 @@ for family in $families; do
     "$laguerre" generate "$family" -n "$n" --seed "$seed" --format "$format" -o "$g" 2>/dev/null
     for mode in $modes; do
      for term in $terminations; do
-      label=$mode; [ "$term" = layout ] || label=$mode+ro
+      label=$mode; case "$term" in radius-only) label=$mode+ro ;; radius-flood) label=$mode+rf ;; esac
       N=${steps:-$(( n / 1000 ))}; [ "$N" -lt 1 ] && N=1
       verify=(); [ "$n" -le "$verify_to" ] && verify=(--verify)
       rc=0

@@ -140,9 +140,12 @@ int print_protocol_summary(const ProtocolSummary& s, bool json) {
                 setup.asynchronous ? "iteration-equivalents (asynchronous)" : "iterations", rounds, setup.steps_per_round, holds, n,
                 loaded.kind == core::GraphKind::triangulated_disc ? "LPD" : "GLPD");
     if (setup.termination != core::Termination::layout)
-      std::printf("termination  %s: rounds end with one radius exchange; the layout wave ran only where the "
-                  "closing gap allowed, and LPD is claimed only on its exact check\n",
-                  std::string(core::to_string(setup.termination)).c_str());
+      std::printf("termination  %s: %s; the layout wave ran only where the closing gap allowed, and LPD is "
+                  "claimed only on its exact check\n",
+                  std::string(core::to_string(setup.termination)).c_str(),
+                  setup.termination == core::Termination::radius_flood
+                      ? "the gap test's AND travels on the radius exchange (no convergecast per round)"
+                      : "rounds end with one radius exchange");
     if (failed > 0)
       std::printf("failure      %zu/%zu surviving nodes ended with neighbour_failed; suspected: %s\n", failed, po.survivors(),
                   suspect_list.c_str());

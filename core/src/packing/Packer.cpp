@@ -5,8 +5,10 @@
 #include "laguerre/core/packing/Newton.hpp"
 #include "laguerre/core/packing/NewtonKrylov.hpp"
 #include "laguerre/core/packing/PackingNames.hpp"
+#include "laguerre/core/packing/RadiusOnly.hpp"
 
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -53,13 +55,10 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
 
   // Termination::radius_only (docs/radius-only.md): the radius-only test gates the layout; the exact
   // check on the layout still decides. PackingAgent does the same, round by round.
-  const bool radius_only = options.termination == Termination::radius_only && options.stop == StopRule::lpd;
+  const bool radius_only = options.termination != Termination::layout && options.stop == StopRule::lpd;
   double gap = options.radius_only_gap;
-  auto check = [&](int iteration) {
+  auto lay_out_and_check = [&](int iteration) {
     // Returns whether the requested rule holds; records first occurrences of tracked rules.
-    // At the cap the layout is made whatever the test says: the run ends with coordinates.
-    if (radius_only && iteration < options.max_iterations && !radius_only_everywhere(k, result.radii, gap))
-      return false;
     ++result.layouts;
     result.layout = lay_out(k, result.radii, root);
     result.circles.assign(result.layout.circles.begin(), result.layout.circles.begin() + static_cast<long>(n));
@@ -98,6 +97,12 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     }
     return false;
   };
+  auto check = [&](int iteration) {
+    // At the cap the layout is made whatever the test says: the run ends with coordinates.
+    if (radius_only && iteration < options.max_iterations && !radius_only_everywhere(k, result.radii, gap))
+      return false;
+    return lay_out_and_check(iteration);
+  };
 
   int it = 0;
   Accelerator accelerator(options.acceleration);
@@ -110,39 +115,81 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   std::vector<LocalAccelerator> local_state(local ? k.graph.num_vertices() : 0, LocalAccelerator(options.acceleration));
   int local_jumps = 0;
   Radii previous;
-  bool done = check(0);
-  const Layout tree = krylov ? result.layout : Layout{};  // the layout tree (combinatorial: every round's)
-  while (!done && it < options.max_iterations) {
-    const int steps = std::min(options.steps_per_check, options.max_iterations - it);
-    for (int s = 0; s < steps; ++s) {
-      if (newton) {  // a Newton step, or a plain sweep where Newton cannot improve (rounding level)
-        if (newton_method.step(k, result.radii).improved) {
-          ++result.jumps;
-          continue;
-        }
-      }
-      if (krylov) {  // the network's step: an accepted Newton step, or else a plain Jacobi update
-        const KrylovStep ks = krylov_method.step(k, result.radii, tree, options.update);
-        result.jumps += ks.improved;
-        result.linear_iterations += ks.cg_iterations;
-        result.exchanges += ks.exchanges;
-        result.tree_sums += ks.sums;
-        continue;
-      }
-      if (accelerate) previous = result.radii;
-      thurston_sweep(k, result.radii, options.sweep, options.update, scratch);
-      if (local) {  // each vertex on its own, as a network node does (PackingAgent::advance_steps)
-        for (Vertex v = 0; v < k.graph.num_vertices(); ++v)
-          if (!k.graph.is_boundary(v)) {
-            result.radii[v] = local_state[v].next(previous[v], result.radii[v]);
-            local_jumps += local_state[v].accelerated();
-          }
-      } else if (accelerate) {
-        accelerator.after_sweep(k, previous, result.radii);
+  Layout tree;  // Newton–Krylov: the layout tree (combinatorial: every round's)
+  auto sweep_once = [&] {
+    if (newton) {  // a Newton step, or a plain sweep where Newton cannot improve (rounding level)
+      if (newton_method.step(k, result.radii).improved) {
+        ++result.jumps;
+        return;
       }
     }
-    it += steps;
-    done = check(it);
+    if (krylov) {  // the network's step: an accepted Newton step, or else a plain Jacobi update
+      const KrylovStep ks = krylov_method.step(k, result.radii, tree, options.update);
+      result.jumps += ks.improved;
+      result.linear_iterations += ks.cg_iterations;
+      result.exchanges += ks.exchanges;
+      result.tree_sums += ks.sums;
+      return;
+    }
+    if (accelerate) previous = result.radii;
+    thurston_sweep(k, result.radii, options.sweep, options.update, scratch);
+    if (local) {  // each vertex on its own, as a network node does (PackingAgent::advance_steps)
+      for (Vertex v = 0; v < k.graph.num_vertices(); ++v)
+        if (!k.graph.is_boundary(v)) {
+          result.radii[v] = local_state[v].next(previous[v], result.radii[v]);
+          local_jumps += local_state[v].accelerated();
+        }
+    } else if (accelerate) {
+      accelerator.after_sweep(k, previous, result.radii);
+    }
+  };
+  bool done = false;
+  if (radius_only && options.termination == Termination::radius_flood) {
+    // The gate's AND flooded on the radius exchange (docs/radius-only.md, §8): the test of a tested
+    // step s is known everywhere at step s + D; the run lays out X(s) then, and goes on from X(s + D)
+    // if the check fails (the pending tests, made with the old tolerance, are dropped).
+    LAGUERRE_PRECONDITION(!newton && !krylov, "the flooded radius-only gate runs with Jacobi sweeps (no Newton).");
+    const int depth = static_cast<int>(radius_flood_depth(lay_out(k, result.radii, root)));
+    const int period = radius_flood_period(depth, options.steps_per_check);
+    result.flood_depth = depth;
+    struct Pending {
+      int step;
+      Radii radii;
+    };
+    std::deque<Pending> pending;  // the tested steps whose test held, oldest first
+    int t = 0;
+    while (true) {
+      if (t >= options.max_iterations) {  // the cap: the current radii are laid out
+        done = lay_out_and_check(t);
+        it = t;
+        break;
+      }
+      if (!pending.empty() && pending.front().step + depth == t) {
+        std::swap(result.radii, pending.front().radii);
+        if (lay_out_and_check(pending.front().step)) {
+          done = true;
+          it = pending.front().step;
+          break;
+        }
+        std::swap(result.radii, pending.front().radii);
+        pending.clear();
+      }
+      if (radius_flood_tested(t, options.steps_per_check, period) && radius_only_everywhere(k, result.radii, gap))
+        pending.push_back({t, result.radii});
+      sweep_once();
+      ++t;
+    }
+    result.decision_step = t;
+  } else {
+    done = check(0);
+    if (krylov) tree = result.layout;
+    while (!done && it < options.max_iterations) {
+      const int steps = std::min(options.steps_per_check, options.max_iterations - it);
+      for (int s = 0; s < steps; ++s) sweep_once();
+      it += steps;
+      done = check(it);
+    }
+    result.decision_step = it;
   }
   result.iterations = it;
   if (!newton && !krylov) result.jumps = local ? local_jumps : accelerator.jumps();

@@ -1,5 +1,6 @@
 #include "laguerre/core/packing/RadiusOnly.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -31,6 +32,23 @@ bool radius_only_everywhere(const PackingComplex& k, const Radii& h, double angl
     if (!radius_only_holds(h[v], StarView{nh, spoke, rim}, false, angle_gap)) return false;
   }
   return true;
+}
+
+std::uint32_t radius_flood_depth(const Layout& layout) {
+  std::uint32_t height = 0;
+  for (std::uint32_t w : layout.wave) height = std::max(height, w);
+  return radius_flood_depth(height);
+}
+
+std::uint32_t radius_flood_depth(std::uint32_t height) { return 2 * height + 2; }
+
+int radius_flood_period(int depth, int steps_per_check) {
+  const long long per = 63LL * steps_per_check;
+  return static_cast<int>(std::max(1LL, (depth + per - 1) / per));
+}
+
+bool radius_flood_tested(long long t, int steps_per_check, int period) {
+  return t % steps_per_check == 0 && (t / steps_per_check) % period == 0;
 }
 
 }  // namespace laguerre::core

@@ -17,6 +17,7 @@
 #include <iostream>
 #include <limits>
 #include <numbers>
+#include <bit>
 #include <vector>
 
 #include "laguerre/core/graph/GraphKind.hpp"
@@ -200,5 +201,75 @@ TEST(RadiusOnly, PackWithRadiusOnlyTerminationClaimsOnlyCheckedLpd) {
   EXPECT_EQ(c.layouts, 1);
   EXPECT_EQ(check_all(g, c.circles), c.local);
   EXPECT_EQ(parse_termination("radius-only"), Termination::radius_only);
+  EXPECT_EQ(parse_termination("radius-flood"), Termination::radius_flood);
   EXPECT_EQ(to_string(Termination::layout), "layout");
+}
+
+// The flooded gate (Termination::radius_flood, docs/radius-only.md §8): the AND of the gap test
+// travels on the radius exchange and is known D steps after the tested step, D = 2·(layout-tree
+// height) + 2 ≥ the diameter of K. The run tests the same iterates as the convergecast gate, lays out
+// the tested iterate D steps later, claims LPD only on a passed exact check, and, when the first
+// gated check passes, ends with the convergecast gate's radii bit for bit.
+TEST(RadiusOnly, FloodedGateLaysOutTheTestedIterateDStepsLater) {
+  int same = 0, failed_checks = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed)
+    for (double gap : {1e-2, 0.3}) {
+      const PlanarGraph g = prepare_for_packing(seed % 2 ? random_delaunay_triangulation(60, seed)
+                                                         : random_three_connected(60, seed));
+      PackOptions gate;
+      gate.termination = Termination::radius_only;
+      gate.steps_per_check = 1 + static_cast<int>(seed % 3);
+      gate.radius_only_gap = gap;
+      PackOptions flood = gate;
+      flood.termination = Termination::radius_flood;
+      const PackResult a = pack(g, gate), b = pack(g, flood);
+      SCOPED_TRACE("seed " + std::to_string(seed) + " gap " + std::to_string(gap));
+      ASSERT_EQ(b.status, PackStatus::converged);
+      EXPECT_EQ(b.local_ok, g.num_vertices());
+      EXPECT_EQ(check_all(g, b.circles), b.local);
+      // D from the combinatorial layout tree, and D ≥ the diameter of K (BFS from every vertex).
+      const PackingComplex k = PackingComplex::from_graph(g);
+      const auto depth = static_cast<int>(radius_flood_depth(lay_out(k, initial_radii(k), choose_root(k, RootRule::deepest))));
+      EXPECT_EQ(b.flood_depth, depth);
+      const PlanarGraph& kg = k.graph;
+      for (Vertex s = 0; s < kg.num_vertices(); ++s) {
+        std::vector<int> d(kg.num_vertices(), -1);
+        std::vector<Vertex> queue{s};
+        d[s] = 0;
+        for (std::size_t q = 0; q < queue.size(); ++q)
+          for (Dart e = kg.first_dart(queue[q]); e < kg.first_dart(queue[q]) + kg.degree(queue[q]); ++e)
+            if (d[kg.head(e)] < 0) {
+              d[kg.head(e)] = d[queue[q]] + 1;
+              queue.push_back(kg.head(e));
+            }
+        for (int x : d) EXPECT_LE(x, depth);
+      }
+      EXPECT_EQ(b.decision_step, b.iterations + depth);
+      EXPECT_EQ(b.iterations % gate.steps_per_check, 0);
+      if (a.layouts == 1) {  // the first gated check passed: the same iterate, D steps later
+        ++same;
+        EXPECT_EQ(b.layouts, 1);
+        EXPECT_EQ(b.iterations, a.iterations);
+        ASSERT_EQ(b.radii.size(), a.radii.size());
+        for (std::size_t v = 0; v < a.radii.size(); ++v) EXPECT_EQ(std::bit_cast<std::uint64_t>(b.radii[v]), std::bit_cast<std::uint64_t>(a.radii[v])) << v;
+      } else {
+        failed_checks += b.layouts - 1;
+      }
+    }
+  EXPECT_GT(same, 0);
+  EXPECT_GT(failed_checks, 0);  // both outcomes of the exact check occur
+  // At the cap the current radii are laid out and checked, pending tests or not.
+  PackOptions capped;
+  capped.termination = Termination::radius_flood;
+  capped.max_iterations = 3;
+  const PlanarGraph g = prepare_for_packing(random_delaunay_triangulation(200, 3));
+  const PackResult c = pack(g, capped);
+  EXPECT_EQ(c.status, PackStatus::iteration_cap);
+  EXPECT_EQ(c.layouts, 1);
+  EXPECT_EQ(c.iterations, 3);
+  EXPECT_EQ(check_all(g, c.circles), c.local);
+  EXPECT_EQ(radius_flood_period(126, 2), 1);
+  EXPECT_EQ(radius_flood_period(127, 2), 2);
+  EXPECT_TRUE(radius_flood_tested(12, 3, 2));
+  EXPECT_FALSE(radius_flood_tested(9, 3, 2));
 }

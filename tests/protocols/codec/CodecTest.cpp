@@ -30,8 +30,9 @@ std::vector<Message> samples() {
           DecisionMsg{9, Verdict::converged},
           DecisionMsg{0xffffffff, Verdict::cap},
           DecisionMsg{3, Verdict::layout},
-          ShapeMsg{false, true},
+          ShapeMsg{false, true, 7},
           ShapeMsg{true, false},
+          GateRadiusMsg{7, std::numeric_limits<double>::infinity(), 0xffffffffffffffffull},
           FaceCirclesMsg{3, {{0.1, 0.2, 0.3}, {nan, -inf, 0.0}, {-0.0, 1e300, 5e-324}}},
           FaceCirclesMsg{0xffffffff, std::vector<FaceCircle>(17, FaceCircle{0.5, -0.5, 0.25})},
           RelayMsg{0x8000000100000002ull, 0x8000000100000002ull, 9, false, encode(RadiusMsg{4, 0.5})},
@@ -130,6 +131,7 @@ TEST(Codec, RejectsOutOfRangeFields) {
   EXPECT_EQ(decode(encode(StartMsg{5, 5}), out), DecodeStatus::out_of_range);
   for (double x : {-0.5, 0.0, -0.0, std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::infinity()}) {
     EXPECT_EQ(decode(encode(RadiusMsg{1, x}), out), DecodeStatus::out_of_range) << x;
+    EXPECT_EQ(decode(encode(GateRadiusMsg{1, x, 0}), out), DecodeStatus::out_of_range) << x;
     EXPECT_EQ(decode(encode(PlacedMsg{1, x, 0, 0, 0, 0, 0}), out), DecodeStatus::out_of_range) << x;
   }
   EXPECT_EQ(decode(with(ShapeMsg{true, true}, 2, 2), out), DecodeStatus::out_of_range);

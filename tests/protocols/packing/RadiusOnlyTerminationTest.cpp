@@ -18,9 +18,10 @@ using namespace laguerre::protocols;
 using namespace laguerre::protocols::testing;
 
 namespace {
-PackingParams radius_only(int steps = 1, double gap = 1e-2) {
+PackingParams radius_only(int steps = 1, double gap = 1e-2,
+                          core::Termination termination = core::Termination::radius_only) {
   PackingParams p;
-  p.termination = core::Termination::radius_only;
+  p.termination = termination;
   p.steps_per_check = steps;
   p.radius_only_gap = gap;
   return p;
@@ -89,11 +90,79 @@ TEST(RadiusOnlyTermination, ConvergesOnlyOnAPassedExactCheckWithFewerMessages) {
   }
 }
 
+// Termination::radius_flood: the gate's AND on the radius exchange (GateRadiusMsg), decided D steps
+// after each tested step, no convergecast per round. The synchronous run equals core::pack with
+// Termination::radius_flood bit for bit (radii of the laid-out step, circles, iteration count, local
+// outcomes, outcome), FIFO and shuffled, with passed and failed exact checks, at the cap, with a local
+// acceleration and over lossy links.
+PackingParams flood(int steps = 1, double gap = 1e-2) { return radius_only(steps, gap, core::Termination::radius_flood); }
+
+TEST(RadiusFloodTermination, TriangulationsEqualCoreBitForBit) {
+  int failed_checks = 0, runs = 0;
+  for (std::size_t n : {4, 5, 8, 16, 40, 90, 200})
+    for (std::uint64_t seed = 1; seed <= 2; ++seed)
+      for (int steps : {1, 3}) {
+        const core::PlanarGraph g = delaunay(n, seed);
+        if (core::choose_root(core::PackingComplex::from_graph(g), core::RootRule::deepest) == core::none) continue;
+        const std::string label = "n=" + std::to_string(n) + " seed=" + std::to_string(seed) + " N=" + std::to_string(steps);
+        expect_sync_equals_core(g, flood(steps), 0, label);
+        expect_sync_equals_core(g, flood(steps, 0.3), seed, label + " gap 0.3 shuffled");
+        const core::PackResult r = core::pack(g, pack_options(flood(steps, 0.3)));
+        EXPECT_EQ(r.decision_step, r.iterations + r.flood_depth) << label;
+        failed_checks += r.layouts - 1;
+        ++runs;
+        if (::testing::Test::HasFailure()) return;
+      }
+  EXPECT_GT(failed_checks, 0) << "both outcomes of the exact check, over " << runs << " runs";
+}
+
+TEST(RadiusFloodTermination, ThreeConnectedGraphsEqualCoreBitForBit) {
+  for (std::size_t n : {5, 8, 12, 20, 35, 80})
+    for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+      const core::PlanarGraph g = three_connected(n, 100 * n + seed);
+      expect_sync_equals_core(g, flood(static_cast<int>(seed)), 3 * seed, "n=" + std::to_string(n));
+      expect_sync_equals_core(g, flood(1, 0.3), seed, "n=" + std::to_string(n) + " gap 0.3");
+      if (::testing::Test::HasFailure()) return;
+    }
+}
+
+TEST(RadiusFloodTermination, CapAccelerationAndLossyLinksEqualCore) {
+  const core::PlanarGraph g = delaunay(120, 7);
+  PackingParams p = flood();
+  p.max_iterations = 5;
+  expect_sync_equals_core(g, p, 0, "cap 5");
+  p = flood();
+  p.acceleration = core::Acceleration::chebyshev;
+  expect_sync_equals_core(g, p, 2, "chebyshev");
+  p = flood();
+  enable_lossy_links(p, 5'000'000);
+  expect_lossy_equals_core(delaunay(40, 11), p, lossy_config(0.25, 0.1, 5), "loss 0.25 dup 0.1");
+  expect_lossy_equals_core(three_connected(30, 4), p, lossy_config(0.2, 0.05, 9), "3-connected loss 0.2");
+}
+
+TEST(RadiusFloodTermination, ConvergesOnlyOnAPassedExactCheck) {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const core::PlanarGraph g = delaunay(150, seed);
+    DequeHost radius(g, flood(1, 0.5));
+    radius.run(0);
+    const core::PackResult r = core::pack(g, pack_options(flood(1, 0.5)));
+    ASSERT_EQ(r.status, core::PackStatus::converged);
+    EXPECT_GT(r.layouts, 1) << "a 0.5 rad gap should trigger a failing exact check first";
+    for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
+      ASSERT_EQ(radius.node(v).outcome(), PackingOutcome::converged);
+      EXPECT_EQ(radius.node(v).local_condition(), core::LocalCondition::holds);
+    }
+  }
+}
+
 TEST(RadiusOnlyTermination, RefusesAsynchronousModeAndBadGap) {
   const core::PlanarGraph g = delaunay(10, 1);
   PackingParams p = radius_only();
   p.asynchronous = true;
   EXPECT_THROW(DequeHost(g, p), core::InternalError);
   p = radius_only(1, 0.0);
+  EXPECT_THROW(DequeHost(g, p), core::InternalError);
+  p = flood();
+  p.asynchronous = true;
   EXPECT_THROW(DequeHost(g, p), core::InternalError);
 }

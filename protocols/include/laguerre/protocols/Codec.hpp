@@ -67,10 +67,11 @@ enum class MessageType : std::uint8_t {
   krylov_value = 17,     ///< KrylovValueMsg: a Newton–Krylov neighbour exchange (CG vector or trial radius)
   krylov_sum = 18,       ///< KrylovSumMsg: a Newton–Krylov partial sum, up the layout tree
   krylov_decision = 19,  ///< KrylovDecisionMsg: the root's Newton–Krylov decision, down the layout tree
+  gate_radius = 20,      ///< GateRadiusMsg: a radius exchange carrying the flooded radius-only gate
 };
 
 /// Largest MessageType value (types 1 … max_message_type exist).
-inline constexpr std::uint8_t max_message_type = 19;
+inline constexpr std::uint8_t max_message_type = 20;
 
 /// Name of a message type ("depth", "election", …), "?" for values outside the enum.
 std::string_view to_string(MessageType t);
@@ -159,10 +160,12 @@ struct DecisionMsg {
 /// Set-up, after the layout wave: whether some inner face of G is not a triangle (the graph is then
 /// packed as G′, with overlap angles everywhere, and checked with GLPD). `down` = 0: the OR of the
 /// sender's subtree, sent to its parent; 1: the root's answer, sent to the children. Fields:
-/// u8 down ∈ {0, 1}, u8 polygon ∈ {0, 1}.
+/// u8 down ∈ {0, 1}, u8 polygon ∈ {0, 1}, u32 height (the largest wave of the subtree, or of K: the
+/// radius-flood termination's D = 2·height + 2, core::radius_flood_depth).
 struct ShapeMsg {
   bool down = false;     ///< direction: up the layout tree (false) or down (true)
   bool polygon = false;  ///< whether some inner face (of the subtree, or of G) has more than 3 vertices
+  std::uint32_t height = 0;  ///< largest wave in the sender's subtree (up) or in K (down)
   friend bool operator==(const ShapeMsg&, const ShapeMsg&) = default;
 };
 
@@ -325,21 +328,33 @@ struct KrylovDecisionMsg {
   friend bool operator==(const KrylovDecisionMsg&, const KrylovDecisionMsg&) = default;
 };
 
-/// Messages between protocol vertices of the packing protocol (types 1–10, 17–19).
+/// Termination::radius_flood (docs/radius-only.md §8): the radius exchange of step `step` between all
+/// K-neighbours (boundary vertices send h = ∞), with the sender's gate bits: bit j is the AND, over the
+/// vertices within (step − s − 1) hops of the sender, of the closing-gap test of the pending tested
+/// step s in slot j (1 for a free slot). Fields: u32 step, f64 h ∈ (0, ∞], u64 gate.
+struct GateRadiusMsg {
+  std::uint32_t step = 0;  ///< global step number
+  double h = 0;            ///< hyperbolic radius (∞: a horocycle)
+  std::uint64_t gate = 0;  ///< the flooded test bits, one per pending tested step
+  friend bool operator==(const GateRadiusMsg&, const GateRadiusMsg&) = default;
+};
+
+/// Messages between protocol vertices of the packing protocol (types 1–10, 17–20).
 using PackingMessage = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg,
-                                    DecisionMsg, ShapeMsg, FaceCirclesMsg, KrylovValueMsg, KrylovSumMsg, KrylovDecisionMsg>;
-/// What a packing node sends a neighbour without the reliability layer (types 1–11, 17–19).
+                                    DecisionMsg, ShapeMsg, FaceCirclesMsg, KrylovValueMsg, KrylovSumMsg, KrylovDecisionMsg,
+                                    GateRadiusMsg>;
+/// What a packing node sends a neighbour without the reliability layer (types 1–11, 17–20).
 using PackingHop = std::variant<PackingMessage, RelayMsg>;
 /// The reliability layer's messages on one link (types 13, 14).
 using LinkMessage = std::variant<FrameMsg, AckMsg>;
-/// What a FrameMsg carries (types 1–11, 15 and 17–19).
+/// What a FrameMsg carries (types 1–11, 15 and 17–20).
 using FramePayload = std::variant<PackingHop, FailureMsg>;
 /// Data packets of the forwarding schemes (types 12, 16).
 using ForwardingMessage = std::variant<DataMsg, RouteMsg>;
 /// Any message; the alternatives are in type-code order (alternative k has type k + 1).
 using Message = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg, DecisionMsg,
                              ShapeMsg, FaceCirclesMsg, RelayMsg, DataMsg, FrameMsg, AckMsg, FailureMsg, RouteMsg,
-                             KrylovValueMsg, KrylovSumMsg, KrylovDecisionMsg>;
+                             KrylovValueMsg, KrylovSumMsg, KrylovDecisionMsg, GateRadiusMsg>;
 
 namespace detail {
 template <class T, class Variant>

@@ -66,7 +66,9 @@ struct PackingParams : ReliableParams {
   /// only): every round ends with one radius exchange and the closing-gap test (core/packing/
   /// RadiusOnly.hpp) instead, the layout wave and exact check run only when it holds everywhere (or
   /// at the cap), and each failed exact check halves the gap — core::pack with Termination::radius_only
-  /// bit for bit (docs/radius-only.md).
+  /// bit for bit (docs/radius-only.md); radius_flood (synchronous only): the test's AND travels on the
+  /// radius exchange itself (GateRadiusMsg, every K-edge, boundary included) and is decided D steps
+  /// after each tested step with no convergecast — core::pack with Termination::radius_flood bit for bit.
   core::Termination termination = core::Termination::layout;
   double radius_only_gap = 1e-2;  ///< initial closing-gap tolerance (radians, > 0) of radius_only
 };

@@ -58,7 +58,7 @@ struct PackOptions {
   Acceleration acceleration = Acceleration::plain;  ///< sweep acceleration (see Accelerator)
   NewtonSolver newton_solver = NewtonSolver::cholesky;  ///< linear solver of Acceleration::newton
   Termination termination = Termination::layout;  ///< for StopRule::lpd: see Termination
-  double radius_only_gap = 1e-2;                  ///< Termination::radius_only's initial closing gap (radians)
+  double radius_only_gap = 1e-2;                  ///< the radius-only gate's initial closing gap (radians)
 };
 
 /// Result of a packing run.
@@ -80,6 +80,8 @@ struct PackResult {
   std::vector<LocalCondition> local;  ///< LPD/GLPD outcome per vertex of G at the end
   std::size_t local_ok = 0;           ///< number of vertices where it holds
   int layouts = 0;                    ///< layouts computed by the checks (one per check unless radius-only)
+  int decision_step = 0;  ///< sweeps computed when the run stopped (iterations + D with Termination::radius_flood)
+  int flood_depth = 0;    ///< Termination::radius_flood: D, the steps from a test to its decision (0 otherwise)
   Layout layout;                      ///< the final layout of the whole complex
   Radii radii;                        ///< final hyperbolic radius h per vertex of the complex (∞ on the boundary)
 };

@@ -20,8 +20,8 @@ inline constexpr EnumNames<Acceleration, 7> acceleration_names{{{Acceleration::p
 inline constexpr EnumNames<StopRule, 4> stop_rule_names{
     {{StopRule::lpd, "lpd"}, {StopRule::exact, "exact"}, {StopRule::angle, "angle"}, {StopRule::cap, "cap"}}};
 /// Termination: layout, radius-only.
-inline constexpr EnumNames<Termination, 2> termination_names{
-    {{Termination::layout, "layout"}, {Termination::radius_only, "radius-only"}}};
+inline constexpr EnumNames<Termination, 3> termination_names{
+    {{Termination::layout, "layout"}, {Termination::radius_only, "radius-only"}, {Termination::radius_flood, "radius-flood"}}};
 /// Sweep: jacobi, gauss-seidel.
 inline constexpr EnumNames<Sweep, 2> sweep_names{{{Sweep::jacobi, "jacobi"}, {Sweep::gauss_seidel, "gauss-seidel"}}};
 /// RootRule: deepest, smallest-id.
