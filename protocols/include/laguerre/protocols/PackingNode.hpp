@@ -224,8 +224,7 @@ private:
   const Wedge* wedge_of_face(NodeId face_id) const;
   void agent_send(std::size_t agent, std::size_t k_index, std::span<const std::byte> bytes);
   void send_relay(const Wedge& w, NodeId source, NodeId target, std::span<const std::byte> payload);
-  void handle_hop(std::size_t from, PackingHop& m);
-  void handle_relay(std::size_t from, RelayMsg& m);
+  void handle_relay(std::size_t from, const RelayView& m);
   void deliver_payload(std::size_t agent, std::size_t from_index, std::span<const std::byte> bytes);
   void drain();
   void start();
@@ -245,6 +244,7 @@ private:
   std::unique_ptr<detail::PackingAgent> own_;                 // agent 0: the node's own vertex
   std::vector<std::unique_ptr<detail::PackingAgent>> faces_;  // agents 1, 2, …: hosted face vertices
   std::vector<Local> local_;                                  // FIFO, emptied by drain()
+  std::vector<std::byte> local_bytes_;                        // their bytes (see Local)
   std::vector<std::byte> scratch_;                            // the agents' encoding buffer
   std::vector<std::byte> relay_buffer_;
   std::unique_ptr<ReliableNode> link_;                        // lossy mode: the layer under the protocol
