@@ -327,6 +327,11 @@ void PackingNode::on_failure(NodeId suspect) {
   if (finished_at_ < 0) finished_at_ = rt_->now();
 }
 
+void PackingNode::prefetch() const {
+  __builtin_prefetch(know_.neighbours.data());
+  own_->prefetch();
+}
+
 bool PackingNode::is_final() const { return failed_ || own_->phase() == PackingPhase::finished; }
 
 PackingCounters PackingNode::counters() const {

@@ -255,6 +255,9 @@ void Simulator::prefetch_delivery(const void* self, const Event& event) {
   __builtin_prefetch(&sim.chunks_[message / chunk_slots][message % chunk_slots]);
   __builtin_prefetch(sim.link_sent_.data() + sim.network_.link_at(event.target, 0));  // for its replies
   sim.handler_->prefetch(event.target);
+  NodeIndex& earlier = sim.prefetched_[sim.prefetch_turn_++ & 1];
+  sim.handler_->prefetch_state(earlier);  // two calls ago: its node record has likely arrived
+  earlier = event.target;
 }
 
 void Simulator::on_deliver_event(Kernel& kernel, const Event& event) {

@@ -7,7 +7,7 @@
 # and whether the two programs' JSON results are equal (timing and memory fields aside).
 #   tools/bench/simspeed.sh [--before EXE] [--family F] [-N STEPS] [--max-iterations K]
 #                           [--cpu-limit SECONDS] [--repeat R] [--seed S] [SIZES…]
-# Defaults: sizes 10000; family delaunay (`laguerre generate`); chebyshev, N = max(1, n/1000);
+# Defaults: sizes 10000; family delaunay (`laguerre generate`); chebyshev, N = max(1, n/1000), 10 pairs;
 # --before: no second program (one row per size); --cpu-limit: none (with a limit, `ulimit -t`
 # stops a run after that much CPU: its row gives the peak memory so far and no result, e.g. to
 # measure the set-up's memory at 10^5 nodes in bounded time).
@@ -48,7 +48,7 @@ for n in "${sizes[@]}"; do
   format=coords; case "$family" in uniform-*) format=edges ;; esac
   "$laguerre" generate "$family" -n "$n" --seed "$seed" --format "$format" -o "$g" 2>/dev/null
   N=${steps:-$(( n / 1000 ))}; [ "$N" -lt 1 ] && N=1
-  args=(simulate "$g" --accelerate chebyshev -N "$N" --json)
+  args=(simulate "$g" --accelerate chebyshev -N "$N" --pairs 10 --json)
   [ -n "$max_iterations" ] && args+=(--max-iterations "$max_iterations")
   # PHOLD with as many LPs as nodes: the best events per CPU second (field 8) of $repeat runs.
   rate=0
@@ -62,7 +62,8 @@ for n in "${sizes[@]}"; do
     rc=0
     ( [ -n "$cpu_limit" ] && ulimit -t "$cpu_limit"
       exec /usr/bin/time -f '%U %S %M' -o "$dir/time" "$exe" "${args[@]}" >"$dir/$name.json" 2>/dev/null ) || rc=$?
-    read -r user sys rss_kib <"$dir/time" || { user=0 sys=0 rss_kib=0; }
+    # The last line (GNU time first writes "Command exited with non-zero status …" when it did).
+    read -r user sys rss_kib < <(tail -1 "$dir/time") || { user=0 sys=0 rss_kib=0; }
     python3 - "$dir/$name.json" "$n" "$name" "$user" "$sys" "$rss_kib" "$rate" "$rc" "$dir/before.json" <<'PY'
 import json, os, sys
 path, n, name, user, sys_s, rss, rate, rc, ref = sys.argv[1:]

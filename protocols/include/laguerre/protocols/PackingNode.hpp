@@ -164,6 +164,8 @@ public:
   /// A reliability layer under the node (its own or one wrapping it) declared `suspect` failed: the
   /// run is abandoned with PackingOutcome::neighbour_failed.
   void on_failure(NodeId suspect) override;
+  /// Prefetches the neighbour list and the own vertex's records (the receive path's first reads).
+  void prefetch() const override;
 
   /// The current phase.
   PackingPhase phase() const;

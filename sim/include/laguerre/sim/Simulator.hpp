@@ -61,6 +61,10 @@ public:
   /// A hint: a message for `v` is a few events ahead; start loading (__builtin_prefetch) the state
   /// on_message will touch. Must not change anything. The default does nothing.
   virtual void prefetch(NodeIndex /*v*/) const {}
+  /// The second stage of the hint, about two events after prefetch(v) for the same message, when
+  /// what prefetch(v) loaded has likely arrived: start loading the state found through it (e.g. a
+  /// node's arrays behind pointers in its object). Must not change anything. Default: nothing.
+  virtual void prefetch_state(NodeIndex /*v*/) const {}
 };
 
 /// Receives the copies that a partitioned Simulator addresses to nodes it does not own (see
@@ -216,6 +220,10 @@ private:
   std::function<void()> observer_;
   RemoteOutbox* outbox_ = nullptr;      // set by partition()
   std::vector<std::uint8_t> owned_;     // partitioned runs: owned_[v] != 0 if v is this part's
+  // Receivers of the last prefetch_delivery calls (a ring): the one of two calls ago gets the second
+  // stage of the hint (NodeHandler::prefetch_state). A hint only: a stale entry wastes a prefetch.
+  mutable NodeIndex prefetched_[2] = {0, 0};
+  mutable std::uint32_t prefetch_turn_ = 0;
   std::vector<std::uint64_t> trace_keys_;
 };
 
