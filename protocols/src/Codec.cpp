@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <iterator>
 #include <utility>
 
@@ -65,7 +66,9 @@ template <class Ar, Is<ShapeMsg> M> void fields(Ar& ar, M& m) { ar(m.down, m.pol
 template <class Ar, Is<FaceCirclesMsg> M> void fields(Ar& ar, M& m) {
   ar(m.round, counted(m.circles, 3, max_face_circles));
 }
-template <class Ar, Is<RelayMsg> M> void fields(Ar& ar, M& m) {
+template <class Ar, class M>
+  requires(Is<M, RelayMsg> || Is<M, RelayView>)
+void fields(Ar& ar, M& m) {
   ar(m.face, m.source, m.target, m.backward, counted(m.payload, 2, max_relay_payload))
       .require(m.source != m.target && (m.face == m.source || m.face == m.target));
 }
@@ -155,12 +158,12 @@ void SizeArchive::field(const Counted<V>& c) {
   size_ += 4 + c.items.size() * item_size<typename std::remove_const_t<V>::value_type>();
 }
 
-// Appends little-endian fields to a byte vector.
+// Writes little-endian fields into a buffer SizeArchive has sized (no check, no reallocation).
 class WriteArchive : public Archive<WriteArchive> {
 public:
-  explicit WriteArchive(std::vector<std::byte>& out) : out_(out) {}
-  void field(std::uint8_t v) { out_.push_back(static_cast<std::byte>(v)); }
-  void field(bool v) { out_.push_back(v ? std::byte{1} : std::byte{0}); }
+  explicit WriteArchive(std::byte* out) : out_(out) {}
+  void field(std::uint8_t v) { *out_++ = static_cast<std::byte>(v); }
+  void field(bool v) { *out_++ = v ? std::byte{1} : std::byte{0}; }
   void field(std::uint32_t v) { little_endian(v, 4); }
   void field(std::uint64_t v) { little_endian(v, 8); }
   void field(double v) { little_endian(std::bit_cast<std::uint64_t>(v), 8); }
@@ -172,18 +175,25 @@ public:
   void field(const Counted<V>& c) {
     field(static_cast<std::uint32_t>(c.items.size()));
     using T = typename std::remove_const_t<V>::value_type;
-    if constexpr (std::is_same_v<T, std::byte>)
-      out_.insert(out_.end(), c.items.begin(), c.items.end());
-    else
+    if constexpr (std::is_same_v<std::remove_const_t<T>, std::byte>) {
+      if (!c.items.empty()) std::memcpy(out_, c.items.data(), c.items.size());
+      out_ += c.items.size();
+    } else {
       for (const T& item : c.items) fields(*this, item);
+    }
   }
   void require(bool) {}
 
 private:
-  void little_endian(std::uint64_t v, int bytes) {
-    for (int i = 0; i < bytes; ++i) out_.push_back(static_cast<std::byte>((v >> (8 * i)) & 0xffu));
+  void little_endian(std::uint64_t v, std::size_t bytes) {
+    if constexpr (std::endian::native == std::endian::little) {
+      std::memcpy(out_, &v, bytes);
+    } else {
+      for (std::size_t i = 0; i < bytes; ++i) out_[i] = static_cast<std::byte>((v >> (8 * i)) & 0xffu);
+    }
+    out_ += bytes;
   }
-  std::vector<std::byte>& out_;
+  std::byte* out_;
 };
 
 // Reads little-endian fields, never past the end. The first structural fault (too few bytes, a count
@@ -219,7 +229,10 @@ public:
       fault_ = DecodeStatus::truncated;
       return;
     }
-    if constexpr (std::is_same_v<T, std::byte>) {
+    if constexpr (std::is_same_v<V, std::span<const std::byte>>) {
+      c.items = in_.subspan(pos_, count);  // a view: no copy
+      pos_ += count;
+    } else if constexpr (std::is_same_v<T, std::byte>) {
       const auto first = in_.begin() + static_cast<std::ptrdiff_t>(pos_);
       c.items.assign(first, first + static_cast<std::ptrdiff_t>(count));
       pos_ += count;
@@ -244,7 +257,11 @@ private:
       return 0;
     }
     std::uint64_t v = 0;
-    for (std::size_t i = 0; i < bytes; ++i) v |= std::uint64_t{std::to_integer<std::uint8_t>(in_[pos_ + i])} << (8 * i);
+    if constexpr (std::endian::native == std::endian::little) {
+      std::memcpy(&v, in_.data() + pos_, bytes);
+    } else {
+      for (std::size_t i = 0; i < bytes; ++i) v |= std::uint64_t{std::to_integer<std::uint8_t>(in_[pos_ + i])} << (8 * i);
+    }
     pos_ += bytes;
     return v;
   }
@@ -294,12 +311,19 @@ void with_message_type(std::uint8_t code, F&& f) {
   }(std::make_index_sequence<std::variant_size_v<Message>>{});
 }
 
-template <class Set>
-DecodeStatus decode_set(std::span<const std::byte> bytes, Set& out) {
+// The header's status (ok: a known type, whose code is then in `code`).
+DecodeStatus header_status(std::span<const std::byte> bytes, std::uint8_t& code) {
   if (bytes.size() < header) return DecodeStatus::truncated;
   if (std::to_integer<std::uint8_t>(bytes[0]) != wire_version) return DecodeStatus::bad_version;
-  const std::uint8_t code = std::to_integer<std::uint8_t>(bytes[1]);
+  code = std::to_integer<std::uint8_t>(bytes[1]);
   if (code < 1 || code > max_message_type) return DecodeStatus::unknown_type;
+  return DecodeStatus::ok;
+}
+
+template <class Set>
+DecodeStatus decode_set(std::span<const std::byte> bytes, Set& out) {
+  std::uint8_t code = 0;
+  if (const DecodeStatus h = header_status(bytes, code); h != DecodeStatus::ok) return h;
   DecodeStatus status = DecodeStatus::foreign_type;
   with_message_type(code, [&]<class T>() {
     if constexpr (InSet<T, Set>::value) {
@@ -373,16 +397,23 @@ std::size_t encoded_size(const Message& m) {
       m);
 }
 
+namespace {
+// Encodes the fields of `m` under type code `code`, replacing the contents of `out`.
+template <class M>
+void encode_as(std::uint8_t code, const M& m, std::vector<std::byte>& out) {
+  SizeArchive s;
+  fields(s, m);
+  out.resize(header + s.size());  // keeps the capacity: no allocation once the buffer has grown
+  WriteArchive w(out.data());
+  w(wire_version, code);
+  fields(w, m);
+}
+}  // namespace
+
 template <class M>
   requires is_message_v<M>
 void encode(const M& m, std::vector<std::byte>& out) {
-  out.clear();
-  SizeArchive s;
-  fields(s, m);
-  out.reserve(header + s.size());
-  WriteArchive w(out);
-  w(wire_version, code_of<M>());
-  fields(w, m);
+  encode_as(code_of<M>(), m, out);
 }
 
 template void encode(const DepthMsg&, std::vector<std::byte>&);
@@ -405,6 +436,20 @@ template void encode(const KrylovValueMsg&, std::vector<std::byte>&);
 template void encode(const KrylovSumMsg&, std::vector<std::byte>&);
 template void encode(const KrylovDecisionMsg&, std::vector<std::byte>&);
 template void encode(const GateRadiusMsg&, std::vector<std::byte>&);
+
+void encode(const RelayView& m, std::vector<std::byte>& out) { encode_as(code_of<RelayMsg>(), m, out); }
+
+DecodeStatus decode(std::span<const std::byte> bytes, RelayView& out) {
+  std::uint8_t code = 0;
+  if (const DecodeStatus h = header_status(bytes, code); h != DecodeStatus::ok) return h;
+  if (code != code_of<RelayMsg>()) return DecodeStatus::foreign_type;
+  RelayView m;
+  ReadArchive r(bytes.subspan(header));
+  fields(r, m);
+  const DecodeStatus status = r.status();
+  if (status == DecodeStatus::ok) out = m;
+  return status;
+}
 
 DecodeStatus decode(std::span<const std::byte> bytes, Message& out) { return decode_set(bytes, out); }
 DecodeStatus decode(std::span<const std::byte> bytes, PackingMessage& out) { return decode_set(bytes, out); }

@@ -44,6 +44,15 @@ public:
 
   void start();
   void receive(std::size_t k_index, const PackingMessage& m);
+  // Starts loading what receive() reads first: this object (its fields up to the pointers), the peer
+  // records and the radii of the current step (a hint; reads the pointers only).
+  void prefetch() const {
+    const char* self = reinterpret_cast<const char*>(this);
+    __builtin_prefetch(self);
+    __builtin_prefetch(self + 64);
+    __builtin_prefetch(peers_.get());
+    __builtin_prefetch(radius_.get());
+  }
 
   PackingPhase phase() const { return phase_; }
   PackingOutcome outcome() const { return outcome_; }

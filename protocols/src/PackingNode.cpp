@@ -56,10 +56,13 @@ struct PackingNode::Wedge {
   std::size_t agent = 0;     // index in agents_ if hosted here, else 0
 };
 
+// Its bytes are local_bytes_[offset, offset + size): one buffer for every pending local delivery,
+// whose capacity is kept, so that local deliveries allocate nothing once it has grown.
 struct PackingNode::Local {
   std::size_t agent;
   std::size_t from_index;
-  std::vector<std::byte> bytes;
+  std::size_t offset;
+  std::size_t size;
 };
 
 // The protocol as seen by the reliability layer: its frames' payloads, its failure notification.
@@ -184,7 +187,8 @@ void PackingNode::agent_send(std::size_t agent, std::size_t k_index, std::span<c
   if (target_node == know_.id) {  // between this node's own vertex and a face vertex it hosts
     const std::size_t target_agent = agent == 0 ? w.agent : 0;
     const std::size_t from = this->agent(target_agent).index_of(s.id());
-    local_.push_back({target_agent, from, {bytes.begin(), bytes.end()}});
+    local_.push_back({target_agent, from, local_bytes_.size(), bytes.size()});
+    local_bytes_.insert(local_bytes_.end(), bytes.begin(), bytes.end());
     return;
   }
   send_relay(w, s.id(), to, bytes);
@@ -197,12 +201,11 @@ void PackingNode::send_relay(const Wedge& w, NodeId source, NodeId target, std::
   const std::size_t m = w.walk.size();
   const auto p = static_cast<std::size_t>(std::find(w.walk.begin(), w.walk.end(), node) - w.walk.begin());
   const bool backward = p > m - p;
-  RelayMsg r{w.face_id, source, target, backward, {payload.begin(), payload.end()}};
-  encode(r, relay_buffer_);
+  encode(RelayView{w.face_id, source, target, backward, payload}, relay_buffer_);
   transmit(index_of(backward ? w.walk.back() : w.walk[1]), relay_buffer_);
 }
 
-void PackingNode::handle_relay(std::size_t from, RelayMsg& m) {
+void PackingNode::handle_relay(std::size_t from, const RelayView& m) {
   // Accept only an envelope for one of our faces, arriving from the neighbour that precedes us in its
   // direction of travel, between the face vertex and a member of the face: then it reaches its target
   // within |f| − 1 hops and can never circle the face.
@@ -238,23 +241,20 @@ void PackingNode::deliver_payload(std::size_t agent, std::size_t from_index, std
   this->agent(agent).receive(from_index, m);
 }
 
-void PackingNode::handle_hop(std::size_t from, PackingHop& m) {
-  // A plain message comes from G-neighbour `from`, which is K-neighbour g_k[from] of the own vertex.
-  if (auto* r = std::get_if<RelayMsg>(&m)) handle_relay(from, *r);
-  else own_->receive(own_->k_of_g(from), std::get<PackingMessage>(m));
-}
 
 void PackingNode::drain() {
   // Local deliveries between this node's agents, after the callback that produced them (never
   // re-entrant); they may produce more, delivered in turn. An abandoned run delivers nothing more.
   if (failed_) local_.clear();
   for (std::size_t next = 0; next < local_.size(); ++next) {
-    Local l = std::move(local_[next]);  // receive() may append to local_
-    PackingMessage m;
-    if (decode(l.bytes, m) != DecodeStatus::ok) continue;  // our own encoding: cannot happen
+    const Local l = local_[next];  // receive() may append to local_ and local_bytes_
+    PackingMessage m;              // decoded before receive() can move local_bytes_
+    if (decode(std::span<const std::byte>(local_bytes_).subspan(l.offset, l.size), m) != DecodeStatus::ok)
+      continue;  // our own encoding: cannot happen
     agent(l.agent).receive(l.from_index, m);
   }
   local_.clear();
+  local_bytes_.clear();
   if (finished_at_ < 0 && is_final()) finished_at_ = rt_->now();
 }
 
@@ -290,10 +290,19 @@ void PackingNode::receive(NodeId from, std::span<const std::byte> bytes) {
     ++counters_.not_a_neighbour;
     return;
   }
-  PackingHop m;
-  const DecodeStatus s = decode(bytes, m);
-  ++counters_.decode[static_cast<std::size_t>(s)];
-  if (s == DecodeStatus::ok) handle_hop(i, m);
+  // An envelope is read in place (its payload a view of `bytes`); any other message of the set is
+  // for the own vertex: a plain message comes from G-neighbour i, K-neighbour g_k[i] of the own vertex.
+  if (bytes.size() >= 2 && bytes[1] == static_cast<std::byte>(MessageType::relay)) {
+    RelayView r;
+    const DecodeStatus s = decode(bytes, r);
+    ++counters_.decode[static_cast<std::size_t>(s)];
+    if (s == DecodeStatus::ok) handle_relay(i, r);
+  } else {
+    PackingMessage m;  // PackingHop less the relay: the same statuses as decoding a PackingHop
+    const DecodeStatus s = decode(bytes, m);
+    ++counters_.decode[static_cast<std::size_t>(s)];
+    if (s == DecodeStatus::ok) own_->receive(own_->k_of_g(i), m);
+  }
   drain();
 }
 
@@ -314,7 +323,13 @@ void PackingNode::on_failure(NodeId suspect) {
   failed_ = true;
   suspect_ = suspect;
   local_.clear();
+  local_bytes_.clear();
   if (finished_at_ < 0) finished_at_ = rt_->now();
+}
+
+void PackingNode::prefetch() const {
+  __builtin_prefetch(know_.neighbours.data());
+  own_->prefetch();
 }
 
 bool PackingNode::is_final() const { return failed_ || own_->phase() == PackingPhase::finished; }

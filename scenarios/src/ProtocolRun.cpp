@@ -41,7 +41,7 @@ sim::Duration max_latency(const sim::Network& net, const sim::LinkModel& link) {
 // Traffic is counted under the message type; a frame of the reliability layer under the type of the
 // message it carries (retransmissions included), a probe (empty frame) and an ack under their own.
 sim::Phase traffic_phase(std::span<const std::byte> bytes) {
-  const std::size_t frame_header = protocols::encoded_size(protocols::MessageType::frame);
+  static const std::size_t frame_header = protocols::encoded_size(protocols::MessageType::frame);  // once
   if (bytes.size() > frame_header + 1 && bytes[1] == static_cast<std::byte>(protocols::MessageType::frame))
     return static_cast<sim::Phase>(bytes[frame_header + 1]);
   return bytes.size() >= 2 ? static_cast<sim::Phase>(bytes[1]) : 0;

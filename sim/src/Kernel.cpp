@@ -115,7 +115,8 @@ bool Kernel::is_pending(EventHandle handle) const {
 //                 payload otherwise and freeing its slot *before* dispatch, so a handler that cancels
 //                 its own (firing) handle gets not_pending.
 //      PREFETCH – a hint only: if the queue can name the event `prefetch_distance` places ahead
-//                 cheaply (Kernel::set_prefetch, either form), start loading the state its handler will touch,
+//                 cheaply (or one near it: LadderEventQueue::peek_near) and its handler has a hint
+//                 (Kernel::set_prefetch, either form), start loading the state its handler will touch,
 //                 so that the cache miss overlaps the work of the events in between. Reads no
 //                 state that decides anything, so it cannot change the run.
 //   4. DISPATCH – run the handler to completion. Whatever it schedules receives sequence numbers
@@ -154,7 +155,7 @@ StopReason Kernel::run(const RunLimits& limits) {
         continue;
       }
     }
-    if (const Event* ahead = queue_.peek(prefetch_distance)) {
+    if (const Event* ahead = queue_.peek_near(prefetch_distance)) {
       const Handler& a = handlers_[ahead->handler];
       if (a.prefetch_base != nullptr) {
         __builtin_prefetch(a.prefetch_base + std::size_t{ahead->target} * a.prefetch_stride);

@@ -21,14 +21,23 @@ void TrafficMetrics::grow(Phase phase) {
   if (phase >= hot_.size()) {
     hot_.resize(std::size_t{phase} + 1);
     cold_.resize(std::size_t{phase} + 1);
+    wide_.resize(std::size_t{phase} + 1);
   }
   hot_[phase].resize(node_count_);
+}
+
+void TrafficMetrics::carry(Hot& h, int k, std::uint64_t sum, std::uint32_t node, Phase phase) {
+  std::vector<Wide>& wide = wide_[phase];  // hot() has sized every table for `phase`
+  if (wide.empty()) wide.resize(node_count_);
+  wide[node].count[k] += sum;
+  h.count[k] = 0;
 }
 
 TrafficMetrics::Cold& TrafficMetrics::cold(std::uint32_t node, Phase phase) {
   if (phase >= hot_.size()) {
     hot_.resize(std::size_t{phase} + 1);
     cold_.resize(std::size_t{phase} + 1);
+    wide_.resize(std::size_t{phase} + 1);
   }
   if (cold_[phase].empty()) cold_[phase].resize(node_count_);
   return cold_[phase][node];
@@ -50,10 +59,10 @@ void TrafficMetrics::add_duplicated(std::uint32_t node, Phase phase) { ++cold(no
 
 void TrafficMetrics::add(std::uint32_t node, Phase phase, const TrafficCounters& c) {
   Hot& h = hot(node, phase);
-  h.messages_sent += c.messages_sent;
-  h.bytes_sent += c.bytes_sent;
-  h.messages_received += c.messages_received;
-  h.bytes_received += c.bytes_received;
+  bump(h, 0, c.messages_sent, node, phase);
+  bump(h, 1, c.bytes_sent, node, phase);
+  bump(h, 2, c.messages_received, node, phase);
+  bump(h, 3, c.bytes_received, node, phase);
   if (c.messages_lost == 0 && c.bytes_lost == 0 && c.messages_dropped == 0 && c.bytes_dropped == 0 &&
       c.messages_duplicated == 0)
     return;
@@ -70,10 +79,12 @@ TrafficCounters TrafficMetrics::get(std::uint32_t node, Phase phase) const {
   if (phase >= hot_.size()) return c;
   if (!hot_[phase].empty()) {
     const Hot& h = hot_[phase][node];
-    c.messages_sent = h.messages_sent;
-    c.bytes_sent = h.bytes_sent;
-    c.messages_received = h.messages_received;
-    c.bytes_received = h.bytes_received;
+    Wide w;
+    if (!wide_[phase].empty()) w = wide_[phase][node];
+    c.messages_sent = w.count[0] + h.count[0];
+    c.bytes_sent = w.count[1] + h.count[1];
+    c.messages_received = w.count[2] + h.count[2];
+    c.bytes_received = w.count[3] + h.count[3];
   }
   if (!cold_[phase].empty()) {
     const Cold& k = cold_[phase][node];

@@ -51,11 +51,20 @@ std::optional<LinkIndex> Network::find_link(NodeIndex u, NodeIndex v) const {
 void Network::set_ids(std::vector<std::uint64_t> ids) {
   LAGUERRE_PRECONDITION(ids.size() == node_count(), "Expected " + std::to_string(node_count()) + " node ids, got " +
                                                         std::to_string(ids.size()) + ".");
-  std::unordered_map<std::uint64_t, NodeIndex> index;
-  index.reserve(ids.size());
+  std::vector<std::pair<std::uint64_t, NodeIndex>> index(ids.size());
+  bool identity = true;
   for (std::size_t v = 0; v < ids.size(); ++v) {
-    const bool fresh = index.emplace(ids[v], static_cast<NodeIndex>(v)).second;
-    LAGUERRE_PRECONDITION(fresh, "Node id " + std::to_string(ids[v]) + " is given to two nodes.");
+    index[v] = {ids[v], static_cast<NodeIndex>(v)};
+    identity = identity && ids[v] == v;
+  }
+  std::sort(index.begin(), index.end());
+  for (std::size_t i = 1; i < index.size(); ++i)
+    LAGUERRE_PRECONDITION(index[i].first != index[i - 1].first,
+                          "Node id " + std::to_string(index[i].first) + " is given to two nodes.");
+  if (identity) {  // ids equal to the indices need no table
+    ids_ = {};
+    index_of_id_ = {};
+    return;
   }
   ids_ = std::move(ids);
   index_of_id_ = std::move(index);
@@ -66,8 +75,9 @@ std::optional<NodeIndex> Network::index_of(std::uint64_t id) const {
     if (id < node_count()) return static_cast<NodeIndex>(id);
     return std::nullopt;
   }
-  const auto it = index_of_id_.find(id);
-  if (it == index_of_id_.end()) return std::nullopt;
+  const auto it = std::lower_bound(index_of_id_.begin(), index_of_id_.end(), id,
+                                   [](const std::pair<std::uint64_t, NodeIndex>& e, std::uint64_t key) { return e.first < key; });
+  if (it == index_of_id_.end() || it->first != id) return std::nullopt;
   return it->second;
 }
 

@@ -108,9 +108,12 @@ void SimHost::on_message(Simulator& sim, NodeIndex v, NodeIndex from, Phase,
 void SimHost::on_timer(Simulator&, NodeIndex v, std::uint64_t timer) { nodes_[v]->on_timer(timer); }
 
 void SimHost::prefetch(NodeIndex v) const {
-  __builtin_prefetch(nodes_[v].get());
+  const char* node = reinterpret_cast<const char*>(nodes_[v].get());
+  for (int line = 0; line < 4; ++line) __builtin_prefetch(node + 64 * line);  // its first fields
   __builtin_prefetch(links_by_id_.data() + simulator_.network().link_at(v, 0));  // for its replies
 }
+
+void SimHost::prefetch_state(NodeIndex v) const { nodes_[v]->prefetch(); }
 
 void SimHost::on_recover(Simulator&, NodeIndex v) { nodes_[v]->on_recover(); }
 

@@ -37,13 +37,16 @@ Simulator::Simulator(Network network, SimConfig config, NodeHandler& handler)
     node_streams_.push_back(RandomStream::of(config_.seed, StreamKind::node, network_.id(v)));
   }
   const std::size_t links = network_.link_count();
-  links_.resize(links);
-  for (LinkIndex l = 0; l < links; ++l) {
-    LinkState& s = links_[l];
-    s.key = stream_key(config_.seed, StreamKind::link, network_.id(network_.link_source(l)),
-                       network_.id(network_.link_target(l)));
-    s.length = network_.link_length(l);
-    s.model = &network_.link_model(l);
+  link_sent_.assign(links, 0);
+  bool random = false;
+  for (LinkIndex l = 0; l < links && !random; ++l) random = !network_.link_model(l).is_deterministic();
+  if (random) {
+    link_random_.resize(links);
+    for (LinkIndex l = 0; l < links; ++l) {
+      link_random_[l].key = stream_key(config_.seed, StreamKind::link, network_.id(network_.link_source(l)),
+                                       network_.id(network_.link_target(l)));
+      link_random_[l].length = network_.link_length(l);
+    }
   }
   down_.assign(n, 0);
   started_.assign(n, 0);
@@ -63,9 +66,9 @@ void Simulator::deliver_remote(Time at, std::uint64_t key, NodeIndex from, NodeI
                                std::span<const std::byte> bytes) {
   LAGUERRE_PRECONDITION(outbox_ != nullptr && owned_[to] != 0,
                         "Simulator::deliver_remote needs a partitioned simulator that owns the receiver.");
-  const std::uint32_t message = store(from, bytes, phase);
+  const std::uint32_t message = store(bytes, phase);
   slot(message).refs = 1;
-  kernel_.schedule_keyed_at(at, key, deliver_id_, to, message);
+  kernel_.schedule_keyed_at(at, key, deliver_id_, to, delivery_payload(from, message));
 }
 
 RunReport Simulator::run(const RunLimits& limits) {
@@ -126,7 +129,7 @@ std::span<const std::byte> Simulator::bytes_of(std::uint32_t message) {
   return spill_[message];
 }
 
-std::uint32_t Simulator::store(NodeIndex from, std::span<const std::byte> bytes, Phase phase) {
+std::uint32_t Simulator::store(std::span<const std::byte> bytes, Phase phase) {
   std::uint32_t index;
   if (!free_messages_.empty()) {
     index = free_messages_.back();  // the most recently freed slot: likely still cached
@@ -136,7 +139,6 @@ std::uint32_t Simulator::store(NodeIndex from, std::span<const std::byte> bytes,
     index = slots_used_++;
   }
   Message& m = slot(index);
-  m.from = from;
   m.size = static_cast<std::uint32_t>(bytes.size());
   m.refs = 0;
   m.phase = phase;
@@ -158,12 +160,12 @@ void Simulator::transmit(LinkIndex link, NodeIndex from, NodeIndex to, std::uint
   const std::uint32_t size = m.size;
   const Phase phase = m.phase;
   traffic_.add_sent(from, phase, size);
-  LinkState& state = links_[link];
-  const LinkModel& model = *state.model;
-  const std::uint64_t index = state.sent++;
+  const LinkModel& model = network_.link_model(link);
+  const std::uint64_t index = link_sent_[link];
   if (index >= (std::uint64_t{1} << (key_counter_bits - 1))) {
     throw std::length_error("Too many messages on one link (2^29): the event keys would repeat.");
   }
+  ++link_sent_[link];
   const auto deliver = [&](bool lost, Duration latency, std::uint64_t copy) {
     if (lost) {
       traffic_.add_lost(from, phase, size);
@@ -178,13 +180,14 @@ void Simulator::transmit(LinkIndex link, NodeIndex from, NodeIndex to, std::uint
       return;
     }
     ++m.refs;
-    kernel_.schedule_keyed_at(kernel_.now() + latency, key, deliver_id_, to, message);
+    kernel_.schedule_keyed_at(kernel_.now() + latency, key, deliver_id_, to, delivery_payload(from, message));
   };
   if (model.is_deterministic()) {  // decide() would draw, but nothing it draws matters
     deliver(false, model.latency.base, 0);
     return;
   }
   // The message's own stream: a pure function of (seed, link, position of the message on the link).
+  const LinkRandom& state = link_random_[link];  // exists: this link's model is not deterministic
   RandomStream rng(stream_key(config_.seed, StreamKind::message, state.key, index));
   const LinkDecision fate = decide(model, state.length, rng);
   deliver(fate.lost, fate.latency, 0);
@@ -207,7 +210,7 @@ void Simulator::send_on_link(LinkIndex link, std::span<const std::byte> bytes, P
     traffic_.add_dropped(from, phase, 1, bytes.size());
     return;
   }
-  const std::uint32_t message = store(from, bytes, phase);
+  const std::uint32_t message = store(bytes, phase);
   transmit(link, from, network_.link_target(link), message);
   if (slot(message).refs == 0) free_messages_.push_back(message);  // every copy was lost
 }
@@ -220,7 +223,7 @@ void Simulator::broadcast(NodeIndex from, std::span<const std::byte> bytes, Phas
     return;
   }
   if (neighbours.empty()) return;
-  const std::uint32_t message = store(from, bytes, phase);
+  const std::uint32_t message = store(bytes, phase);
   for (std::size_t i = 0; i < neighbours.size(); ++i)
     transmit(network_.link_at(from, i), from, neighbours[i], message);
   if (slot(message).refs == 0) free_messages_.push_back(message);
@@ -250,8 +253,11 @@ void Simulator::prefetch_delivery(const void* self, const Event& event) {
   const auto& sim = *static_cast<const Simulator*>(self);
   const auto message = static_cast<std::uint32_t>(event.payload);  // pending: its slot exists
   __builtin_prefetch(&sim.chunks_[message / chunk_slots][message % chunk_slots]);
-  __builtin_prefetch(sim.links_.data() + sim.network_.link_at(event.target, 0));  // for its replies
+  __builtin_prefetch(sim.link_sent_.data() + sim.network_.link_at(event.target, 0));  // for its replies
   sim.handler_->prefetch(event.target);
+  NodeIndex& earlier = sim.prefetched_[sim.prefetch_turn_++ & 1];
+  sim.handler_->prefetch_state(earlier);  // two calls ago: its node record has likely arrived
+  earlier = event.target;
 }
 
 void Simulator::on_deliver_event(Kernel& kernel, const Event& event) {
@@ -259,7 +265,7 @@ void Simulator::on_deliver_event(Kernel& kernel, const Event& event) {
   const auto index = static_cast<std::uint32_t>(event.payload);
   const Message& m = slot(index);
   const std::uint32_t size = m.size;
-  const NodeIndex from = m.from;
+  const auto from = static_cast<NodeIndex>(event.payload >> 32);
   const Phase phase = m.phase;
   if (down_[to]) {
     traffic_.add_dropped(to, phase, 1, size);

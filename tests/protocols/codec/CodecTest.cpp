@@ -159,6 +159,44 @@ TEST(Codec, RejectsOutOfRangeFields) {
   EXPECT_EQ(decode(encode(DataMsg{1, 2, 3, 0, 0, -1, 5, 1}), out), DecodeStatus::out_of_range);
 }
 
+// RelayView (the relays' in-place form) writes the RelayMsg bytes and reads every byte string of
+// the relay type as decode(bytes, Message&) does: the same status, and on success the same fields,
+// its payload a view into the input; any other known type is foreign_type.
+TEST(Codec, RelayViewIsRelayMsgWithoutTheCopy) {
+  const std::vector<std::byte> payload = encode(ReportMsg{1, true});
+  const RelayMsg relays[] = {{7, 7, 3, false, payload}, {0x8000000100000002ull, 5, 0x8000000100000002ull, true, payload}};
+  for (const RelayMsg& r : relays) {
+    std::vector<std::byte> bytes;
+    encode(RelayView{r.face, r.source, r.target, r.backward, r.payload}, bytes);
+    EXPECT_EQ(bytes, encode(r));
+  }
+  std::vector<std::vector<std::byte>> inputs = {encode(relays[0]), encode(RelayMsg{7, 3, 3, false, payload}),
+                                                encode(ReportMsg{2, false}), {}, {std::byte{wire_version}}};
+  std::mt19937_64 rng(11);
+  for (int trial = 0; trial < 2000; ++trial) {  // corruptions and truncations of a valid relay
+    std::vector<std::byte> b = encode(relays[trial % 2]);
+    b[rng() % b.size()] ^= static_cast<std::byte>(1u << (rng() % 8));
+    if (trial % 3 == 0) b.resize(rng() % (b.size() + 1));
+    inputs.push_back(b);
+  }
+  for (const auto& b : inputs) {
+    Message m;
+    RelayView v{1, 2, 1, false, {}};
+    DecodeStatus expected = decode(b, m);
+    const auto code = b.size() >= 2 ? std::to_integer<unsigned>(b[1]) : 0u;
+    const bool known_header = b.size() >= 2 && b[0] == std::byte{wire_version} && code >= 1 && code <= max_message_type;
+    if (known_header && code != static_cast<unsigned>(MessageType::relay)) expected = DecodeStatus::foreign_type;
+    ASSERT_EQ(decode(b, v), expected);
+    if (expected != DecodeStatus::ok) {
+      EXPECT_EQ(v.face, 1u);  // unchanged
+      continue;
+    }
+    const RelayMsg& r = std::get<RelayMsg>(m);
+    EXPECT_EQ((RelayMsg{v.face, v.source, v.target, v.backward, std::vector<std::byte>(v.payload.begin(), v.payload.end())}), r);
+    EXPECT_TRUE(v.payload.data() >= b.data() && v.payload.data() + v.payload.size() == b.data() + b.size());
+  }
+}
+
 TEST(Codec, EveryTruncationAndExtensionIsRejected) {
   laguerre::protocols::testing::expect_every_truncation_and_extension_rejected(samples());
 }

@@ -83,6 +83,11 @@ TEST(EventQueueTest, LadderHoldModelAndPeekMatchTheReferenceHeap) {
     if (step % 499 == 0) {
       for (std::size_t k = 0; k < 6; ++k) {
         const Event* ahead = ladder.peek(k);
+        const Event* near = ladder.peek_near(k);  // the kernel's hint: peek(k) when peek knows
+        ASSERT_TRUE(ahead == nullptr || near == ahead) << "step " << step << " ahead " << k;
+        if (near != nullptr) {
+          ASSERT_GE(near->time, reference.top().time) << "step " << step;  // a pending event
+        }
         if (ahead == nullptr) continue;
         DaryEventHeap<2> copy = reference;
         for (std::size_t j = 0; j < k; ++j) copy.pop();

@@ -56,6 +56,11 @@ TEST(NetworkTest, IdsMapBothWays) {
   EXPECT_EQ(net.id(0), 100u);
   EXPECT_EQ(net.index_of(7), NodeIndex{1});
   EXPECT_FALSE(net.index_of(1).has_value());
+  EXPECT_FALSE(net.index_of(8).has_value());
+  net.set_ids({0, 1});  // the identity again (stored as no table)
+  EXPECT_EQ(net.id(0), 0u);
+  EXPECT_EQ(net.index_of(1), NodeIndex{1});
+  EXPECT_FALSE(net.index_of(7).has_value());
 }
 
 TEST(NetworkTest, PerLinkModelsOverrideTheDefault) {

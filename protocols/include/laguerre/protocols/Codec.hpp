@@ -425,4 +425,22 @@ DecodeStatus decode(std::span<const std::byte> bytes, FramePayload& out);
 /// (As above, for a ForwardingMessage.)
 DecodeStatus decode(std::span<const std::byte> bytes, ForwardingMessage& out);
 
+/// A RelayMsg whose payload is a view (of the bytes it was decoded from, or of the buffer it is
+/// encoded from): how a relay forwards or opens an envelope without copying its payload. Same
+/// wire format and ranges as RelayMsg.
+struct RelayView {
+  std::uint64_t face = 0;               ///< the face vertex's id
+  std::uint64_t source = 0;             ///< sending protocol vertex
+  std::uint64_t target = 0;             ///< receiving protocol vertex
+  bool backward = false;                ///< direction round the face
+  std::span<const std::byte> payload;   ///< the carried message, encoded
+};
+/// Encodes `m` as a RelayMsg (the bytes of encode(RelayMsg) with the same fields), replacing the
+/// contents of `out`; `m.payload` must not lie in `out`.
+void encode(const RelayView& m, std::vector<std::byte>& out);
+/// Decodes `bytes` as a RelayMsg whose payload stays in `bytes`: the status decode(bytes, Message&)
+/// gives (foreign_type for a message of another type); on DecodeStatus::ok stores it in `out`,
+/// otherwise leaves `out` unchanged.
+DecodeStatus decode(std::span<const std::byte> bytes, RelayView& out);
+
 }  // namespace laguerre::protocols

@@ -166,6 +166,8 @@ public:
   /// A reliability layer under the node (its own or one wrapping it) declared `suspect` failed: the
   /// run is abandoned with PackingOutcome::neighbour_failed.
   void on_failure(NodeId suspect) override;
+  /// Prefetches the neighbour list and the own vertex's records (the receive path's first reads).
+  void prefetch() const override;
 
   /// The current phase.
   PackingPhase phase() const;
@@ -226,8 +228,7 @@ private:
   const Wedge* wedge_of_face(NodeId face_id) const;
   void agent_send(std::size_t agent, std::size_t k_index, std::span<const std::byte> bytes);
   void send_relay(const Wedge& w, NodeId source, NodeId target, std::span<const std::byte> payload);
-  void handle_hop(std::size_t from, PackingHop& m);
-  void handle_relay(std::size_t from, RelayMsg& m);
+  void handle_relay(std::size_t from, const RelayView& m);
   void deliver_payload(std::size_t agent, std::size_t from_index, std::span<const std::byte> bytes);
   void drain();
   void start();
@@ -247,6 +248,7 @@ private:
   std::unique_ptr<detail::PackingAgent> own_;                 // agent 0: the node's own vertex
   std::vector<std::unique_ptr<detail::PackingAgent>> faces_;  // agents 1, 2, …: hosted face vertices
   std::vector<Local> local_;                                  // FIFO, emptied by drain()
+  std::vector<std::byte> local_bytes_;                        // their bytes (see Local)
   std::vector<std::byte> scratch_;                            // the agents' encoding buffer
   std::vector<std::byte> relay_buffer_;
   std::unique_ptr<ReliableNode> link_;                        // lossy mode: the layer under the protocol

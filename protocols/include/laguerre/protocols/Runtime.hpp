@@ -113,6 +113,10 @@ public:
   /// Whether the node's work is done for good: a layer under it then stops probing its neighbours
   /// for liveness. The default: never.
   virtual bool is_final() const { return false; }
+  /// A hint from a host that delivers messages from a queue: a message for this node is a few
+  /// events ahead; start loading (__builtin_prefetch) the state on_message will touch. Must not
+  /// change anything. The default does nothing.
+  virtual void prefetch() const {}
 };
 
 }  // namespace laguerre::protocols

@@ -193,6 +193,13 @@ public:
   const Event* peek(std::size_t ahead) const {
     return !heap_mode_ && ahead < bottom_.size() ? &bottom_[bottom_.size() - 1 - ahead] : nullptr;
   }
+  /// peek(ahead), or, when the bottom tier is a heap (e.g. a synchronous round: many events at one
+  /// time, keyed out of insertion order), entry `ahead` of the heap: near its top, so likely one of
+  /// the next few events, not necessarily the `ahead`-th. For prefetching only (what the kernel uses).
+  const Event* peek_near(std::size_t ahead) const {
+    if (!heap_mode_) return peek(ahead);
+    return ahead < bottom_.size() ? &bottom_[ahead] : nullptr;
+  }
 
   /// Inserts `event`.
   void push(const Event& event) {

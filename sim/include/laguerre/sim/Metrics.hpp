@@ -35,9 +35,12 @@ struct TrafficCounters {
 };
 
 /// Counters indexed by (node, phase); phases appear as they are used. Storage: per phase, one
-/// 32-byte record per node for what every message touches (sent and received); the channel's and
-/// the crashes' counts (lost, dropped, duplicated) live in a second table per phase, allocated on
-/// the first such event, so a run without loss or crashes never pays for it.
+/// 16-byte record per node for what every message touches (sent and received, four 32-bit counts);
+/// a count that would pass 2^32 − 1 moves, whole, into a 64-bit record of a third table per phase,
+/// allocated on the first such carry (so the counts stay exact at any size, and a run whose
+/// per-node counts fit in 32 bits never pays for it). The channel's and the crashes' counts (lost,
+/// dropped, duplicated) live in a second table per phase, allocated on the first such event, so a
+/// run without loss or crashes never pays for it either.
 class TrafficMetrics {
 public:
   /// Counters for `node_count` nodes, no phase yet.
@@ -46,14 +49,14 @@ public:
   /// Counts one message of `bytes` bytes handed to the network by `node`.
   void add_sent(std::uint32_t node, Phase phase, std::uint64_t bytes) {
     Hot& h = hot(node, phase);
-    ++h.messages_sent;
-    h.bytes_sent += bytes;
+    bump(h, 0, 1, node, phase);
+    bump(h, 1, bytes, node, phase);
   }
   /// Counts one copy of `bytes` bytes delivered to `node`'s handler.
   void add_received(std::uint32_t node, Phase phase, std::uint64_t bytes) {
     Hot& h = hot(node, phase);
-    ++h.messages_received;
-    h.bytes_received += bytes;
+    bump(h, 2, 1, node, phase);
+    bump(h, 3, bytes, node, phase);
   }
   /// Counts one copy of `bytes` bytes sent by `node` and lost by the channel.
   void add_lost(std::uint32_t node, Phase phase, std::uint64_t bytes);
@@ -79,9 +82,25 @@ public:
   TrafficCounters total() const;
 
 private:
+  /// messages_sent, bytes_sent, messages_received, bytes_received: the low part of each count.
   struct Hot {
-    std::uint64_t messages_sent = 0, bytes_sent = 0, messages_received = 0, bytes_received = 0;
+    std::uint32_t count[4] = {0, 0, 0, 0};
   };
+  /// The part of each count carried out of Hot (count = wide + low).
+  struct Wide {
+    std::uint64_t count[4] = {0, 0, 0, 0};
+  };
+  /// Adds `amount` to count `k` of `h` (the record of (node, phase)), carrying into the wide table
+  /// when the 32-bit count would overflow.
+  void bump(Hot& h, int k, std::uint64_t amount, std::uint32_t node, Phase phase) {
+    const std::uint64_t sum = std::uint64_t{h.count[k]} + amount;
+    if (sum <= 0xffffffffu) [[likely]] {
+      h.count[k] = static_cast<std::uint32_t>(sum);
+      return;
+    }
+    carry(h, k, sum, node, phase);
+  }
+  void carry(Hot& h, int k, std::uint64_t sum, std::uint32_t node, Phase phase);
   struct Cold {
     std::uint64_t messages_lost = 0, bytes_lost = 0, messages_dropped = 0, bytes_dropped = 0, messages_duplicated = 0;
   };
@@ -94,6 +113,7 @@ private:
   std::size_t node_count_;
   std::vector<std::vector<Hot>> hot_;   // [phase][node]; empty for a phase never used
   std::vector<std::vector<Cold>> cold_; // [phase][node]; a phase's table is empty until first used
+  std::vector<std::vector<Wide>> wide_; // [phase][node]; empty until a count of the phase carries
 };
 
 /// What one call of Simulator::run did.

@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <optional>
 #include <span>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -63,7 +62,7 @@ public:
   void set_ids(std::vector<std::uint64_t> ids);
   /// The user id of `v`.
   std::uint64_t id(NodeIndex v) const { return ids_.empty() ? v : ids_[v]; }
-  /// The index of the node with user id `id`, if any.
+  /// The index of the node with user id `id`, if any (a binary search).
   std::optional<NodeIndex> index_of(std::uint64_t id) const;
 
   /// Sets every node's position. Throws core::InternalError (a broken precondition) on a count mismatch or a non-finite
@@ -98,7 +97,7 @@ private:
   std::vector<NodeIndex> targets_;
   std::vector<NodeIndex> sources_;
   std::vector<std::uint64_t> ids_;          // empty: ids are indices
-  std::unordered_map<std::uint64_t, NodeIndex> index_of_id_;
+  std::vector<std::pair<std::uint64_t, NodeIndex>> index_of_id_;  // (id, index) by id; empty with ids_
   std::vector<Position> positions_;
   std::vector<LinkModel> models_{LinkModel{}};
   std::vector<std::uint32_t> model_of_link_;

@@ -71,6 +71,7 @@ private:
   void on_timer(Simulator& sim, NodeIndex v, std::uint64_t timer) override;
   void on_recover(Simulator& sim, NodeIndex v) override;
   void prefetch(NodeIndex v) const override;
+  void prefetch_state(NodeIndex v) const override;
 
   Simulator simulator_;
   PhaseOf phase_of_;

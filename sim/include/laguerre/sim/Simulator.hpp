@@ -61,6 +61,10 @@ public:
   /// A hint: a message for `v` is a few events ahead; start loading (__builtin_prefetch) the state
   /// on_message will touch. Must not change anything. The default does nothing.
   virtual void prefetch(NodeIndex /*v*/) const {}
+  /// The second stage of the hint, about two events after prefetch(v) for the same message, when
+  /// what prefetch(v) loaded has likely arrived: start loading the state found through it (e.g. a
+  /// node's arrays behind pointers in its object). Must not change anything. Default: nothing.
+  virtual void prefetch_state(NodeIndex /*v*/) const {}
 };
 
 /// Receives the copies that a partitioned Simulator addresses to nodes it does not own (see
@@ -154,27 +158,30 @@ public:
 
 private:
   /// Bytes a message slot holds inline; longer messages spill to a per-slot buffer.
-  static constexpr std::size_t inline_bytes = 48;
+  static constexpr std::size_t inline_bytes = 54;
   /// Slots per chunk of the message pool (chunks never move, so a delivered span stays valid while
   /// its handler sends and the pool grows).
   static constexpr std::size_t chunk_slots = 1024;
   /// One stored message, shared by every copy in flight (reference-counted, recycled): one cache
-  /// line, with the bytes inline when they fit.
+  /// line, with the bytes inline when they fit (the sender travels in each delivery event's payload,
+  /// so that the packing protocol's largest frequent message, a 54-byte PlacedMsg, fits).
   struct alignas(64) Message {
-    NodeIndex from = 0;
     std::uint32_t size = 0;
     std::uint32_t refs = 0;
     Phase phase = 0;
     std::byte bytes[inline_bytes];
   };
   static_assert(sizeof(Message) == 64, "A message slot is one cache line.");
-  /// What the sender side needs per directed link, in one record.
-  struct LinkState {
-    std::uint64_t key = 0;            // stream key of the link
-    std::uint64_t sent = 0;           // messages sent so far on it
-    double length = 0;                // distance between its endpoints
-    const LinkModel* model = nullptr; // its model (in network_, which never changes)
+  /// What a random link model needs per directed link (only kept when some link is not
+  /// deterministic, LinkModel::is_deterministic).
+  struct LinkRandom {
+    std::uint64_t key = 0;  // stream key of the link
+    double length = 0;      // distance between its endpoints
   };
+  /// The payload of a delivery event: the message slot (low half) and the sender (high half).
+  static std::uint64_t delivery_payload(NodeIndex from, std::uint32_t message) {
+    return (std::uint64_t{from} << 32) | message;
+  }
 
   static void prefetch_delivery(const void* self, const Event& event);
   void on_start_event(Kernel& kernel, const Event& event);
@@ -184,7 +191,7 @@ private:
   void on_recover_event(Kernel& kernel, const Event& event);
   Message& slot(std::uint32_t message) { return chunks_[message / chunk_slots][message % chunk_slots]; }
   std::span<const std::byte> bytes_of(std::uint32_t message);
-  std::uint32_t store(NodeIndex from, std::span<const std::byte> bytes, Phase phase);
+  std::uint32_t store(std::span<const std::byte> bytes, Phase phase);
   void release(std::uint32_t message);
   /// Puts one message on link `link` from `from` to `to` (the message is already stored; adds its
   /// references).
@@ -196,7 +203,8 @@ private:
   Kernel kernel_;
   HandlerId start_id_, deliver_id_, timer_id_, crash_id_, recover_id_;
   std::vector<RandomStream> node_streams_;
-  std::vector<LinkState> links_;
+  std::vector<std::uint32_t> link_sent_;     // messages sent so far on each directed link (< 2^29)
+  std::vector<LinkRandom> link_random_;      // per directed link; empty if every link is deterministic
   std::vector<std::uint32_t> node_timers_;    // timers set so far by each node (their event keys)
   std::vector<std::uint32_t> down_;  // outages in progress per node
   std::vector<std::uint8_t> started_;
@@ -212,6 +220,10 @@ private:
   std::function<void()> observer_;
   RemoteOutbox* outbox_ = nullptr;      // set by partition()
   std::vector<std::uint8_t> owned_;     // partitioned runs: owned_[v] != 0 if v is this part's
+  // Receivers of the last prefetch_delivery calls (a ring): the one of two calls ago gets the second
+  // stage of the hint (NodeHandler::prefetch_state). A hint only: a stale entry wastes a prefetch.
+  mutable NodeIndex prefetched_[2] = {0, 0};
+  mutable std::uint32_t prefetch_turn_ = 0;
   std::vector<std::uint64_t> trace_keys_;
 };
 
