@@ -209,16 +209,18 @@ ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vect
   out.adaptive_rto = params.adaptive_rto;
   sim::SimConfig config;
   config.seed = setup.seed;
+  // The nodes' results, read where each node lives (every node here, or its MPI rank's, which builds
+  // only its own nodes).
+  sim::InPlaceRunner in_place;
+  sim::HostRunner& runner = setup.runner != nullptr ? *setup.runner : in_place;
+  std::vector<std::uint8_t> held = runner.ownership(network);
   sim::SimHost host(
       std::move(network), config,
       [&](protocols::Runtime& rt, sim::NodeIndex v) -> std::unique_ptr<protocols::Node> {
         return std::make_unique<protocols::PackingNode>(rt, protocols::local_knowledge(g, v), params);
       },
-      traffic_phase);
+      traffic_phase, std::move(held));
   if (setup.on_progress && setup.runner == nullptr) watch_progress(host, setup.on_progress, setup.progress_period);
-  // The nodes' results, read where each node lives (every node here, or its MPI rank's).
-  sim::InPlaceRunner in_place;
-  sim::HostRunner& runner = setup.runner != nullptr ? *setup.runner : in_place;
   const sim::RunReport report = runner.run(host, {});
   std::vector<PackingNodeSummary> nodes(n);
   const auto summary_of = [&](sim::NodeIndex v) { return summarize(static_cast<const protocols::PackingNode&>(host.node(v))); };

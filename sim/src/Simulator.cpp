@@ -18,34 +18,54 @@ constexpr std::uint64_t event_key(KeyKind kind, std::uint32_t field, std::uint64
 }
 }  // namespace
 
-Simulator::Simulator(Network network, SimConfig config, NodeHandler& handler)
-    : network_(std::move(network)),
-      config_(config),
-      handler_(&handler),
-      traffic_(network_.node_count()),
-      trace_(config.trace) {
+Simulator::Simulator(Network network, SimConfig config, NodeHandler& handler, std::vector<std::uint8_t> held)
+    : network_(std::move(network)), config_(config), handler_(&handler), trace_(config.trace) {
   network_.validate();
+  LAGUERRE_PRECONDITION(held.empty() || held.size() == network_.node_count(),
+                        "A simulator of a part needs one flag per node.");
+  if (!held.empty()) {
+    local_.assign(held.size(), not_held);
+    std::size_t links = 0;
+    for (NodeIndex v = 0; v < held.size(); ++v) {
+      if (held[v] == 0) continue;
+      local_[v] = static_cast<NodeIndex>(held_.size());
+      held_.push_back(v);
+      link_shift_.push_back(static_cast<LinkIndex>(network_.link_at(v, 0) - links));
+      links += network_.neighbours(v).size();
+    }
+  }
+  traffic_ = TrafficMetrics(local_count());
+  if (local_count() > 0) prefetched_[0] = prefetched_[1] = local_node(0);  // the hint's ring names held nodes
   start_id_ = kernel_.add_handler<&Simulator::on_start_event>("start", *this);
   deliver_id_ = kernel_.add_handler<&Simulator::on_deliver_event>("deliver", *this);
   timer_id_ = kernel_.add_handler<&Simulator::on_timer_event>("timer", *this);
   crash_id_ = kernel_.add_handler<&Simulator::on_crash_event>("crash", *this);
   recover_id_ = kernel_.add_handler<&Simulator::on_recover_event>("recover", *this);
   kernel_.set_prefetch(deliver_id_, &Simulator::prefetch_delivery, this);
-  const std::size_t n = network_.node_count();
+  // The held nodes' state, and their links', each keyed by the node or link alone (never by its
+  // position here), so that every part draws what the whole simulator draws.
+  const std::size_t n = local_count();
   node_streams_.reserve(n);
-  for (NodeIndex v = 0; v < n; ++v) {
-    node_streams_.push_back(RandomStream::of(config_.seed, StreamKind::node, network_.id(v)));
-  }
-  const std::size_t links = network_.link_count();
-  link_sent_.assign(links, 0);
+  std::size_t links = 0;
   bool random = false;
-  for (LinkIndex l = 0; l < links && !random; ++l) random = !network_.link_model(l).is_deterministic();
+  for (std::size_t i = 0; i < n; ++i) {
+    const NodeIndex v = local_node(i);
+    node_streams_.push_back(RandomStream::of(config_.seed, StreamKind::node, network_.id(v)));
+    const std::size_t degree = network_.neighbours(v).size();
+    links += degree;
+    for (std::size_t j = 0; j < degree && !random; ++j) random = !network_.link_model(network_.link_at(v, j)).is_deterministic();
+  }
+  link_sent_.assign(links, 0);
   if (random) {
     link_random_.resize(links);
-    for (LinkIndex l = 0; l < links; ++l) {
-      link_random_[l].key = stream_key(config_.seed, StreamKind::link, network_.id(network_.link_source(l)),
-                                       network_.id(network_.link_target(l)));
-      link_random_[l].length = network_.link_length(l);
+    for (std::size_t i = 0; i < n; ++i) {
+      const NodeIndex v = local_node(i);
+      for (std::size_t j = 0; j < network_.neighbours(v).size(); ++j) {
+        const LinkIndex l = network_.link_at(v, j);
+        LinkRandom& r = link_random_[local_link(l, static_cast<NodeIndex>(i))];
+        r.key = stream_key(config_.seed, StreamKind::link, network_.id(v), network_.id(network_.link_target(l)));
+        r.length = network_.link_length(l);
+      }
     }
   }
   down_.assign(n, 0);
@@ -57,14 +77,23 @@ void Simulator::partition(std::vector<std::uint8_t> owned, RemoteOutbox& outbox)
   LAGUERRE_PRECONDITION(!launched_, "Simulator::partition must be called before the first run.");
   LAGUERRE_PRECONDITION(owned.size() == network_.node_count(),
                         "Simulator::partition needs one ownership flag per node.");
-  owned_ = std::move(owned);
+  if (local_.empty()) {
+    owned_ = std::move(owned);
+  } else {  // built for a part: that part
+    for (NodeIndex v = 0; v < owned.size(); ++v) {
+      LAGUERRE_PRECONDITION((owned[v] != 0) == (local_[v] != not_held),
+                            "Simulator::partition: node " + std::to_string(v) +
+                                (owned[v] != 0 ? " is owned but the simulator was built without it."
+                                               : " is not owned but the simulator was built with it."));
+    }
+  }
   outbox_ = &outbox;
   if (trace_.mode() == TraceMode::hash_only) trace_ = Trace(TraceMode::records);  // the merge needs them
 }
 
 void Simulator::deliver_remote(Time at, std::uint64_t key, NodeIndex from, NodeIndex to, Phase phase,
                                std::span<const std::byte> bytes) {
-  LAGUERRE_PRECONDITION(outbox_ != nullptr && owned_[to] != 0,
+  LAGUERRE_PRECONDITION(outbox_ != nullptr && !foreign(to),
                         "Simulator::deliver_remote needs a partitioned simulator that owns the receiver.");
   const std::uint32_t message = store(bytes, phase);
   slot(message).refs = 1;
@@ -73,13 +102,15 @@ void Simulator::deliver_remote(Time at, std::uint64_t key, NodeIndex from, NodeI
 
 RunReport Simulator::run(const RunLimits& limits) {
   if (!launched_) {
+    LAGUERRE_PRECONDITION(local_.empty() || outbox_ != nullptr,
+                          "A simulator built for a part runs only as a part of a partitioned run (partition).");
     launched_ = true;
     // Failures first, then starts: see the file comment of Simulator.hpp for the resulting order.
     const auto crashes = network_.crashes();
     if (crashes.size() >= (std::uint64_t{1} << (key_counter_bits - 1))) {
       throw std::length_error("Too many scheduled crashes (2^29).");
     }
-    const auto mine = [&](NodeIndex v) { return outbox_ == nullptr || owned_[v] != 0; };
+    const auto mine = [&](NodeIndex v) { return !foreign(v); };
     for (std::size_t i = 0; i < crashes.size(); ++i) {
       const Crash& c = crashes[i];
       if (!mine(c.node)) continue;
@@ -159,23 +190,25 @@ void Simulator::transmit(LinkIndex link, NodeIndex from, NodeIndex to, std::uint
   Message& m = slot(message);
   const std::uint32_t size = m.size;
   const Phase phase = m.phase;
-  traffic_.add_sent(from, phase, size);
+  const NodeIndex sender = local_index(from);
+  const std::size_t here = local_link(link, sender);
+  traffic_.add_sent(sender, phase, size);
   const LinkModel& model = network_.link_model(link);
-  const std::uint64_t index = link_sent_[link];
+  const std::uint64_t index = link_sent_[here];
   if (index >= (std::uint64_t{1} << (key_counter_bits - 1))) {
     throw std::length_error("Too many messages on one link (2^29): the event keys would repeat.");
   }
-  ++link_sent_[link];
+  ++link_sent_[here];
   const auto deliver = [&](bool lost, Duration latency, std::uint64_t copy) {
     if (lost) {
-      traffic_.add_lost(from, phase, size);
+      traffic_.add_lost(sender, phase, size);
       return;
     }
     LAGUERRE_PRECONDITION(latency <= time_max - kernel_.now(),
                           "A latency of " + std::to_string(latency) + " ns at time " + std::to_string(kernel_.now()) +
                               " ns would overflow the clock.");
     const std::uint64_t key = event_key(key_message, link, 2 * index + copy);
-    if (outbox_ != nullptr && owned_[to] == 0) {
+    if (foreign(to)) {
       outbox_->post(kernel_.now() + latency, key, from, to, phase, bytes_of(message));
       return;
     }
@@ -187,12 +220,12 @@ void Simulator::transmit(LinkIndex link, NodeIndex from, NodeIndex to, std::uint
     return;
   }
   // The message's own stream: a pure function of (seed, link, position of the message on the link).
-  const LinkRandom& state = link_random_[link];  // exists: this link's model is not deterministic
+  const LinkRandom& state = link_random_[here];  // exists: this link's model is not deterministic
   RandomStream rng(stream_key(config_.seed, StreamKind::message, state.key, index));
   const LinkDecision fate = decide(model, state.length, rng);
   deliver(fate.lost, fate.latency, 0);
   if (fate.duplicated) {
-    traffic_.add_duplicated(from, phase);
+    traffic_.add_duplicated(sender, phase);
     deliver(fate.duplicate_lost, fate.duplicate_latency, 1);
   }
 }
@@ -206,8 +239,8 @@ void Simulator::send(NodeIndex from, NodeIndex to, std::span<const std::byte> by
 
 void Simulator::send_on_link(LinkIndex link, std::span<const std::byte> bytes, Phase phase) {
   const NodeIndex from = network_.link_source(link);
-  if (down_[from]) {
-    traffic_.add_dropped(from, phase, 1, bytes.size());
+  if (down_[local_index(from)]) {
+    traffic_.add_dropped(local_index(from), phase, 1, bytes.size());
     return;
   }
   const std::uint32_t message = store(bytes, phase);
@@ -218,8 +251,8 @@ void Simulator::send_on_link(LinkIndex link, std::span<const std::byte> bytes, P
 void Simulator::broadcast(NodeIndex from, std::span<const std::byte> bytes, Phase phase) {
   const auto neighbours = network_.neighbours(from);
   const auto size = static_cast<std::uint32_t>(bytes.size());
-  if (down_[from]) {
-    traffic_.add_dropped(from, phase, neighbours.size(), size);
+  if (down_[local_index(from)]) {
+    traffic_.add_dropped(local_index(from), phase, neighbours.size(), size);
     return;
   }
   if (neighbours.empty()) return;
@@ -233,19 +266,19 @@ TimerHandle Simulator::schedule_timer(NodeIndex v, Duration after, std::uint64_t
   LAGUERRE_PRECONDITION(after >= 0 && after <= time_max - kernel_.now(),
                         "Cannot set a timer after " + std::to_string(after) + " ns at time " +
                             std::to_string(kernel_.now()) + " ns: delays must be non-negative and keep the clock representable.");
-  const std::uint32_t index = node_timers_[v];
+  const std::uint32_t index = node_timers_[local_index(v)];
   if (index >= (std::uint32_t{1} << key_counter_bits) - 1) {
     throw std::length_error("Too many timers at one node (2^30): the event keys would repeat.");
   }
-  ++node_timers_[v];
+  ++node_timers_[local_index(v)];
   return kernel_.schedule_cancellable_keyed_at(kernel_.now() + after, event_key(key_timer, v, index), timer_id_, v,
                                                timer);
 }
 
 void Simulator::on_start_event(Kernel&, const Event& event) {
   const NodeIndex v = event.target;
-  if (down_[v]) return;  // started when it first recovers
-  started_[v] = 1;
+  if (down_[local_index(v)]) return;  // started when it first recovers
+  started_[local_index(v)] = 1;
   handler_->on_start(*this, v);
 }
 
@@ -253,7 +286,7 @@ void Simulator::prefetch_delivery(const void* self, const Event& event) {
   const auto& sim = *static_cast<const Simulator*>(self);
   const auto message = static_cast<std::uint32_t>(event.payload);  // pending: its slot exists
   __builtin_prefetch(&sim.chunks_[message / chunk_slots][message % chunk_slots]);
-  __builtin_prefetch(sim.link_sent_.data() + sim.network_.link_at(event.target, 0));  // for its replies
+  __builtin_prefetch(sim.link_sent_.data() + sim.local_link_start(event.target));  // for its replies
   sim.handler_->prefetch(event.target);
   NodeIndex& earlier = sim.prefetched_[sim.prefetch_turn_++ & 1];
   sim.handler_->prefetch_state(earlier);  // two calls ago: its node record has likely arrived
@@ -267,12 +300,13 @@ void Simulator::on_deliver_event(Kernel& kernel, const Event& event) {
   const std::uint32_t size = m.size;
   const auto from = static_cast<NodeIndex>(event.payload >> 32);
   const Phase phase = m.phase;
-  if (down_[to]) {
-    traffic_.add_dropped(to, phase, 1, size);
+  const NodeIndex here = local_index(to);
+  if (down_[here]) {
+    traffic_.add_dropped(here, phase, 1, size);
     release(index);
     return;
   }
-  traffic_.add_received(to, phase, size);
+  traffic_.add_received(here, phase, size);
   // The span stays valid during the callback even if the handler sends: slots live in chunks that
   // never move, spilled bytes in buffers that never move, and the slot cannot be recycled before
   // release() below because this copy still holds a reference.
@@ -286,7 +320,7 @@ void Simulator::on_deliver_event(Kernel& kernel, const Event& event) {
 }
 
 void Simulator::on_timer_event(Kernel&, const Event& event) {
-  if (down_[event.target]) {
+  if (down_[local_index(event.target)]) {
     ++timers_dropped_;
     return;
   }
@@ -295,13 +329,13 @@ void Simulator::on_timer_event(Kernel&, const Event& event) {
 
 // Outages may overlap (two crash/recover pairs of one node); the node is up only when every outage
 // that began has ended, hence a counter rather than a flag.
-void Simulator::on_crash_event(Kernel&, const Event& event) { ++down_[event.target]; }
+void Simulator::on_crash_event(Kernel&, const Event& event) { ++down_[local_index(event.target)]; }
 
 void Simulator::on_recover_event(Kernel&, const Event& event) {
   const NodeIndex v = event.target;
-  if (--down_[v] != 0) return;  // another outage is still in progress
-  if (!started_[v]) {
-    started_[v] = 1;
+  if (--down_[local_index(v)] != 0) return;  // another outage is still in progress
+  if (!started_[local_index(v)]) {
+    started_[local_index(v)] = 1;
     handler_->on_start(*this, v);
   } else {
     handler_->on_recover(*this, v);

@@ -86,6 +86,12 @@ int Session::size() const {
   return s;
 }
 
+std::vector<std::uint8_t> owned_flags(std::span<const int> owner, int rank) {
+  std::vector<std::uint8_t> held(owner.size());
+  for (std::size_t v = 0; v < owner.size(); ++v) held[v] = owner[v] == rank ? 1 : 0;
+  return held;
+}
+
 Duration cut_lookahead(const Network& network, std::span<const int> owner) {
   LAGUERRE_PRECONDITION(owner.size() == network.node_count(), "cut_lookahead needs one rank per node.");
   Duration lookahead = time_max;
@@ -129,9 +135,7 @@ ParallelRun::ParallelRun(Simulator& sim, std::vector<int> owner, MPI_Comm comm)
     }
     lookahead_ = std::min(lookahead_, d);
   }
-  std::vector<std::uint8_t> owned(net.node_count());
-  for (NodeIndex v = 0; v < owned.size(); ++v) owned[v] = owner_[v] == rank_ ? 1 : 0;
-  sim_.partition(std::move(owned), *this);
+  sim_.partition(owned_flags(owner_, rank_), *this);
   outbox_.resize(static_cast<std::size_t>(size_));
 }
 
@@ -284,19 +288,23 @@ ParallelReport ParallelRun::run(const RunLimits& limits) {
   std::uint64_t owned = 0;
   for (const int r : owner_) owned += r == rank_ ? 1 : 0;
   const std::array<double, 2> secs{event_seconds_, sync_seconds_};
-  const std::array<std::uint64_t, 3> counts{owned, events_, peak_memory_bytes()};
+  constexpr std::size_t per_rank = 4;
+  const std::array<std::uint64_t, per_rank> counts{owned, events_, peak_memory_bytes(), sim_.local_count()};
   std::vector<double> all_secs(2 * n);
-  std::vector<std::uint64_t> all_counts(3 * n);
+  std::vector<std::uint64_t> all_counts(per_rank * n);
   check(MPI_Gather(secs.data(), 2, MPI_DOUBLE, all_secs.data(), 2, MPI_DOUBLE, 0, comm_), "MPI_Gather");
-  check(MPI_Gather(counts.data(), 3, MPI_UINT64_T, all_counts.data(), 3, MPI_UINT64_T, 0, comm_), "MPI_Gather");
+  check(MPI_Gather(counts.data(), per_rank, MPI_UINT64_T, all_counts.data(), per_rank, MPI_UINT64_T, 0, comm_),
+        "MPI_Gather");
   if (rank_ == 0) {
     for (std::size_t r = 0; r < n; ++r) {
+      const std::uint64_t* c = all_counts.data() + per_rank * r;
       report.event_seconds.push_back(all_secs[2 * r]);
       report.sync_seconds.push_back(all_secs[2 * r + 1]);
-      report.nodes.push_back(all_counts[3 * r]);
-      report.events.push_back(all_counts[3 * r + 1]);
-      report.peak_memory_bytes.push_back(all_counts[3 * r + 2]);
-      report.run.peak_memory_bytes = std::max(report.run.peak_memory_bytes, all_counts[3 * r + 2]);
+      report.nodes.push_back(c[0]);
+      report.events.push_back(c[1]);
+      report.peak_memory_bytes.push_back(c[2]);
+      report.held_nodes.push_back(c[3]);
+      report.run.peak_memory_bytes = std::max(report.run.peak_memory_bytes, c[2]);
     }
   }
 
@@ -338,24 +346,32 @@ ParallelReport ParallelRun::run(const RunLimits& limits) {
     }
   }
 
-  // Traffic: every node's counters live on its owner; summing the ranks' tables merges them.
+  // Traffic: every node's counters live on its owner (the counters of another rank's node, in a
+  // whole simulator, stay zero); summing the ranks' tables merges them, a block of nodes at a time
+  // (the buffers stay small next to the per-node state).
   const std::size_t nodes = sim_.network().node_count();
   std::uint64_t phases = sim_.traffic().phase_count(), all_phases = 0;
   check(MPI_Allreduce(&phases, &all_phases, 1, MPI_UINT64_T, MPI_MAX, comm_), "MPI_Allreduce");
   report.traffic = TrafficMetrics(nodes);
-  std::vector<std::uint64_t> table(nodes * counter_fields), sum(nodes * counter_fields);
-  constexpr std::size_t chunk = std::size_t{1} << 26;
+  constexpr std::size_t block = std::size_t{1} << 16;  // nodes per reduction
+  std::vector<std::uint64_t> table, sum;
   for (std::uint64_t p = 0; p < all_phases; ++p) {
     const auto phase = static_cast<Phase>(p);
-    for (NodeIndex v = 0; v < nodes; ++v) {
-      const auto f = fields_of(sim_.traffic().get(v, phase));
-      std::copy(f.begin(), f.end(), table.begin() + static_cast<std::ptrdiff_t>(v * counter_fields));
+    std::size_t i = 0;  // the next held node, by local index (increasing node index)
+    for (std::size_t first = 0; first < nodes; first += block) {
+      const std::size_t count = std::min(block, nodes - first);
+      table.assign(count * counter_fields, 0);
+      sum.resize(table.size());
+      for (; i < sim_.local_count() && sim_.local_node(i) < first + count; ++i) {
+        const auto f = fields_of(sim_.traffic().get(static_cast<std::uint32_t>(i), phase));
+        std::copy(f.begin(), f.end(), table.begin() + static_cast<std::ptrdiff_t>((sim_.local_node(i) - first) * counter_fields));
+      }
+      check(MPI_Allreduce(table.data(), sum.data(), static_cast<int>(table.size()), MPI_UINT64_T, MPI_SUM, comm_),
+            "MPI_Allreduce");
+      for (std::size_t v = 0; v < count; ++v) {
+        report.traffic.add(static_cast<std::uint32_t>(first + v), phase, counters_of(sum.data() + v * counter_fields));
+      }
     }
-    for (std::size_t at = 0; at < table.size(); at += chunk) {
-      const int count = static_cast<int>(std::min(chunk, table.size() - at));
-      check(MPI_Allreduce(table.data() + at, sum.data() + at, count, MPI_UINT64_T, MPI_SUM, comm_), "MPI_Allreduce");
-    }
-    for (NodeIndex v = 0; v < nodes; ++v) report.traffic.add(v, phase, counters_of(sum.data() + v * counter_fields));
   }
   report.run.wall_seconds = seconds_since(start);
   report.run.events_per_second =
@@ -406,10 +422,22 @@ MpiHostRunner::MpiHostRunner(MPI_Comm comm) : comm_(comm) { check(MPI_Comm_rank(
 
 MpiHostRunner::~MpiHostRunner() = default;
 
+std::vector<std::uint8_t> MpiHostRunner::ownership(const Network& network) {
+  int size = 1;
+  check(MPI_Comm_size(comm_, &size), "MPI_Comm_size");
+  next_owner_ = metis_partition(network, size);
+  return owned_flags(next_owner_, rank_);
+}
+
 RunReport MpiHostRunner::run(SimHost& host, const RunLimits& limits) {
   int size = 1;
   check(MPI_Comm_size(comm_, &size), "MPI_Comm_size");
-  run_ = std::make_unique<ParallelRun>(host.simulator(), metis_partition(host.simulator().network(), size), comm_);
+  const Network& net = host.simulator().network();
+  // The partition computed ahead by ownership() (the one a host built for a part needs; Simulator::
+  // partition checks it), else this network's.
+  std::vector<int> owner = next_owner_.size() == net.node_count() ? std::move(next_owner_) : metis_partition(net, size);
+  next_owner_.clear();
+  run_ = std::make_unique<ParallelRun>(host.simulator(), std::move(owner), comm_);
   report_ = run_->run(limits);
   return report_.run;
 }

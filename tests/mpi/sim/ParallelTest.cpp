@@ -2,10 +2,12 @@
 // same traffic counters per node and phase, the same event count, end time and timer drops, and
 // the same per-node results, on 1, 2 and 4 ranks (CTest runs this program under each), with METIS
 // and with adversarial partitions, on PHOLD, a timer-driven lossy, duplicating, crashing gossip, and
-// the packing protocol (synchronous, lossy, crashing, asynchronous) through SimHost.
+// the packing protocol (synchronous, lossy, crashing, asynchronous) through SimHost; and the same
+// when each rank builds and holds only its own nodes (a Simulator or SimHost built for its part).
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <functional>
@@ -54,6 +56,11 @@ std::vector<int> split(const Network& net, Split how) {
       return owner;
   }
   return owner;
+}
+
+/// The number of nodes `owner` gives this rank.
+std::size_t my_share(const std::vector<int>& owner) {
+  return static_cast<std::size_t>(std::count(owner.begin(), owner.end(), world_rank()));
 }
 
 std::vector<std::byte> bytes_of(std::initializer_list<std::uint64_t> values) {
@@ -153,6 +160,53 @@ TEST(ParallelPhold, ConstantLatencyTiesEverywhereGiveTheSequentialRun) {
 TEST(ParallelPhold, LossAndDuplicationGiveTheSequentialRun) {
   check_phold({LinkModel{LatencyModel::uniform(milliseconds(1), milliseconds(3)), 0.1, 0.1}, 4, seconds(1),
                Split::metis});
+}
+
+TEST(ParallelPhold, SimulatorsBuiltForTheirPartsGiveTheSequentialRun) {
+  // Each rank's Simulator and model hold only its nodes (and their links): same run, bit for bit.
+  const NodeIndex side = 10;
+  const LinkModel link{LatencyModel::uniform(milliseconds(1), milliseconds(3)), 0.1, 0.1};
+  for (const Split how : {Split::metis, Split::round_robin}) {
+    Phold seq_model(side * side, 4);
+    Simulator seq(torus(side, link), SimConfig{.seed = 7, .trace = TraceMode::records}, seq_model);
+    const RunReport seq_report = seq.run({.until = seconds(1)});
+    Network net = torus(side, link);
+    std::vector<int> owner = split(net, how);
+    const std::size_t share = my_share(owner);
+    Phold par_model(share, 4);
+    Simulator part(std::move(net), SimConfig{.seed = 7, .trace = TraceMode::records}, par_model,
+                   owned_flags(owner, world_rank()));
+    EXPECT_EQ(part.local_count(), share);
+    ParallelRun run(part, owner);
+    const ParallelReport par = run.run({.until = seconds(1)});
+    const auto states = run.gather_nodes([&](NodeIndex v) {
+      const Phold::NodeState& st = par_model.state(part.local_index(v));
+      return bytes_of({st.received, st.digest});
+    });
+    if (world_rank() != 0) continue;
+    expect_same_run(seq, seq_report, par);
+    EXPECT_EQ(par.held_nodes, par.nodes);  // every rank held its share, no more
+    for (NodeIndex v = 0; v < side * side; ++v) {
+      EXPECT_EQ(states[v], bytes_of({seq_model.state(v).received, seq_model.state(v).digest})) << "node " << v;
+    }
+  }
+}
+
+TEST(ParallelPhold, ASimulatorBuiltForAPartRefusesAnotherPartAndARunAlone) {
+  Phold model(8, 1);
+  std::vector<std::uint8_t> even(16), odd(16);
+  for (std::size_t v = 0; v < 16; ++v) even[v] = v % 2 == 0, odd[v] = v % 2 == 1;
+  Simulator part(torus(4, phold_links()), SimConfig{.seed = 1}, model, even);
+  EXPECT_EQ(part.local_count(), 8u);
+  EXPECT_EQ(part.local_node(3), 6u);
+  EXPECT_EQ(part.local_index(6), 3u);
+  EXPECT_THROW(part.run({.until = seconds(1)}), core::InternalError);  // not partitioned
+  struct Nowhere final : RemoteOutbox {
+    void post(Time, std::uint64_t, NodeIndex, NodeIndex, Phase, std::span<const std::byte>) override {}
+  } nowhere;
+  EXPECT_THROW(part.partition(odd, nowhere), core::InternalError);
+  EXPECT_THROW(Simulator(torus(4, phold_links()), SimConfig{}, model, std::vector<std::uint8_t>(15, 1)),
+               core::InternalError);
 }
 
 TEST(ParallelPhold, AContinuedRunEqualsOneRun) {
@@ -317,6 +371,29 @@ TEST(ParallelChatter, TimersCrashesLossAndDuplicationGiveTheSequentialRun) {
   }
 }
 
+TEST(ParallelChatter, SimulatorsBuiltForTheirPartsGiveTheSequentialRun) {
+  // Timers, cancellations, crashes, loss and duplication with each rank holding only its nodes'
+  // streams, timer counts, crash state, counters and links.
+  Chatter seq_model(49);
+  Simulator seq(chatter_network(), SimConfig{.seed = 11, .trace = TraceMode::records}, seq_model);
+  const RunReport seq_report = seq.run();
+  for (const Split how : {Split::metis, Split::halves_reversed}) {
+    const std::vector<int> owner = split(chatter_network(), how);
+    Chatter par_model(49);
+    Simulator part(chatter_network(), SimConfig{.seed = 11, .trace = TraceMode::records}, par_model,
+                   owned_flags(owner, world_rank()));
+    ParallelRun run(part, owner);
+    const ParallelReport par = run.run();
+    const auto states = run.gather_nodes([&](NodeIndex v) { return bytes_of({par_model.heard[v], par_model.pending[v]}); });
+    if (world_rank() != 0) continue;
+    expect_same_run(seq, seq_report, par);
+    EXPECT_EQ(par.held_nodes, par.nodes);
+    for (NodeIndex v = 0; v < 49; ++v) {
+      EXPECT_EQ(states[v], bytes_of({seq_model.heard[v], seq_model.pending[v]})) << "node " << v;
+    }
+  }
+}
+
 // --- The packing protocol through SimHost ---------------------------------------------------------
 
 struct PackingCase {
@@ -327,17 +404,28 @@ struct PackingCase {
   std::optional<std::pair<NodeIndex, Time>> crash;
 };
 
-std::unique_ptr<SimHost> packing_host(const core::PlanarGraph& g, const PackingCase& c) {
+Network packing_network(const core::PlanarGraph& g, const PackingCase& c) {
   Network net = network_of(g, c.link);
   if (c.crash) net.add_crash(c.crash->first, c.crash->second);
+  return net;
+}
+
+/// The host of case `c`, whole or (with `runner`) holding only the nodes the runner gives this rank;
+/// `built` (if given) counts the node objects the factory made.
+std::unique_ptr<SimHost> packing_host(const core::PlanarGraph& g, const PackingCase& c, HostRunner* runner = nullptr,
+                                      std::size_t* built = nullptr) {
+  Network net = packing_network(g, c);
+  std::vector<std::uint8_t> held = runner != nullptr ? runner->ownership(net) : std::vector<std::uint8_t>{};
   protocols::PackingParams p;
   p.steps_per_check = 2;
   p.asynchronous = c.asynchronous;
   if (c.lossy) protocols::enable_lossy_links(p, milliseconds(5));
   return std::make_unique<SimHost>(std::move(net), SimConfig{.seed = 5, .trace = TraceMode::records},
-                                   [&g, p](protocols::Runtime& rt, NodeIndex v) -> std::unique_ptr<protocols::Node> {
+                                   [&g, p, built](protocols::Runtime& rt, NodeIndex v) -> std::unique_ptr<protocols::Node> {
+                                     if (built != nullptr) ++*built;
                                      return std::make_unique<protocols::PackingNode>(rt, protocols::local_knowledge(g, v), p);
-                                   });
+                                   },
+                                   SimHost::PhaseOf{}, std::move(held));
 }
 
 std::vector<std::byte> describe(SimHost& host, NodeIndex v) {
@@ -375,6 +463,44 @@ TEST(ParallelPacking, SyncLossyCrashingAndAsynchronousRunsGiveTheSequentialRun) 
       const auto& n0 = static_cast<const protocols::PackingNode&>(seq->node(0));
       EXPECT_EQ(std::bit_cast<std::uint64_t>(n0.h()), std::bit_cast<std::uint64_t>(core_result.radii[0]));
     }
+  }
+}
+
+TEST(ParallelPacking, HostsBuiltThroughTheRunnerHoldOnlyTheirNodesAndGiveTheSequentialRun) {
+  // MpiHostRunner::ownership partitions before the host is built: each rank's factory makes only its
+  // share of the node objects, and the run is still the sequential one.
+  const core::PlanarGraph g = core::prepare_for_packing(core::random_delaunay_triangulation(40, 4242));
+  const LinkModel lossy{LatencyModel::uniform(milliseconds(1), milliseconds(5)), 0.15, 0.05};
+  const PackingCase cases[] = {
+      {"sync", LinkModel{LatencyModel::constant(milliseconds(1)), 0, 0}, false, false, std::nullopt},
+      {"crash", lossy, true, false, std::pair{NodeIndex{7}, milliseconds(30)}},
+      {"async", LinkModel{LatencyModel::constant(milliseconds(1)), 0, 0}, false, true, std::nullopt},
+  };
+  for (const PackingCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    auto seq = packing_host(g, c);
+    const RunReport seq_report = seq->run({.until = seconds(3600)});
+    MpiHostRunner runner;
+    std::size_t built = 0;
+    auto host = packing_host(g, c, &runner, &built);
+    const std::vector<int> owner = metis_partition(packing_network(g, c), world_size());  // what ownership used
+    EXPECT_EQ(built, my_share(owner));
+    EXPECT_EQ(host->built_nodes(), built);
+    EXPECT_EQ(host->simulator().local_count(), built);
+    if (world_size() > 1) {
+      EXPECT_LT(built, g.num_vertices());
+    }
+    runner.run(*host, {.until = seconds(3600)});
+    const auto states = runner.gather([&](NodeIndex v) { return describe(*host, v); });
+    std::uint64_t mine = built;
+    std::vector<std::uint64_t> all_built(static_cast<std::size_t>(world_size()));
+    MPI_Gather(&mine, 1, MPI_UINT64_T, all_built.data(), 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    if (world_rank() != 0) continue;
+    const ParallelReport& par = runner.report();
+    expect_same_run(seq->simulator(), seq_report, par);
+    EXPECT_EQ(all_built, par.nodes);  // node objects per rank = the partition's part sizes
+    EXPECT_EQ(par.held_nodes, par.nodes);
+    for (NodeIndex v = 0; v < g.num_vertices(); ++v) EXPECT_EQ(states[v], describe(*seq, v)) << "node " << v;
   }
 }
 

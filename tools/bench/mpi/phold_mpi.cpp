@@ -86,13 +86,13 @@ int main(int argc, char** argv) {
   const Time until = static_cast<Time>(o.until * 1e9);
   const std::size_t n = std::size_t{o.side} * o.side;
   const SimConfig config{.seed = o.seed, .trace = o.trace ? TraceMode::hash_only : TraceMode::off};
-  mpi::Phold model(n, o.population);
-  Simulator sim(mpi::torus(o.side, mpi::phold_links()), config, model);
   if (o.sequential) {
     if (ranks != 1) {
       if (rank == 0) std::fprintf(stderr, "phold_mpi: --sequential 1 runs on one rank\n");
       return 2;
     }
+    mpi::Phold model(n, o.population);
+    Simulator sim(mpi::torus(o.side, mpi::phold_links()), config, model);
     const double cpu_start = cpu_seconds();
     const RunReport r = sim.run({.until = until});
     const double cpu = cpu_seconds() - cpu_start;
@@ -104,9 +104,14 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(sim.trace().hash()));
     return 0;
   }
+  // The partition first, then a simulator (and model) of this rank's nodes only.
+  Network net = mpi::torus(o.side, mpi::phold_links());
   const auto part_start = std::chrono::steady_clock::now();
-  std::vector<int> owner = mpi::metis_partition(sim.network(), ranks);
+  std::vector<int> owner = mpi::metis_partition(net, ranks);
   const double partition_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - part_start).count();
+  std::vector<std::uint8_t> held = mpi::owned_flags(owner, rank);
+  mpi::Phold model(static_cast<std::size_t>(std::count(held.begin(), held.end(), 1)), o.population);
+  Simulator sim(std::move(net), config, model, std::move(held));
   mpi::ParallelRun run(sim, std::move(owner));
   const double tau = exchange_latency(ranks);
   const mpi::ParallelReport r = run.run({.until = until});

@@ -18,6 +18,10 @@ public:
   /// Per-node result bytes, evaluated where the node lives.
   using Describe = std::function<std::vector<std::byte>(NodeIndex)>;
   virtual ~HostRunner() = default;
+  /// Which nodes of `network` this process will run next (one flag per node; empty: every node), so
+  /// that the host of the next run builds only those (SimHost's `held`). Optional: a host built
+  /// whole runs too. The default: every node.
+  virtual std::vector<std::uint8_t> ownership(const Network& /*network*/) { return {}; }
   /// Runs `host` (not run yet) until `limits`; `traffic` and `gather` then describe that run.
   virtual RunReport run(SimHost& host, const RunLimits& limits) = 0;
   /// Every node's counters for the last run (on every process).
@@ -37,7 +41,7 @@ public:
   }
   const TrafficMetrics& traffic() const override { return host_->simulator().traffic(); }
   std::vector<std::vector<std::byte>> gather(const Describe& describe) override {
-    std::vector<std::vector<std::byte>> out(host_->simulator().network().node_count());
+    std::vector<std::vector<std::byte>> out(host_->simulator().network().node_count());  // a whole host
     for (NodeIndex v = 0; v < out.size(); ++v) out[v] = describe(v);
     return out;
   }

@@ -31,9 +31,12 @@ public:
   using PhaseOf = std::function<Phase(std::span<const std::byte>)>;
 
   /// A host of `network` whose nodes `factory` builds (all of them, in index order, right away).
-  /// Without `phase_of`, every message counts under phase 0. Throws core::InternalError (a broken precondition) if the
-  /// factory returns a null node.
-  SimHost(Network network, SimConfig config, const NodeFactory& factory, PhaseOf phase_of = {});
+  /// Without `phase_of`, every message counts under phase 0. With `held` (one flag per node, e.g.
+  /// HostRunner::ownership), it builds and holds only the nodes v with held[v] != 0, on a simulator
+  /// built for that part (Simulator's constructor), for a partitioned run. Throws
+  /// core::InternalError (a broken precondition) if the factory returns a null node.
+  SimHost(Network network, SimConfig config, const NodeFactory& factory, PhaseOf phase_of = {},
+          std::vector<std::uint8_t> held = {});
   SimHost(const SimHost&) = delete;
   SimHost& operator=(const SimHost&) = delete;
   ~SimHost() override;
@@ -44,9 +47,11 @@ public:
   Simulator& simulator() { return simulator_; }
   /// The simulator, read-only.
   const Simulator& simulator() const { return simulator_; }
-  /// The node at index `v`.
-  protocols::Node& node(NodeIndex v) { return *nodes_[v]; }
-  /// The runtime serving the node at index `v`.
+  /// The node at index `v` (a held node).
+  protocols::Node& node(NodeIndex v) { return *nodes_[simulator_.local_index(v)]; }
+  /// The number of node objects built (simulator().local_count()).
+  std::size_t built_nodes() const { return nodes_.size(); }
+  /// The runtime serving the node at index `v` (a held node).
   protocols::Runtime& runtime(NodeIndex v);
   /// Runtime calls rejected because they named an unknown node or a non-neighbour (they also throw).
   std::uint64_t bad_destinations() const { return bad_destinations_; }
@@ -75,7 +80,8 @@ private:
 
   Simulator simulator_;
   PhaseOf phase_of_;
-  std::vector<IdLink> links_by_id_;  // CSR order of the network's rows, each row sorted by id
+  // Per held node (Simulator::local_index) and per link of a held node (local_link_start):
+  std::vector<IdLink> links_by_id_;  // the held nodes' rows in network order, each row sorted by id
   std::unique_ptr<NodeRuntime[]> runtimes_;
   std::vector<std::unique_ptr<protocols::Node>> nodes_;
   std::uint64_t bad_destinations_ = 0;

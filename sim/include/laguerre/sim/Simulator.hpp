@@ -88,8 +88,13 @@ struct SimConfig {
 class Simulator {
 public:
   /// A simulator of `network` whose nodes are served by `handler` (which must outlive it).
-  /// Throws core::InternalError (a broken precondition) if the network is inconsistent (Network::validate).
-  Simulator(Network network, SimConfig config, NodeHandler& handler);
+  /// With `held` (one flag per node; empty: every node), it is built for one part of a partitioned
+  /// run: it holds the state of the nodes v with held[v] != 0 only (random streams, timer counts,
+  /// crash state, traffic counters) and of their outgoing links (message counters, random link
+  /// keys), each keyed as in the whole simulator; it must then be partition()ed with the same flags
+  /// before it runs. Throws core::InternalError (a broken precondition) if the network is
+  /// inconsistent (Network::validate) or `held` has the wrong size.
+  Simulator(Network network, SimConfig config, NodeHandler& handler, std::vector<std::uint8_t> held = {});
   Simulator(const Simulator&) = delete;
   Simulator& operator=(const Simulator&) = delete;
 
@@ -123,16 +128,27 @@ public:
   bool cancel_timer(TimerHandle handle) {
     return kernel_.cancel(handle) == CancelResult::cancelled;
   }
-  /// The random stream of node `v`, keyed by (seed, node, id(v)).
-  RandomStream& node_stream(NodeIndex v) { return node_streams_[v]; }
-  /// Whether `v` is up (not crashed) now.
-  bool is_up(NodeIndex v) const { return down_[v] == 0; }
+  /// The random stream of node `v` (a held node), keyed by (seed, node, id(v)).
+  RandomStream& node_stream(NodeIndex v) { return node_streams_[local_index(v)]; }
+  /// Whether `v` (a held node) is up (not crashed) now.
+  bool is_up(NodeIndex v) const { return down_[local_index(v)] == 0; }
+
+  /// The number of nodes whose state this simulator holds (node_count() unless built for a part).
+  std::size_t local_count() const { return held_.empty() ? network_.node_count() : held_.size(); }
+  /// The position of held node `v` among the held nodes, by increasing index (v itself unless built
+  /// for a part): per-node tables of the simulator and its hosts are indexed by it.
+  NodeIndex local_index(NodeIndex v) const { return local_.empty() ? v : local_[v]; }
+  /// The held node at position `i` < local_count() (the inverse of local_index).
+  NodeIndex local_node(std::size_t i) const { return held_.empty() ? static_cast<NodeIndex>(i) : held_[i]; }
+  /// The position of held node `v`'s first outgoing link among the held nodes' links (in network
+  /// order; its i-th link comes i later): per-link tables of hosts are indexed by it.
+  std::size_t local_link_start(NodeIndex v) const { return local_link(network_.link_at(v, 0), local_index(v)); }
 
   /// The network.
   const Network& network() const { return network_; }
   /// The settings.
   const SimConfig& config() const { return config_; }
-  /// Traffic counters per node and phase.
+  /// Traffic counters per held node (by local_index) and phase.
   const TrafficMetrics& traffic() const { return traffic_; }
   /// The trace of delivered messages.
   const Trace& trace() const { return trace_; }
@@ -141,8 +157,10 @@ public:
   /// Makes this simulator one part of a partitioned run; call before the first run. It then starts
   /// and fails only the nodes v with owned[v] != 0, hands every copy addressed to another node to
   /// `outbox` (which must outlive it) instead of scheduling it, and keeps every trace record (a
-  /// hash_only trace becomes a records trace) with its event key (trace_keys), for the merge. Throws core::InternalError (a broken precondition) if called after
-  /// the first run or with owned.size() != node_count().
+  /// hash_only trace becomes a records trace) with its event key (trace_keys), for the merge. Throws
+  /// core::InternalError (a broken precondition) if called after the first run, with
+  /// owned.size() != node_count(), or, for a simulator built for a part, with other flags than it was
+  /// built with.
   void partition(std::vector<std::uint8_t> owned, RemoteOutbox& outbox);
   /// Schedules the delivery of a copy another part posted (RemoteOutbox::post's arguments); `to`
   /// must be owned. Throws core::InternalError (a broken precondition) if `at` lies in the past.
@@ -196,12 +214,27 @@ private:
   /// Puts one message on link `link` from `from` to `to` (the message is already stored; adds its
   /// references).
   void transmit(LinkIndex link, NodeIndex from, NodeIndex to, std::uint32_t message);
+  /// The position of link `l` among the held nodes' links; `from` is local_index of its source.
+  std::size_t local_link(LinkIndex l, NodeIndex from) const { return link_shift_.empty() ? l : l - link_shift_[from]; }
+  /// Whether copies to `v` go to the outbox (a partitioned run, another part's node).
+  bool foreign(NodeIndex v) const {
+    return outbox_ != nullptr && (local_.empty() ? owned_[v] == 0 : local_[v] == not_held);
+  }
+  static constexpr NodeIndex not_held = 0xffffffffu;
 
   Network network_;
   SimConfig config_;
   NodeHandler* handler_;
   Kernel kernel_;
   HandlerId start_id_, deliver_id_, timer_id_, crash_id_, recover_id_;
+  // Built for a part (held flags given): local_[v] is v's position among the held nodes (not_held
+  // for the others), held_ the held nodes by increasing index, link_shift_[i] what to subtract from
+  // a link index of held node i to get its position among the held nodes' links. All three are
+  // empty in a whole simulator, where positions are the indices.
+  std::vector<NodeIndex> local_;
+  std::vector<NodeIndex> held_;
+  std::vector<LinkIndex> link_shift_;
+  // Per held node (by local_index) and per link of a held node (by local_link):
   std::vector<RandomStream> node_streams_;
   std::vector<std::uint32_t> link_sent_;     // messages sent so far on each directed link (< 2^29)
   std::vector<LinkRandom> link_random_;      // per directed link; empty if every link is deterministic
@@ -219,7 +252,7 @@ private:
   std::uint64_t observe_every_ = 0;     // set_observer
   std::function<void()> observer_;
   RemoteOutbox* outbox_ = nullptr;      // set by partition()
-  std::vector<std::uint8_t> owned_;     // partitioned runs: owned_[v] != 0 if v is this part's
+  std::vector<std::uint8_t> owned_;     // partitioned whole simulators: owned_[v] != 0 if v is this part's
   // Receivers of the last prefetch_delivery calls (a ring): the one of two calls ago gets the second
   // stage of the hint (NodeHandler::prefetch_state). A hint only: a stale entry wastes a prefetch.
   mutable NodeIndex prefetched_[2] = {0, 0};

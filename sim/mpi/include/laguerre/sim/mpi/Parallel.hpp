@@ -48,6 +48,10 @@ private:
 /// network without links) gives rank 0 everywhere. Requires parts ≥ 1.
 std::vector<int> metis_partition(const Network& network, int parts);
 
+/// The flags of the nodes `rank` owns in `owner` (held[v] = owner[v] == rank), for building a
+/// Simulator or SimHost of that part only.
+std::vector<std::uint8_t> owned_flags(std::span<const int> owner, int rank);
+
 /// The smallest minimum latency over directed links u → v with owner[u] != owner[v] (time_max if
 /// there is none). Requires owner.size() == node_count().
 Duration cut_lookahead(const Network& network, std::span<const int> owner);
@@ -63,6 +67,7 @@ struct ParallelReport {
   std::uint64_t remote_bytes = 0;   ///< their encoded size (all calls)
   // Per rank (index = rank), gathered on rank 0:
   std::vector<std::uint64_t> nodes;           ///< nodes owned
+  std::vector<std::uint64_t> held_nodes;      ///< nodes whose state the rank's Simulator holds (local_count)
   std::vector<std::uint64_t> events;          ///< events processed (all calls)
   std::vector<double> event_seconds;          ///< wall time inside Simulator::run
   std::vector<double> sync_seconds;           ///< wall time in the exchanges and reductions
@@ -78,7 +83,9 @@ struct ParallelReport {
 /// (they are collective).
 class ParallelRun final : private RemoteOutbox {
 public:
-  /// Makes `sim` (not run yet) this rank's part: owner[v] is the rank of node v. Computes the
+  /// Makes `sim` (not run yet) this rank's part: owner[v] is the rank of node v. `sim` is whole, or
+  /// built for this part (Simulator's `held`: owner[v] == rank, e.g. by owned_flags), which holds only
+  /// the part's node and link state. Computes the
   /// lookahead; throws core::InputError (on every rank alike) if a cut link can have zero latency.
   /// Throws core::InternalError (a broken precondition) if owner has the wrong size or names a rank
   /// outside the communicator.
@@ -135,12 +142,14 @@ private:
 namespace laguerre::sim::mpi {
 
 /// The parallel HostRunner: each run partitions the host's network with METIS over `comm`, runs
-/// it with a ParallelRun, and keeps the merged traffic; rank 0 is the root.
+/// it with a ParallelRun, and keeps the merged traffic; rank 0 is the root. `ownership` computes the
+/// partition ahead, so that each rank's host holds only its own nodes; the next run uses it.
 class MpiHostRunner final : public HostRunner {
 public:
   /// A runner over `comm` (every rank must make the same calls).
   explicit MpiHostRunner(MPI_Comm comm = MPI_COMM_WORLD);
   ~MpiHostRunner() override;
+  std::vector<std::uint8_t> ownership(const Network& network) override;
   RunReport run(SimHost& host, const RunLimits& limits) override;
   const TrafficMetrics& traffic() const override { return report_.traffic; }
   std::vector<std::vector<std::byte>> gather(const Describe& describe) override { return run_->gather_nodes(describe); }
@@ -153,6 +162,7 @@ private:
   int rank_ = 0;
   std::unique_ptr<ParallelRun> run_;
   ParallelReport report_;
+  std::vector<int> next_owner_;  // the partition `ownership` computed, for the next run
 };
 
 }  // namespace laguerre::sim::mpi

@@ -46,14 +46,14 @@ public:
     std::uint64_t digest = 0xcbf29ce484222325ULL;  ///< FNV-1a 64 over their bytes, in order
   };
 
-  /// A handler for `nodes` nodes starting `population` messages each.
+  /// A handler for `nodes` nodes (the simulator's local_count()) starting `population` messages each.
   explicit Phold(std::size_t nodes, unsigned population = 1) : population_(population), state_(nodes) {}
 
   void on_start(Simulator& sim, NodeIndex v) override {
     for (unsigned i = 0; i < population_; ++i) forward(sim, v, sim.network().id(v), 0);
   }
   void on_message(Simulator& sim, NodeIndex v, NodeIndex, Phase, std::span<const std::byte> bytes) override {
-    NodeState& s = state_[v];
+    NodeState& s = state_[sim.local_index(v)];
     ++s.received;
     s.digest = fnv1a(bytes, s.digest);
     std::uint64_t origin = 0, hops = 0;
@@ -63,8 +63,9 @@ public:
   }
   void on_timer(Simulator&, NodeIndex, std::uint64_t) override {}
 
-  /// The state of node `v` (meaningful on its owner).
-  const NodeState& state(NodeIndex v) const { return state_[v]; }
+  /// The state of the node at local index `i` (Simulator::local_index; the node's own index on a
+  /// whole simulator, meaningful on the node's owner).
+  const NodeState& state(NodeIndex i) const { return state_[i]; }
 
 private:
   void forward(Simulator& sim, NodeIndex v, std::uint64_t origin, std::uint64_t hops) {
