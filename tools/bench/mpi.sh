@@ -4,38 +4,87 @@
 # events/s, windows, copies exchanged per window, time in events vs in synchronisation, peak memory
 # per rank, the exchange latency τ and the coupling factor λ = L·E/(τ·P). The trace hashes of the
 # 10^5 runs are printed side by side: they must be equal (the parallel run is the sequential one).
+# Then the packing protocol (`laguerre simulate`, a Delaunay graph of --protocol nodes, 50 Thurston
+# steps, constant 1 ms latency, one forwarded pair) sequentially and on the same ranks: events, wall,
+# peak memory of the protocol phase (the largest over the ranks) and a hash of the JSON without
+# its wall-clock fields (equal on every line: the same run).
 #   tools/bench/mpi.sh [--preset release] [--sizes "316 1000"] [--until "50 5"] [--ranks "1 2"]
-# --sizes are torus sides (316² = 99 856, 1000² = 10^6 nodes); --until the simulated seconds of each.
+#                      [--protocol 10000] [--baseline DIR]
+# --sizes are torus sides (316² = 99 856, 1000² = 10^6 nodes); --until the simulated seconds of each;
+# --protocol 0 skips the protocol runs. --baseline DIR holds the phold_mpi and laguerre programs of
+# another commit (e.g. copied from main's build): every run is then made with it too, right before
+# this tree's, and each line starts with build=baseline or build=this.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-preset=release sides="316 1000" untils="50 5" ranks="1 2"
+preset=release sides="316 1000" untils="50 5" ranks="1 2" protocol=10000 baseline=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --preset) preset="$2"; shift 2 ;;
     --sizes) sides="$2"; shift 2 ;;
     --until) untils="$2"; shift 2 ;;
     --ranks) ranks="$2"; shift 2 ;;
-    *) echo "mpi.sh: unknown argument '$1' (expected --preset, --sizes, --until or --ranks)" >&2; exit 2 ;;
+    --protocol) protocol="$2"; shift 2 ;;
+    --baseline) baseline="$2"; shift 2 ;;
+    *) echo "mpi.sh: unknown argument '$1' (expected --preset, --sizes, --until, --ranks, --protocol or --baseline)" >&2
+       exit 2 ;;
   esac
 done
+if [[ -n "$baseline" && ! ( -x "$baseline/phold_mpi" && -x "$baseline/laguerre" ) ]]; then
+  echo "mpi.sh: --baseline $baseline has no executable phold_mpi and laguerre" >&2
+  exit 2
+fi
 cmake --preset "$preset" >/dev/null
-cmake --build --preset "$preset" --target phold_mpi >/dev/null
-exe="build/$preset/tools/bench/phold_mpi"
+cmake --build --preset "$preset" --target phold_mpi laguerre >/dev/null
+builds=(this) dirs=("build/$preset/tools/bench")
+laguerres=("build/$preset/tools/laguerre")
+if [[ -n "$baseline" ]]; then builds=(baseline this) dirs=("$baseline" "${dirs[0]}") laguerres=("$baseline/laguerre" "${laguerres[0]}"); fi
 # CI and this machine run as root, which OpenMPI refuses unless told.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 echo "# $(date -u +%FT%TZ) $(git rev-parse --short HEAD) load: $(uptime | sed 's/.*load average: //') cores: $(nproc)"
 read -r -a side_list <<<"$sides"
 read -r -a until_list <<<"$untils"
-out=$(mktemp)
-trap 'rm -f "$out"' EXIT
+out=$(mktemp) work=$(mktemp -d)
+trap 'rm -rf "$out" "$work"' EXIT
 for i in "${!side_list[@]}"; do
   side=${side_list[$i]} until=${until_list[$i]:-${until_list[-1]}}
   trace=$([[ $side -le 400 ]] && echo 1 || echo 0)  # the merged trace costs records on every rank
-  "$exe" --side "$side" --until "$until" --sequential 1 --trace "$trace" | tee -a "$out"
-  for np in $ranks; do
-    mpirun -np "$np" --oversubscribe --bind-to none "$exe" --side "$side" --until "$until" --trace "$trace" | tee -a "$out"
+  for b in "${!builds[@]}"; do
+    exe="${dirs[$b]}/phold_mpi" tag="build=${builds[$b]}"
+    "$exe" --side "$side" --until "$until" --sequential 1 --trace "$trace" | sed "s/^/$tag /" | tee -a "$out"
+    for np in $ranks; do
+      mpirun -np "$np" --oversubscribe --bind-to none "$exe" --side "$side" --until "$until" --trace "$trace" |
+        sed "s/^/$tag /" | tee -a "$out"
+    done
   done
 done
+if [[ "$protocol" -gt 0 ]]; then
+  graph="$work/delaunay-$protocol.txt"
+  "${laguerres[-1]}" generate delaunay -n "$protocol" --seed 1 -o "$graph" >/dev/null
+  options=(--max-iterations 50 --pairs 1 --json)
+  protocol_line() {  # tag, ranks, JSON file
+    python3 - "$@" <<'PY'
+import hashlib, json, sys
+tag, ranks, path = sys.argv[1], sys.argv[2], sys.argv[3]
+d = json.load(open(path))
+peak = d.pop("peak_memory_bytes"); wall = d.pop("wall_seconds"); d.pop("events_per_second"); d.pop("mpi_ranks", None)
+same = hashlib.sha256(json.dumps(d, sort_keys=True).encode()).hexdigest()[:16]
+print(f"{tag} mode=protocol ranks={ranks} nodes={d['nodes']} events={d['events']} wall_s={wall:.3f} "
+      f"peak_mb_max_rank={peak / 1e6:.1f} result={same}")
+PY
+  }
+  for b in "${!builds[@]}"; do
+    tag="build=${builds[$b]}" lag="${laguerres[$b]}"
+    rc=0; "$lag" simulate "$graph" "${options[@]}" >"$work/out.json" || rc=$?
+    [[ $rc -eq 0 || $rc -eq 3 ]] || { echo "mpi.sh: laguerre simulate failed (exit status $rc)" >&2; exit 1; }
+    protocol_line "$tag" sequential "$work/out.json"
+    for np in $ranks; do
+      rc=0; mpirun -np "$np" --oversubscribe --bind-to none "$lag" simulate "$graph" "${options[@]}" >"$work/out.json" \
+        2>"$work/err" || rc=$?  # 3 (not converged in 50 steps) is expected; mpirun then talks on stderr
+      [[ $rc -eq 0 || $rc -eq 3 ]] || { cat "$work/err" >&2; echo "mpi.sh: mpirun laguerre simulate failed ($rc)" >&2; exit 1; }
+      protocol_line "$tag" "$np" "$work/out.json"
+    done
+  done
+fi
 
 # The scaling model (README, "Scaling out"), fitted to this run: c_e = CPU ns per event of the
 # smallest sequential run; k from the METIS cut of the 2-rank runs (cut fraction = k·sqrt(P/n));
@@ -46,6 +95,7 @@ done
 # m/P + sqrt(2 (m/P) ln P) (Poisson imbalance).
 awk -v tau0="${TAU0_US:-3}" -v tau1="${TAU1_US:-0.3}" '
   function field(line, key,   i, n, kv) { n = split(line, kv, " "); for (i = 1; i <= n; ++i) if (index(kv[i], key "=") == 1) return substr(kv[i], length(key) + 2); return "" }
+  !/build=this/ { next }  # the model is fitted to this tree
   /mode=sequential/ && ce == "" { ce = field($0, "ns_per_event_cpu") * 1e-9 }
   /mode=parallel ranks=2/ { nodes = field($0, "nodes"); cut = field($0, "cut_links"); ks += (cut / (4 * nodes)) / sqrt(2 / nodes); kn++ }
   END {
