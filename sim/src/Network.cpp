@@ -37,7 +37,6 @@ Network::Network(std::size_t node_count, std::span<const Edge> edges) {
     sources_.push_back(a.first);
     targets_.push_back(a.second);
   }
-  model_of_link_.assign(arcs.size(), 0);
 }
 
 std::optional<LinkIndex> Network::find_link(NodeIndex u, NodeIndex v) const {
@@ -100,7 +99,7 @@ double Network::link_length(LinkIndex l) const {
 void Network::set_link_model(const LinkModel& model) {
   model.validate();
   models_.assign(1, model);
-  std::fill(model_of_link_.begin(), model_of_link_.end(), 0);
+  model_of_link_ = {};  // one model for every link: no table
 }
 
 void Network::set_link_model(NodeIndex u, NodeIndex v, const LinkModel& model) {
@@ -110,6 +109,7 @@ void Network::set_link_model(NodeIndex u, NodeIndex v, const LinkModel& model) {
                         "There is no link from node " + std::to_string(u) + " to node " + std::to_string(v) + ".");
   if (models_.size() >= 0xffffffffu) throw std::length_error("Too many distinct link models.");
   models_.push_back(model);
+  if (model_of_link_.empty()) model_of_link_.assign(link_count(), 0);
   model_of_link_[*link] = static_cast<std::uint32_t>(models_.size() - 1);
 }
 

@@ -23,7 +23,8 @@ Simulator::Simulator(Network network, SimConfig config, NodeHandler& handler, st
   network_.validate();
   LAGUERRE_PRECONDITION(held.empty() || held.size() == network_.node_count(),
                         "A simulator of a part needs one flag per node.");
-  if (!held.empty()) {
+  // Holding every node is the whole simulator (no position tables; partition() takes any flags).
+  if (std::find(held.begin(), held.end(), std::uint8_t{0}) != held.end()) {
     local_.assign(held.size(), not_held);
     std::size_t links = 0;
     for (NodeIndex v = 0; v < held.size(); ++v) {

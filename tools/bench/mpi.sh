@@ -59,7 +59,7 @@ for i in "${!side_list[@]}"; do
 done
 if [[ "$protocol" -gt 0 ]]; then
   graph="$work/delaunay-$protocol.txt"
-  "${laguerres[-1]}" generate delaunay -n "$protocol" --seed 1 -o "$graph" >/dev/null
+  "${laguerres[-1]}" generate delaunay -n "$protocol" --seed 1 -o "$graph" >/dev/null 2>&1
   options=(--max-iterations 50 --pairs 1 --json)
   protocol_line() {  # tag, ranks, JSON file
     python3 - "$@" <<'PY'

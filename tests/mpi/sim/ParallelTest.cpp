@@ -200,6 +200,8 @@ TEST(ParallelPhold, ASimulatorBuiltForAPartRefusesAnotherPartAndARunAlone) {
   EXPECT_EQ(part.local_count(), 8u);
   EXPECT_EQ(part.local_node(3), 6u);
   EXPECT_EQ(part.local_index(6), 3u);
+  Simulator none(torus(4, phold_links()), SimConfig{.seed = 1}, model, std::vector<std::uint8_t>(16, 0));
+  EXPECT_EQ(none.local_count(), 0u);  // a rank may own no node
   EXPECT_THROW(part.run({.until = seconds(1)}), core::InternalError);  // not partitioned
   struct Nowhere final : RemoteOutbox {
     void post(Time, std::uint64_t, NodeIndex, NodeIndex, Phase, std::span<const std::byte>) override {}

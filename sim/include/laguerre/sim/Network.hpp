@@ -81,7 +81,7 @@ public:
   /// there is no such link.
   void set_link_model(NodeIndex u, NodeIndex v, const LinkModel& model);
   /// The model of directed link `l`.
-  const LinkModel& link_model(LinkIndex l) const { return models_[model_of_link_[l]]; }
+  const LinkModel& link_model(LinkIndex l) const { return models_[model_of_link_.empty() ? 0 : model_of_link_[l]]; }
 
   /// Schedules a crash of `node` at `at`, and its recovery at `recover_at` if given. Throws
   /// core::InternalError (a broken precondition) for an unknown node, a negative time, or a recovery not after the crash.
@@ -100,7 +100,7 @@ private:
   std::vector<std::pair<std::uint64_t, NodeIndex>> index_of_id_;  // (id, index) by id; empty with ids_
   std::vector<Position> positions_;
   std::vector<LinkModel> models_{LinkModel{}};
-  std::vector<std::uint32_t> model_of_link_;
+  std::vector<std::uint32_t> model_of_link_;  // index into models_ per link; empty: models_[0] everywhere
   std::vector<Crash> crashes_;
 };
 

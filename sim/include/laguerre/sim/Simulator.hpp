@@ -92,7 +92,7 @@ public:
   /// run: it holds the state of the nodes v with held[v] != 0 only (random streams, timer counts,
   /// crash state, traffic counters) and of their outgoing links (message counters, random link
   /// keys), each keyed as in the whole simulator; it must then be partition()ed with the same flags
-  /// before it runs. Throws core::InternalError (a broken precondition) if the network is
+  /// before it runs (flags that hold every node build the whole simulator). Throws core::InternalError (a broken precondition) if the network is
   /// inconsistent (Network::validate) or `held` has the wrong size.
   Simulator(Network network, SimConfig config, NodeHandler& handler, std::vector<std::uint8_t> held = {});
   Simulator(const Simulator&) = delete;
@@ -134,12 +134,12 @@ public:
   bool is_up(NodeIndex v) const { return down_[local_index(v)] == 0; }
 
   /// The number of nodes whose state this simulator holds (node_count() unless built for a part).
-  std::size_t local_count() const { return held_.empty() ? network_.node_count() : held_.size(); }
+  std::size_t local_count() const { return local_.empty() ? network_.node_count() : held_.size(); }
   /// The position of held node `v` among the held nodes, by increasing index (v itself unless built
   /// for a part): per-node tables of the simulator and its hosts are indexed by it.
   NodeIndex local_index(NodeIndex v) const { return local_.empty() ? v : local_[v]; }
   /// The held node at position `i` < local_count() (the inverse of local_index).
-  NodeIndex local_node(std::size_t i) const { return held_.empty() ? static_cast<NodeIndex>(i) : held_[i]; }
+  NodeIndex local_node(std::size_t i) const { return local_.empty() ? static_cast<NodeIndex>(i) : held_[i]; }
   /// The position of held node `v`'s first outgoing link among the held nodes' links (in network
   /// order; its i-th link comes i later): per-link tables of hosts are indexed by it.
   std::size_t local_link_start(NodeIndex v) const { return local_link(network_.link_at(v, 0), local_index(v)); }
@@ -215,7 +215,7 @@ private:
   /// references).
   void transmit(LinkIndex link, NodeIndex from, NodeIndex to, std::uint32_t message);
   /// The position of link `l` among the held nodes' links; `from` is local_index of its source.
-  std::size_t local_link(LinkIndex l, NodeIndex from) const { return link_shift_.empty() ? l : l - link_shift_[from]; }
+  std::size_t local_link(LinkIndex l, NodeIndex from) const { return local_.empty() ? l : l - link_shift_[from]; }
   /// Whether copies to `v` go to the outbox (a partitioned run, another part's node).
   bool foreign(NodeIndex v) const {
     return outbox_ != nullptr && (local_.empty() ? owned_[v] == 0 : local_[v] == not_held);
