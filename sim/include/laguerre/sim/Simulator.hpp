@@ -92,8 +92,9 @@ public:
   /// run: it holds the state of the nodes v with held[v] != 0 only (random streams, timer counts,
   /// crash state, traffic counters) and of their outgoing links (message counters, random link
   /// keys), each keyed as in the whole simulator; it must then be partition()ed with the same flags
-  /// before it runs (flags that hold every node build the whole simulator). Throws core::InternalError (a broken precondition) if the network is
-  /// inconsistent (Network::validate) or `held` has the wrong size.
+  /// before it runs (flags that hold every node build the whole simulator). Throws
+  /// core::InternalError (a broken precondition) if the network is inconsistent (Network::validate)
+  /// or `held` has the wrong size.
   Simulator(Network network, SimConfig config, NodeHandler& handler, std::vector<std::uint8_t> held = {});
   Simulator(const Simulator&) = delete;
   Simulator& operator=(const Simulator&) = delete;
