@@ -41,6 +41,20 @@ LocalKnowledge local_knowledge(const core::PlanarGraph& g, core::Vertex v) {
   return k;
 }
 
+core::PackOptions reference_options(const PackingParams& params) {
+  core::PackOptions opt;
+  opt.stop = core::StopRule::lpd;
+  opt.sweep = core::Sweep::jacobi;
+  opt.update = params.update;
+  opt.root = params.root;
+  opt.steps_per_check = params.steps_per_check;
+  opt.max_iterations = params.max_iterations;
+  opt.acceleration = params.acceleration;
+  opt.termination = params.termination;
+  opt.radius_only_gap = params.radius_only_gap;
+  return opt;
+}
+
 void enable_lossy_links(PackingParams& params, Duration max_latency) {
   const ReliableParams r = lossy_link_params(max_latency);
   params.ack_delay = r.ack_delay;

@@ -260,13 +260,7 @@ std::string verify_against_core(const core::PlanarGraph& g, core::GraphKind kind
            std::string(kind == core::GraphKind::triangulated_disc ? "LPD" : "GLPD") + " check holds at " +
            std::to_string(ok) + "/" + std::to_string(n) + " nodes";
   }
-  core::PackOptions opt;
-  opt.steps_per_check = setup.steps_per_round;
-  opt.max_iterations = setup.max_iterations;
-  opt.root = setup.root;
-  opt.acceleration = setup.acceleration;
-  opt.termination = setup.termination;
-  const core::PackResult r = core::pack(g, opt);
+  const core::PackResult r = core::pack(g, protocols::reference_options(packing_params(setup)));
   const core::CircleEmbedding& phi = outcome.circles;
   bool same = r.iterations == static_cast<int>(outcome.iterations);
   for (core::Vertex v = 0; v < n && same; ++v)

@@ -24,7 +24,7 @@ inline LossyTotals expect_lossy_equals_core(const core::PlanarGraph& g, const Pa
   SCOPED_TRACE(label);
   LossyTotals totals;
   [&] {
-    const core::PackResult r = core::pack(g, pack_options(params));
+    const core::PackResult r = core::pack(g, reference_options(params));
     totals.iterations = r.iterations;
     const core::PackingComplex k = core::PackingComplex::from_graph(g);
     const auto ids = protocol_ids(g, k);

@@ -62,20 +62,6 @@ std::optional<VertexState> hosted_state(Host& host, NodeId fid) {
   return std::nullopt;
 }
 
-// Parameters of core::pack equivalent to `params`.
-inline core::PackOptions pack_options(const PackingParams& params) {
-  core::PackOptions opt;
-  opt.stop = core::StopRule::lpd;
-  opt.sweep = core::Sweep::jacobi;
-  opt.update = params.update;
-  opt.root = params.root;
-  opt.steps_per_check = params.steps_per_check;
-  opt.max_iterations = params.max_iterations;
-  opt.acceleration = params.acceleration;
-  opt.termination = params.termination;
-  opt.radius_only_gap = params.radius_only_gap;
-  return opt;
-}
 
 // Compares one protocol run with core::pack (Jacobi, stop = lpd) on g, vertex by vertex of K; returns
 // core's iteration count.
@@ -84,7 +70,7 @@ inline int expect_sync_equals_core(const core::PlanarGraph& g, const PackingPara
   SCOPED_TRACE(label);
   int iterations = -1;
   [&] {
-  const core::PackResult r = core::pack(g, pack_options(params));
+  const core::PackResult r = core::pack(g, reference_options(params));
   iterations = r.iterations;
   const core::PackingComplex k = core::PackingComplex::from_graph(g);
   const core::Vertex root = core::choose_root(k, params.root);

@@ -54,7 +54,7 @@ TEST(AsyncPacking, ConvergesUnderArbitraryDeliveryOrders) {
       DequeHost host(g, p);
       host.run(seed % 2 == 0 ? 0 : seed);  // FIFO or shuffled
       async_total += expect_async_converged(g, host);
-      sync_total += static_cast<std::uint64_t>(core::pack(g, pack_options(p)).iterations);
+      sync_total += static_cast<std::uint64_t>(core::pack(g, reference_options(p)).iterations);
       if (HasFailure()) return;
     }
   RecordProperty("async_iterations", static_cast<int>(async_total));

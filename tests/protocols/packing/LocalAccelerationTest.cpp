@@ -87,7 +87,7 @@ TEST(LocalAcceleration, ChebyshevNeedsFewerStepsThanPlain) {
   // are in tests/scenarios/property.
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const core::PlanarGraph g = delaunay(300, seed + 20);
-    const int plain = core::pack(g, pack_options(PackingParams{})).iterations;
+    const int plain = core::pack(g, reference_options(PackingParams{})).iterations;
     const int chebyshev = expect_sync_equals_core(g, params_of(core::Acceleration::chebyshev), 0, "seed " + std::to_string(seed));
     EXPECT_LT(chebyshev, plain) << "seed " << seed;
   }

@@ -79,7 +79,7 @@ TEST(RadiusOnlyTermination, ConvergesOnlyOnAPassedExactCheckWithFewerMessages) {
     DequeHost layout(g, PackingParams{}), radius(g, radius_only(1, 0.5));  // a loose gap: some checks fail
     layout.run(0);
     radius.run(0);
-    const core::PackResult r = core::pack(g, pack_options(radius_only(1, 0.5)));
+    const core::PackResult r = core::pack(g, reference_options(radius_only(1, 0.5)));
     ASSERT_EQ(r.status, core::PackStatus::converged);
     EXPECT_GT(r.layouts, 1) << "a 0.5 rad gap should trigger a failing exact check first";
     for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
@@ -107,7 +107,7 @@ TEST(RadiusFloodTermination, TriangulationsEqualCoreBitForBit) {
         const std::string label = "n=" + std::to_string(n) + " seed=" + std::to_string(seed) + " N=" + std::to_string(steps);
         expect_sync_equals_core(g, flood(steps), 0, label);
         expect_sync_equals_core(g, flood(steps, 0.3), seed, label + " gap 0.3 shuffled");
-        const core::PackResult r = core::pack(g, pack_options(flood(steps, 0.3)));
+        const core::PackResult r = core::pack(g, reference_options(flood(steps, 0.3)));
         EXPECT_EQ(r.decision_step, r.iterations + r.flood_depth) << label;
         failed_checks += r.layouts - 1;
         ++runs;
@@ -145,7 +145,7 @@ TEST(RadiusFloodTermination, ConvergesOnlyOnAPassedExactCheck) {
     const core::PlanarGraph g = delaunay(150, seed);
     DequeHost radius(g, flood(1, 0.5));
     radius.run(0);
-    const core::PackResult r = core::pack(g, pack_options(flood(1, 0.5)));
+    const core::PackResult r = core::pack(g, reference_options(flood(1, 0.5)));
     ASSERT_EQ(r.status, core::PackStatus::converged);
     EXPECT_GT(r.layouts, 1) << "a 0.5 rad gap should trigger a failing exact check first";
     for (core::Vertex v = 0; v < g.num_vertices(); ++v) {

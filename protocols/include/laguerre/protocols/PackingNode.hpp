@@ -27,6 +27,7 @@
 #include "laguerre/core/graph/PlanarGraph.hpp"
 #include "laguerre/core/packing/Accelerator.hpp"
 #include "laguerre/core/packing/Layout.hpp"
+#include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/packing/Placement.hpp"
 #include "laguerre/core/packing/RadiusOnly.hpp"
 #include "laguerre/core/packing/Thurston.hpp"
@@ -72,6 +73,10 @@ struct PackingParams : ReliableParams {
   core::Termination termination = core::Termination::layout;
   double radius_only_gap = 1e-2;  ///< initial closing-gap tolerance (radians, > 0) of radius_only
 };
+
+/// The centralized computation a synchronous run with `params` equals bit for bit: core::pack with
+/// stop = lpd, Jacobi sweeps, and the update, root, N, cap, acceleration and termination of `params`.
+core::PackOptions reference_options(const PackingParams& params);
 
 /// Turns the reliability layer on with periods fitted to links whose one-way latency is at most
 /// `max_latency` ns: ack_delay = max_latency / 2, retransmit_after = 3 × max_latency (above the longest
