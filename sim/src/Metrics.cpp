@@ -5,15 +5,7 @@
 namespace laguerre::sim {
 
 TrafficCounters& TrafficCounters::operator+=(const TrafficCounters& o) {
-  messages_sent += o.messages_sent;
-  bytes_sent += o.bytes_sent;
-  messages_received += o.messages_received;
-  bytes_received += o.bytes_received;
-  messages_lost += o.messages_lost;
-  bytes_lost += o.bytes_lost;
-  messages_dropped += o.messages_dropped;
-  bytes_dropped += o.bytes_dropped;
-  messages_duplicated += o.messages_duplicated;
+  for (const auto& [name, count] : traffic_counter_fields) this->*count += o.*count;
   return *this;
 }
 

@@ -25,18 +25,7 @@ namespace asio = boost::asio;
 using asio::ip::udp;
 
 UdpCounters& UdpCounters::operator+=(const UdpCounters& o) {
-  datagrams_sent += o.datagrams_sent;
-  datagram_bytes_sent += o.datagram_bytes_sent;
-  datagrams_received += o.datagrams_received;
-  datagram_bytes_received += o.datagram_bytes_received;
-  local_deliveries += o.local_deliveries;
-  induced_losses += o.induced_losses;
-  malformed += o.malformed;
-  unknown_destination += o.unknown_destination;
-  not_a_neighbour += o.not_a_neighbour;
-  stale_phase += o.stale_phase;
-  send_retries += o.send_retries;
-  kernel_drops += o.kernel_drops;
+  for (const auto& [name, count] : udp_counter_fields) this->*count += o.*count;
   const auto smallest = [](int a, int b) { return a == 0 ? b : b == 0 ? a : std::min(a, b); };
   receive_buffer = smallest(receive_buffer, o.receive_buffer);
   send_buffer = smallest(send_buffer, o.send_buffer);

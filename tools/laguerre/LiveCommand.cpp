@@ -132,25 +132,15 @@ int run_live(const LiveArgs& a) {
                 static_cast<unsigned long long>(c.datagrams_sent), datagram_rate,
                 static_cast<unsigned long long>(c.local_deliveries), static_cast<double>(peak) / (1024.0 * 1024.0));
   nlohmann::json workers = nlohmann::json::array();
-  for (const sim::WorkerReport& w : out.workers)
-    workers.push_back({{"nodes", w.nodes},
-                       {"first_node", w.first},
-                       {"port", w.port},
-                       {"datagrams_sent", w.counters.datagrams_sent},
-                       {"datagrams_received", w.counters.datagrams_received},
-                       {"datagram_bytes_sent", w.counters.datagram_bytes_sent},
-                       {"local_deliveries", w.counters.local_deliveries},
-                       {"induced_losses", w.counters.induced_losses},
-                       {"malformed", w.counters.malformed},
-                       {"unknown_destination", w.counters.unknown_destination},
-                       {"not_a_neighbour", w.counters.not_a_neighbour},
-                       {"stale_phase", w.counters.stale_phase},
-                       {"kernel_drops", w.counters.kernel_drops},
-                       {"send_retries", w.counters.send_retries},
-                       {"receive_buffer", w.counters.receive_buffer},
-                       {"send_buffer", w.counters.send_buffer},
-                       {"peak_memory_bytes", w.peak_memory_bytes},
-                       {"cpu_seconds", w.cpu_seconds}});
+  for (const sim::WorkerReport& w : out.workers) {
+    nlohmann::json worker = {{"nodes", w.nodes}, {"first_node", w.first}, {"port", w.port}};
+    for (const auto& [name, count] : sim::udp_counter_fields) worker[std::string(name)] = w.counters.*count;
+    worker["receive_buffer"] = w.counters.receive_buffer;
+    worker["send_buffer"] = w.counters.send_buffer;
+    worker["peak_memory_bytes"] = w.peak_memory_bytes;
+    worker["cpu_seconds"] = w.cpu_seconds;
+    workers.push_back(std::move(worker));
+  }
   nlohmann::json extra = {{"live",
                            {{"processes", out.workers.size()},
                             {"phase_wall_seconds", out.phase_seconds},

@@ -39,13 +39,16 @@ void check(int code, const char* what) {
   if (code != MPI_SUCCESS) throw core::InternalError(std::string("MPI call failed: ") + what);
 }
 
-constexpr std::size_t counter_fields = 9;
+constexpr std::size_t counter_fields = traffic_counter_fields.size();
 std::array<std::uint64_t, counter_fields> fields_of(const TrafficCounters& c) {
-  return {c.messages_sent,    c.bytes_sent,    c.messages_received, c.bytes_received,     c.messages_lost,
-          c.bytes_lost,       c.messages_dropped, c.bytes_dropped,  c.messages_duplicated};
+  std::array<std::uint64_t, counter_fields> f{};
+  for (std::size_t k = 0; k < counter_fields; ++k) f[k] = c.*traffic_counter_fields[k].second;
+  return f;
 }
 TrafficCounters counters_of(const std::uint64_t* f) {
-  return {f[0], f[1], f[2], f[3], f[4], f[5], f[6], f[7], f[8]};
+  TrafficCounters c;
+  for (std::size_t k = 0; k < counter_fields; ++k) c.*traffic_counter_fields[k].second = f[k];
+  return c;
 }
 
 int to_int_count(std::size_t n, const char* what) {

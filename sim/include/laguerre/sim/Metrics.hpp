@@ -2,8 +2,11 @@
 /// @file
 /// Traffic counters per node and per protocol phase, and the report of one run.
 
+#include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "laguerre/sim/Kernel.hpp"
@@ -33,6 +36,20 @@ struct TrafficCounters {
   /// Field-by-field equality.
   friend bool operator==(const TrafficCounters&, const TrafficCounters&) = default;
 };
+
+/// Every count of TrafficCounters with its name, in declaration order: the one list that sums,
+/// flattens (MPI reductions) and reports them.
+inline constexpr std::array<std::pair<std::string_view, std::uint64_t TrafficCounters::*>, 9> traffic_counter_fields{{
+    {"messages_sent", &TrafficCounters::messages_sent},
+    {"bytes_sent", &TrafficCounters::bytes_sent},
+    {"messages_received", &TrafficCounters::messages_received},
+    {"bytes_received", &TrafficCounters::bytes_received},
+    {"messages_lost", &TrafficCounters::messages_lost},
+    {"bytes_lost", &TrafficCounters::bytes_lost},
+    {"messages_dropped", &TrafficCounters::messages_dropped},
+    {"bytes_dropped", &TrafficCounters::bytes_dropped},
+    {"messages_duplicated", &TrafficCounters::messages_duplicated},
+}};
 
 /// Counters indexed by (node, phase); phases appear as they are used. Storage: per phase, one
 /// 16-byte record per node for what every message touches (sent and received, four 32-bit counts);

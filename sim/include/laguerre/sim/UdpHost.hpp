@@ -25,6 +25,7 @@
 /// phase starts. Kernel drops (receive buffer overflow)
 /// are read from the socket (SO_MEMINFO) on demand.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -32,6 +33,8 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "laguerre/core/graph/PlanarGraph.hpp"
@@ -83,6 +86,23 @@ struct UdpCounters {
   /// Adds `o` field by field (buffers: the smallest nonzero).
   UdpCounters& operator+=(const UdpCounters& o);
 };
+
+/// Every count of UdpCounters (the buffers aside) with its name, in declaration order: the one list
+/// that sums and reports them.
+inline constexpr std::array<std::pair<std::string_view, std::uint64_t UdpCounters::*>, 12> udp_counter_fields{{
+    {"datagrams_sent", &UdpCounters::datagrams_sent},
+    {"datagram_bytes_sent", &UdpCounters::datagram_bytes_sent},
+    {"datagrams_received", &UdpCounters::datagrams_received},
+    {"datagram_bytes_received", &UdpCounters::datagram_bytes_received},
+    {"local_deliveries", &UdpCounters::local_deliveries},
+    {"induced_losses", &UdpCounters::induced_losses},
+    {"malformed", &UdpCounters::malformed},
+    {"unknown_destination", &UdpCounters::unknown_destination},
+    {"not_a_neighbour", &UdpCounters::not_a_neighbour},
+    {"stale_phase", &UdpCounters::stale_phase},
+    {"send_retries", &UdpCounters::send_retries},
+    {"kernel_drops", &UdpCounters::kernel_drops},
+}};
 
 /// Hosts the nodes of one process over a UDP socket bound to 127.0.0.1.
 class UdpHost {
