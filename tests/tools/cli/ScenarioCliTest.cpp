@@ -157,6 +157,10 @@ TEST_F(ScenarioCli, EveryExampleRunsSmall) {
        "uniform-three-connected, n: 300}, {generator: field, n: 300, graph: local-delaunay, radius: 0.13, repair: "
        "three-connected-core}]'",
        true},
+      {"comparison-50000.yaml",
+       "--set protocol.steps_per_round=2 --set 'sweep.topology=[{generator: delaunay, n: 300}, {generator: field, "
+       "n: 300, graph: local-delaunay, radius: 0.13, repair: three-connected-core, attach: true}]'",
+       true},
       {"mesh-field.yaml", "--set repetitions=1 --set topology.metric=uniform:0.25:0.25", true},
       {"mesh-holes.yaml", "--set repetitions=1 --set topology.metric=uniform:0.25:0.25", true},
       {"baseline-hyperbolic.yaml",
