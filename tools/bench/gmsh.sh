@@ -80,6 +80,31 @@ runs=("square|$thick|1|stars voronoi gmsh"
       "$domains/square-with-holes.txt|thesis:0.15:4:0.2:0.5|1|stars voronoi gmsh")
 ((quick)) || runs+=("square|$shock|0.08|stars gmsh")
 echo "gmsh $(gmsh --version 2>&1 | tail -1), laguerre $("$laguerre" --version | awk '{print $2}'); $(nproc) cores, load: $(uptime | sed 's/.*load average: //')"
+# run_row WIDTH LABEL TOOL STEM DOMAIN FIELD COMMAND...: runs COMMAND under /usr/bin/time and the
+# timeout, sets `wall` and `cpu`, and leaves the JSON report in STEM.json (gmsh's mesh measured by
+# `laguerre mesh-quality`); prints the row itself and returns 1 when there is no report (timeout, or no
+# mesh from gmsh).
+run_row() {
+  local width=$1 label=$2 tool=$3 stem=$4 domain=$5 field=$6 status=0
+  shift 6
+  /usr/bin/time -f "%e %U %S" -o "$stem.time" timeout "$timeout_s" "$@" > "$stem.out" 2> "$stem.err" || status=$?
+  read -r wall user sys < <(tail -1 "$stem.time" | grep -E '^[0-9.]+ [0-9.]+ [0-9.]+$' || echo "- 0 0")
+  cpu=$(python3 -c "print(f'{$user + $sys:.2f}')")
+  if ((status == 124)); then
+    printf "%-${width}s %-8s %8s %9s %8s %8s  %s\n" "$label" "$tool" - - "$wall" "$cpu" "timeout (${timeout_s} s)"
+    return 1
+  fi
+  if [[ $tool == gmsh ]]; then
+    if [[ ! -s $stem.mesh ]]; then
+      printf "%-${width}s %-8s %8s %9s %8s %8s  %s\n" "$label" "$tool" - - "$wall" "$cpu" \
+        "failed ($status): $(grep -m1 Error "$stem.out" "$stem.err" || true)"
+      return 1
+    fi
+    "$laguerre" mesh-quality "$stem.mesh" --metric "$field" --domain "$domain" --json > "$stem.json" || true
+  else
+    cp "$stem.out" "$stem.json"
+  fi
+}
 ((two)) || runs=()
 ((two)) && printf '%-30s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' row tool vertices triangles wall_s cpu_s \
   min_ang p5_ang max_rho min_len max_len status
@@ -172,23 +197,7 @@ PY
       cmd=("$laguerre" mesh "$domain" --algorithm "$tool" --metric "$field" --size-bound "$bound" -o "$stem"
            --force --no-picture --json)
     fi
-    status=0
-    /usr/bin/time -f "%e %U %S" -o "$stem.time" timeout "$timeout_s" "${cmd[@]}" > "$stem.out" 2> "$stem.err" || status=$?
-    read -r wall user sys < <(tail -1 "$stem.time" | grep -E '^[0-9.]+ [0-9.]+ [0-9.]+$' || echo "- 0 0")
-    cpu=$(python3 -c "print(f'{$user + $sys:.2f}')")
-    if ((status == 124)); then
-      printf '%-30s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' "$label" "$tool" - - "$wall" "$cpu" - - - - - "timeout (${timeout_s} s)"
-      continue
-    fi
-    if [[ $tool == gmsh ]]; then
-      if [[ ! -s $stem.mesh ]]; then
-        printf '%-30s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' "$label" "$tool" - - "$wall" "$cpu" - - - - - "failed ($status): $(grep -m1 Error "$stem.out" "$stem.err" || true)"
-        continue
-      fi
-      "$laguerre" mesh-quality "$stem.mesh" --metric "$field" --domain "$domain" --json > "$stem.json" || true
-    else
-      cp "$stem.out" "$stem.json"
-    fi
+    run_row 30 "$label" "$tool" "$stem" "$domain" "$field" "${cmd[@]}" || continue
     python3 - "$stem.json" "$label" "$tool" "$wall" "$cpu" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1])); q = d['quality']
@@ -325,23 +334,7 @@ PY
           # shellcheck disable=SC2206
           cmd=("$laguerre" mesh "$domain" --metric "$field" $extra --max-vertices "$max3" -o "$stem" --force --no-picture --json)
         fi
-        status=0
-        /usr/bin/time -f "%e %U %S" -o "$stem.time" timeout "$timeout_s" "${cmd[@]}" > "$stem.out" 2> "$stem.err" || status=$?
-        read -r wall user sys < <(tail -1 "$stem.time" | grep -E '^[0-9.]+ [0-9.]+ [0-9.]+$' || echo "- 0 0")
-        cpu=$(python3 -c "print(f'{$user + $sys:.2f}')")
-        if ((status == 124)); then
-          printf '%-24s %-6s %8s %9s %8s %8s  %s\n' "$label" "$tool" - - "$wall" "$cpu" "timeout (${timeout_s} s)"
-          continue
-        fi
-        if [[ $tool == gmsh ]]; then
-          if [[ ! -s $stem.mesh ]]; then
-            printf '%-24s %-6s %8s %9s %8s %8s  %s\n' "$label" "$tool" - - "$wall" "$cpu" "failed ($status): $(grep -m1 Error "$stem.out" "$stem.err" || true)"
-            continue
-          fi
-          "$laguerre" mesh-quality "$stem.mesh" --metric "$field" --domain "$domain" --json > "$stem.json" || true
-        else
-          cp "$stem.out" "$stem.json"
-        fi
+        run_row 24 "$label" "$tool" "$stem" "$domain" "$field" "${cmd[@]}" || continue
         python3 - "$stem.json" "$label" "$tool" "$wall" "$cpu" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1])); q = d['quality']
