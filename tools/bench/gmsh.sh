@@ -119,24 +119,9 @@ for run in "${runs[@]}"; do
       # The background view (from the stars mesh of this row) and the .geo of the domain.
       python3 - "$domain" "$base-stars.mesh" "$base-stars.sol" "$bound" "$edge" "$stem" <<'PY'
 import sys
+sys.path.insert(0, 'tools/bench')
+from medit import medit
 domain, mesh, sol, bound, edge, stem = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), float(sys.argv[5]), sys.argv[6]
-def tokens(path):
-    for line in open(path):
-        yield from line.split('#')[0].split()
-def medit(path):
-    t = tokens(path); sec = {}
-    for w in t:
-        if w in ('MeshVersionFormatted', 'Dimension'): dim = next(t)
-        elif w == 'Vertices':
-            n = int(next(t)); sec['v'] = [(float(next(t)), float(next(t)), next(t))[:2] for _ in range(n)]
-        elif w == 'Triangles':
-            n = int(next(t)); sec['t'] = [(int(next(t)) - 1, int(next(t)) - 1, int(next(t)) - 1, next(t))[:3] for _ in range(n)]
-        elif w == 'Edges':
-            n = int(next(t)); [next(t) for _ in range(3 * n)]
-        elif w == 'SolAtVertices':
-            n = int(next(t)); next(t); next(t); sec['m'] = [tuple(float(next(t)) for _ in range(3)) for _ in range(n)]
-        elif w == 'End': break
-    return sec
 g = medit(mesh); m = medit(sol)['m']; s = 1 / (edge * bound) ** 2
 with open(stem + '.pos', 'w') as f:
     f.write('View "metric" {\n')
@@ -229,23 +214,9 @@ if ((three)); then
           [[ -s $base-stars.mesh ]] || { printf '%-24s %-6s %s\n' "$label" gmsh "- (no stars mesh to carry the size field)"; continue; }
           python3 - "$domain" "$base-stars.mesh" "$base-stars.sol" "$stem" <<'PY'
 import math, sys
+sys.path.insert(0, 'tools/bench')
+from medit import medit
 domain, mesh, sol, stem = sys.argv[1:]
-def tokens(path):
-    for line in open(path):
-        yield from line.split('#')[0].split()
-def medit(path):
-    t = tokens(path); sec = {}
-    for w in t:
-        if w == 'Vertices':
-            n = int(next(t)); sec['v'] = [tuple(float(next(t)) for _ in range(3)) + (next(t),) for _ in range(n)]
-        elif w in ('Triangles', 'Edges', 'Corners', 'Ridges', 'RequiredVertices'):
-            n = int(next(t)); k = {'Triangles': 4, 'Edges': 3}.get(w, 1); [next(t) for _ in range(k * n)]
-        elif w == 'Tetrahedra':
-            n = int(next(t)); sec['t'] = [tuple(int(next(t)) - 1 for _ in range(4)) + (next(t),) for _ in range(n)]
-        elif w == 'SolAtVertices':
-            n = int(next(t)); next(t); next(t); sec['m'] = [tuple(float(next(t)) for _ in range(6)) for _ in range(n)]
-        elif w == 'End': break
-    return sec
 def largest_eigenvalue(m):  # symmetric 3x3 (xx, xy, yy, xz, yz, zz) in Medit's order
     a, b, d, c, e, f = m
     p1 = b * b + c * c + e * e
@@ -263,9 +234,9 @@ edge = 4 / math.sqrt(6)
 h = [edge / math.sqrt(largest_eigenvalue(x)) for x in m]
 with open(stem + '.pos', 'w') as out:
     out.write('View "size" {\n')
-    for t in g['t']:
-        xs = ','.join('%.17g,%.17g,%.17g' % g['v'][i][:3] for i in t[:4])
-        out.write('SS(%s){%s};\n' % (xs, ','.join('%.17g' % h[i] for i in t[:4])))
+    for t in g['k']:
+        xs = ','.join('%.17g,%.17g,%.17g' % g['v'][i] for i in t)
+        out.write('SS(%s){%s};\n' % (xs, ','.join('%.17g' % h[i] for i in t)))
     out.write('};\n')
 # The surface: OFF triangles grouped by plane (same outward normal, coplanar) and edge adjacency.
 w = [l.split('#')[0].split() for l in open(domain)]
