@@ -3,7 +3,7 @@
 # same metric fields (issue 16 §3). Every mesh, gmsh's included, is measured by laguerre's own report in
 # the prescribed metric (`laguerre mesh-quality`, the report `laguerre mesh` prints).
 #
-#   tools/bench/gmsh.sh [--install] [--quick] [--timeout S] [--gmsh-edge F] [--out DIR]
+#   tools/bench/gmsh.sh [--install] [--quick] [--2d|--3d] [--timeout S] [--gmsh-edge F] [--out DIR]
 #
 #   --install      install Debian's gmsh (apt-get) if it is missing; without it a missing gmsh is an error
 #   --quick        the three small rows only (no 10^5-element row)
@@ -12,6 +12,7 @@
 #                  1.732 = sqrt 3: the edge of the equilateral triangle of circumradius S, the largest that
 #                  `--size-bound S` allows)
 #   --out DIR      keep the inputs, meshes, logs and JSON there (default: a scratch folder, removed)
+#   --2d, --3d     only the 2D rows (triangles) or only the 3D rows (tetrahedra); default both
 #
 # Per row (domain, field, size bound S): `laguerre mesh --algorithm stars` and `--algorithm voronoi` with
 # `--size-bound S` (Voronoi only on the small rows: its rounds are O(n) each), then gmsh 2D with
@@ -25,9 +26,22 @@
 # Columns: vertices, triangles, wall and CPU seconds of the whole process (/usr/bin/time: gmsh's include
 # reading the background view), worst and 5th-percentile smallest angle in the metric, worst
 # radius-edge ratio, edge lengths in the metric (min/max), and the status (converged/valid).
+#
+# 3D rows (tetrahedra): the domains and fields of tools/bench/mesh3.sh (cube.off and box-with-hole.off
+# under uniform, plane shock, sphere shock with --distortion 2.5, muparser expression), laguerre's
+# stars capped at MESH3_MAX_VERTICES (2000) vertices, then gmsh 3D. Debian's gmsh 4.8.4 has no
+# anisotropic 3D algorithm (BAMG is 2D; it is built without Mmg), so gmsh meshes isotropic tetrahedra
+# (`Mesh.Algorithm3D = 1`, Delaunay) under a background scalar view: on the stars mesh of the row, the
+# size F3·S/√λ_max(M) at each vertex (the field's smallest size, so that no edge is long in the metric;
+# F3 = 4/√6 ≈ 1.633, the edge of the regular tetrahedron of circumradius S = 1). The .geo has the
+# surface's coplanar triangles merged into plane surfaces (holes as inner curve loops), one surface
+# loop and one volume. gmsh's mesh is measured by `laguerre mesh-quality MESH --metric FIELD --domain
+# DOMAIN.off` (its boundary = the facets in one tetrahedron, checked as a tetrahedralization of the
+# domain). Columns: vertices, tetrahedra, wall and CPU s, min and p5 dihedral angle in the metric,
+# worst radius-edge, slivers (sliverity < 0.02 in a vertex's metric), edge lengths in the metric.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-install=0 quick=0 timeout_s=900 edge=1.732 out=""
+install=0 quick=0 timeout_s=900 edge=1.732 out="" two=1 three=1
 while (($#)); do
   case "$1" in
     --install) install=1 ;;
@@ -35,7 +49,9 @@ while (($#)); do
     --timeout) timeout_s=$2; shift ;;
     --gmsh-edge) edge=$2; shift ;;
     --out) out=$2; shift ;;
-    -h|--help) sed -n '2,28p' "$0"; exit 0 ;;
+    --2d) three=0 ;;
+    --3d) two=0 ;;
+    -h|--help) sed -n '2,43p' "$0"; exit 0 ;;
     *) echo "gmsh.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -64,7 +80,33 @@ runs=("square|$thick|1|stars voronoi gmsh"
       "$domains/square-with-holes.txt|thesis:0.15:4:0.2:0.5|1|stars voronoi gmsh")
 ((quick)) || runs+=("square|$shock|0.08|stars gmsh")
 echo "gmsh $(gmsh --version 2>&1 | tail -1), laguerre $("$laguerre" --version | awk '{print $2}'); $(nproc) cores, load: $(uptime | sed 's/.*load average: //')"
-printf '%-30s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' row tool vertices triangles wall_s cpu_s \
+# run_row WIDTH LABEL TOOL STEM DOMAIN FIELD COMMAND...: runs COMMAND under /usr/bin/time and the
+# timeout, sets `wall` and `cpu`, and leaves the JSON report in STEM.json (gmsh's mesh measured by
+# `laguerre mesh-quality`); prints the row itself and returns 1 when there is no report (timeout, or no
+# mesh from gmsh).
+run_row() {
+  local width=$1 label=$2 tool=$3 stem=$4 domain=$5 field=$6 status=0
+  shift 6
+  /usr/bin/time -f "%e %U %S" -o "$stem.time" timeout "$timeout_s" "$@" > "$stem.out" 2> "$stem.err" || status=$?
+  read -r wall user sys < <(tail -1 "$stem.time" | grep -E '^[0-9.]+ [0-9.]+ [0-9.]+$' || echo "- 0 0")
+  cpu=$(python3 -c "print(f'{$user + $sys:.2f}')")
+  if ((status == 124)); then
+    printf "%-${width}s %-8s %8s %9s %8s %8s  %s\n" "$label" "$tool" - - "$wall" "$cpu" "timeout (${timeout_s} s)"
+    return 1
+  fi
+  if [[ $tool == gmsh ]]; then
+    if [[ ! -s $stem.mesh ]]; then
+      printf "%-${width}s %-8s %8s %9s %8s %8s  %s\n" "$label" "$tool" - - "$wall" "$cpu" \
+        "failed ($status): $(grep -m1 Error "$stem.out" "$stem.err" || true)"
+      return 1
+    fi
+    "$laguerre" mesh-quality "$stem.mesh" --metric "$field" --domain "$domain" --json > "$stem.json" || true
+  else
+    cp "$stem.out" "$stem.json"
+  fi
+}
+((two)) || runs=()
+((two)) && printf '%-30s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' row tool vertices triangles wall_s cpu_s \
   min_ang p5_ang max_rho min_len max_len status
 for run in "${runs[@]}"; do
   IFS='|' read -r domain field bound tools <<<"$run"
@@ -77,24 +119,9 @@ for run in "${runs[@]}"; do
       # The background view (from the stars mesh of this row) and the .geo of the domain.
       python3 - "$domain" "$base-stars.mesh" "$base-stars.sol" "$bound" "$edge" "$stem" <<'PY'
 import sys
+sys.path.insert(0, 'tools/bench')
+from medit import medit
 domain, mesh, sol, bound, edge, stem = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), float(sys.argv[5]), sys.argv[6]
-def tokens(path):
-    for line in open(path):
-        yield from line.split('#')[0].split()
-def medit(path):
-    t = tokens(path); sec = {}
-    for w in t:
-        if w in ('MeshVersionFormatted', 'Dimension'): dim = next(t)
-        elif w == 'Vertices':
-            n = int(next(t)); sec['v'] = [(float(next(t)), float(next(t)), next(t))[:2] for _ in range(n)]
-        elif w == 'Triangles':
-            n = int(next(t)); sec['t'] = [(int(next(t)) - 1, int(next(t)) - 1, int(next(t)) - 1, next(t))[:3] for _ in range(n)]
-        elif w == 'Edges':
-            n = int(next(t)); [next(t) for _ in range(3 * n)]
-        elif w == 'SolAtVertices':
-            n = int(next(t)); next(t); next(t); sec['m'] = [tuple(float(next(t)) for _ in range(3)) for _ in range(n)]
-        elif w == 'End': break
-    return sec
 g = medit(mesh); m = medit(sol)['m']; s = 1 / (edge * bound) ** 2
 with open(stem + '.pos', 'w') as f:
     f.write('View "metric" {\n')
@@ -155,23 +182,7 @@ PY
       cmd=("$laguerre" mesh "$domain" --algorithm "$tool" --metric "$field" --size-bound "$bound" -o "$stem"
            --force --no-picture --json)
     fi
-    status=0
-    /usr/bin/time -f "%e %U %S" -o "$stem.time" timeout "$timeout_s" "${cmd[@]}" > "$stem.out" 2> "$stem.err" || status=$?
-    read -r wall user sys < <(tail -1 "$stem.time" | grep -E '^[0-9.]+ [0-9.]+ [0-9.]+$' || echo "- 0 0")
-    cpu=$(python3 -c "print(f'{$user + $sys:.2f}')")
-    if ((status == 124)); then
-      printf '%-30s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' "$label" "$tool" - - "$wall" "$cpu" - - - - - "timeout (${timeout_s} s)"
-      continue
-    fi
-    if [[ $tool == gmsh ]]; then
-      if [[ ! -s $stem.mesh ]]; then
-        printf '%-30s %-8s %8s %9s %8s %8s %8s %8s %8s %8s %8s  %s\n' "$label" "$tool" - - "$wall" "$cpu" - - - - - "failed ($status): $(grep -m1 Error "$stem.out" "$stem.err" || true)"
-        continue
-      fi
-      "$laguerre" mesh-quality "$stem.mesh" --metric "$field" --domain "$domain" --json > "$stem.json" || true
-    else
-      cp "$stem.out" "$stem.json"
-    fi
+    run_row 30 "$label" "$tool" "$stem" "$domain" "$field" "${cmd[@]}" || continue
     python3 - "$stem.json" "$label" "$tool" "$wall" "$cpu" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1])); q = d['quality']
@@ -183,4 +194,132 @@ print(f"{sys.argv[2]:<30} {sys.argv[3]:<8} {d['vertices']:>8} {d['triangles']:>9
 PY
   done
 done
+
+# --- 3D rows -------------------------------------------------------------------------------------
+if ((three)); then
+  max3=${MESH3_MAX_VERTICES:-2000}
+  fields3=("uniform:0.15:0.15:0.3" "shock:0.2:0.4:0.5:0.5" "sphere:0.15:0.4:0.5:0.3:0.5:0.5:0.5|--distortion 2.5"
+           "expr:xx=25;xy=0;xz=0;yy=25;yz=0;zz=25/(1+2*z)^2")
+  printf '\n%-24s %-6s %8s %9s %8s %8s %8s %8s %8s %7s %8s %8s  %s\n' row tool vertices tetrahedra wall_s cpu_s \
+    min_dih p5_dih max_rho slivers min_len max_len status
+  for domain in "$domains/cube.off" "$domains/box-with-hole.off"; do
+    for entry in "${fields3[@]}"; do
+      IFS='|' read -r field extra <<<"$entry"
+      name=$(basename "$domain" .off)
+      label="$name,${field%%:*}"
+      base="$dir/3d-$name-${field%%:*}"
+      for tool in stars gmsh; do
+        stem="$base-$tool"
+        if [[ $tool == gmsh ]]; then
+          [[ -s $base-stars.mesh ]] || { printf '%-24s %-6s %s\n' "$label" gmsh "- (no stars mesh to carry the size field)"; continue; }
+          python3 - "$domain" "$base-stars.mesh" "$base-stars.sol" "$stem" <<'PY'
+import math, sys
+sys.path.insert(0, 'tools/bench')
+from medit import medit
+domain, mesh, sol, stem = sys.argv[1:]
+def largest_eigenvalue(m):  # symmetric 3x3 (xx, xy, yy, xz, yz, zz) in Medit's order
+    a, b, d, c, e, f = m
+    p1 = b * b + c * c + e * e
+    q = (a + d + f) / 3
+    p2 = (a - q) ** 2 + (d - q) ** 2 + (f - q) ** 2 + 2 * p1
+    p = math.sqrt(p2 / 6)
+    if p == 0: return a
+    B = [[(a - q) / p, b / p, c / p], [b / p, (d - q) / p, e / p], [c / p, e / p, (f - q) / p]]
+    det = (B[0][0] * (B[1][1] * B[2][2] - B[1][2] * B[2][1]) - B[0][1] * (B[1][0] * B[2][2] - B[1][2] * B[2][0])
+           + B[0][2] * (B[1][0] * B[2][1] - B[1][1] * B[2][0]))
+    phi = math.acos(max(-1, min(1, det / 2))) / 3
+    return q + 2 * p * math.cos(phi)
+g = medit(mesh); m = medit(sol)['m']
+edge = 4 / math.sqrt(6)
+h = [edge / math.sqrt(largest_eigenvalue(x)) for x in m]
+with open(stem + '.pos', 'w') as out:
+    out.write('View "size" {\n')
+    for t in g['k']:
+        xs = ','.join('%.17g,%.17g,%.17g' % g['v'][i] for i in t)
+        out.write('SS(%s){%s};\n' % (xs, ','.join('%.17g' % h[i] for i in t)))
+    out.write('};\n')
+# The surface: OFF triangles grouped by plane (same outward normal, coplanar) and edge adjacency.
+w = [l.split('#')[0].split() for l in open(domain)]
+w = [x for x in w if x]
+nv, nf = int(w[1][0]), int(w[1][1])
+P = [tuple(float(c) for c in x[:3]) for x in w[2:2 + nv]]
+T = [tuple(int(c) for c in x[1:4]) for x in w[2 + nv:2 + nv + nf]]
+def sub(a, b): return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+def cross(a, b): return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+def dot(a, b): return sum(x * y for x, y in zip(a, b))
+def normal(t):
+    n = cross(sub(P[t[1]], P[t[0]]), sub(P[t[2]], P[t[0]])); l = math.sqrt(dot(n, n)); return tuple(x / l for x in n)
+N = [normal(t) for t in T]
+parent = list(range(nf))
+def find(i):
+    while parent[i] != i: parent[i] = parent[parent[i]]; i = parent[i]
+    return i
+by_edge = {}
+for i, t in enumerate(T):
+    for k in range(3): by_edge.setdefault(frozenset((t[k], t[(k + 1) % 3])), []).append(i)
+for e, fs in by_edge.items():
+    for j in fs[1:]:
+        i = fs[0]
+        if dot(N[i], N[j]) > 1 - 1e-12 and abs(dot(N[i], sub(P[T[j][0]], P[T[i][0]]))) < 1e-12: parent[find(j)] = find(i)
+groups = {}
+for i in range(nf): groups.setdefault(find(i), []).append(i)
+geo = ['Point(%d) = {%.17g, %.17g, %.17g};' % (i + 1, *p) for i, p in enumerate(P)]
+lines = {}
+def line(a, b):
+    key = (min(a, b), max(a, b))
+    if key not in lines:
+        lines[key] = len(lines) + 1
+        geo.append('Line(%d) = {%d, %d};' % (lines[key], key[0] + 1, key[1] + 1))
+    return lines[key] if a < b else -lines[key]
+surfaces = []
+loops = 0
+for faces in groups.values():
+    directed = {(T[i][k], T[i][(k + 1) % 3]) for i in faces for k in range(3)}
+    border = {e for e in directed if (e[1], e[0]) not in directed}
+    nxt = {a: b for a, b in border}
+    rings = []
+    while nxt:
+        a = next(iter(nxt)); ring = [a]
+        while nxt[ring[-1]] != a: ring.append(nxt.pop(ring[-1]))
+        nxt.pop(ring[-1]); rings.append(ring)
+    n = N[faces[0]]
+    def area(r):  # signed, around the outward normal
+        s = (0, 0, 0)
+        for k in range(len(r)): s = tuple(x + y for x, y in zip(s, cross(P[r[k]], P[r[(k + 1) % len(r)]])))
+        return dot(s, n) / 2
+    rings.sort(key=lambda r: -abs(area(r)))
+    ids = []
+    for r in rings:
+        loops += 1
+        geo.append('Curve Loop(%d) = {%s};' % (loops, ', '.join(str(line(r[k], r[(k + 1) % len(r)])) for k in range(len(r)))))
+        ids.append(loops)
+    surfaces.append(len(surfaces) + 1)
+    geo.append('Plane Surface(%d) = {%s};' % (surfaces[-1], ', '.join(map(str, ids))))
+geo += ['Surface Loop(1) = {%s};' % ', '.join(map(str, surfaces)), 'Volume(1) = {1};',
+        'Merge "%s.pos";' % stem, 'Background Mesh View[0];', 'Mesh.Algorithm3D = 1;',
+        'Mesh.MeshSizeExtendFromBoundary = 0;', 'Mesh.MeshSizeFromPoints = 0;', 'Mesh.MeshSizeFromCurvature = 0;']
+open(stem + '.geo', 'w').write('\n'.join(geo) + '\n')
+PY
+          cmd=(gmsh "$stem.geo" -3 -format mesh -o "$stem.mesh")
+        else
+          # shellcheck disable=SC2206
+          cmd=("$laguerre" mesh "$domain" --metric "$field" $extra --max-vertices "$max3" -o "$stem" --force --no-picture --json)
+        fi
+        run_row 24 "$label" "$tool" "$stem" "$domain" "$field" "${cmd[@]}" || continue
+        python3 - "$stem.json" "$label" "$tool" "$wall" "$cpu" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1])); q = d['quality']
+if 'converged' in d:
+    state = 'converged, ' if d['converged'] else ('cap, ' if 'max_vertices' in d['status'] else 'not converged, ')
+else:
+    state = ''
+state += 'valid' if d['valid_tetrahedralization'] else 'INVALID: ' + d['validation']
+print(f"{sys.argv[2]:<24} {sys.argv[3]:<6} {d['vertices']:>8} {d['tetrahedra']:>9} {sys.argv[4]:>8} {sys.argv[5]:>8} "
+      f"{q['smallest_dihedral_degrees']['min']:>8.2f} {q['smallest_dihedral_degrees']['p5']:>8.2f} {q['radius_edge']['max']:>8.3f} "
+      f"{q['slivers']:>7} {q['edge_length']['min']:>8.3f} {q['edge_length']['max']:>8.3f}  {state}")
+PY
+      done
+    done
+  done
+fi
 echo "load after: $(uptime | sed 's/.*load average: //')"

@@ -62,6 +62,17 @@ nlohmann::json quality_json(const core::MeshQuality& q) {
           {"edge_length", summary_json(q.edge_length)}};
 }
 
+/// The 3D quality report in JSON (dihedral angles, sliverity and slivers counted with their bound).
+nlohmann::json quality3_json(const core::MeshQuality& q) {
+  return {{"radius_edge", summary_json(q.radius_edge)},
+          {"smallest_dihedral_degrees", summary_json(q.smallest_angle)},
+          {"sliverity", summary_json(q.sliverity)},
+          {"slivers", q.slivers},
+          {"sliver_bound", q.sliver_bound},
+          {"distortion", summary_json(q.distortion)},
+          {"edge_length", summary_json(q.edge_length)}};
+}
+
 /// The quality table of `mesh` and `mesh-quality`: triangles, or tetrahedra (`solid`: dihedral angles
 /// and sliverity).
 void print_quality(const core::MeshQuality& q, bool solid = false) {
@@ -75,6 +86,7 @@ void print_quality(const core::MeshQuality& q, bool solid = false) {
   if (solid) row("sliverity", q.sliverity);
   row("edge length", q.edge_length);
   row("distortion", q.distortion);
+  if (solid) std::printf("slivers      %zu (sliverity below %g in the metric of a vertex)\n", q.slivers, q.sliver_bound);
 }
 
 /// The mesh, triangles coloured by their smallest angle in the metric (red < 20°, green ≥ 40°).
@@ -291,7 +303,7 @@ int run_mesh3(MeshArgs& a) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (tty) std::cerr << "\r\033[K";
   const std::string valid = core::check_tetrahedralization(r.mesh, domain);
-  const core::MeshQuality q = core::measure_quality(r.mesh, r.metrics);
+  const core::MeshQuality q = core::measure_quality(r.mesh, r.metrics, o.sliver_bound);
   core::write_medit_mesh(stem + ".mesh", r.mesh);
   core::write_medit_sol(stem + ".sol", r.metrics);
   core::write_vtk(stem + ".vtk", r.mesh, r.metrics, &q);
@@ -318,13 +330,7 @@ int run_mesh3(MeshArgs& a) {
        {{"edge_splits", s.edge_splits}, {"facet_splits", s.facet_splits}, {"distortion", s.distortion}, {"size", s.size},
         {"shape", s.shape}, {"sliver", s.sliver}, {"inconsistency", s.inconsistency}, {"snapped", s.snapped},
         {"rejected_picks", s.rejected_picks}, {"star_updates", s.star_updates}, {"consistency_sweeps", s.consistency_sweeps}}},
-      {"quality",
-       {{"radius_edge", summary_json(q.radius_edge)},
-        {"smallest_dihedral_degrees", summary_json(q.smallest_angle)},
-        {"sliverity", summary_json(q.sliverity)},
-        {"slivers", q.slivers},
-        {"distortion", summary_json(q.distortion)},
-        {"edge_length", summary_json(q.edge_length)}}},
+      {"quality", quality3_json(q)},
   };
   std::ofstream(stem + ".json") << j.dump(2) << '\n';
   if (a.picture)
@@ -346,7 +352,6 @@ int run_mesh3(MeshArgs& a) {
                 s.edge_splits, s.facet_splits, s.distortion, s.size, s.shape, s.sliver, s.inconsistency, s.snapped,
                 s.rejected_picks);
     print_quality(q, true);
-    std::printf("slivers      %zu (smallest dihedral < 10 deg with radius-edge <= 2)\n", q.slivers);
     std::printf("wrote        %s.{mesh,sol,vtk,json%s}\n", stem.c_str(), a.picture ? ",svg,png" : "");
   }
   return r.converged && valid.empty() ? 0 : 3;
@@ -418,11 +423,49 @@ struct MeshQualityArgs {
   std::string mesh;
   std::string metric;
   std::string domain;
+  double sliver_bound = core::kSliverBound;
   bool json = false;
 };
 
+/// `mesh-quality` of a tetrahedral mesh: the 3D field at its vertices, the 3D report, and with a
+/// domain the check of `laguerre mesh`, the boundary being the facets in one tetrahedron (another
+/// mesher's surface triangles need not be oriented outward).
+int run_mesh_quality3(const MeshQualityArgs& a, core::TetMesh mesh) {
+  const auto field = core::parse_metric_field3(a.metric);
+  std::vector<core::Metric3> metrics;
+  metrics.reserve(mesh.points.size());
+  for (const auto& p : mesh.points) metrics.push_back(field->at(p[0], p[1], p[2]));
+  const core::MeshQuality q = core::measure_quality(mesh, metrics, a.sliver_bound);
+  const bool checked = !a.domain.empty();
+  std::string valid;
+  if (checked) {
+    core::set_boundary_from_tetrahedra(mesh);
+    valid = core::check_tetrahedralization(mesh, core::read_polyhedral_domain(a.domain));
+  }
+  if (a.json) {
+    nlohmann::json j = {{"mesh", a.mesh},
+                        {"dimension", 3},
+                        {"metric", field->describe()},
+                        {"vertices", mesh.points.size()},
+                        {"tetrahedra", mesh.tetrahedra.size()},
+                        {"quality", quality3_json(q)}};
+    if (checked) j.update({{"domain", a.domain}, {"valid_tetrahedralization", valid.empty()}, {"validation", valid}});
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::printf("mesh         %s (3D), metric %s\n", a.mesh.c_str(), field->describe().c_str());
+    std::printf("size         %zu vertices, %zu tetrahedra\n", mesh.points.size(), mesh.tetrahedra.size());
+    if (checked)
+      std::printf("domain       %s: %s\n", a.domain.c_str(), valid.empty() ? "valid tetrahedralization of the domain" : valid.c_str());
+    print_quality(q, true);
+  }
+  return valid.empty() ? 0 : 3;
+}
+
 /// `mesh-quality`: another mesher's output measured like `mesh` measures its own.
 int run_mesh_quality(const MeshQualityArgs& a) {
+  if (core::medit_dimension(a.mesh) == 3)
+    if (core::TetMesh solid = core::read_medit_tet_mesh(a.mesh); !solid.tetrahedra.empty())
+      return run_mesh_quality3(a, std::move(solid));
   const core::TriangleMesh mesh = core::read_medit_mesh(a.mesh);
   const auto field = core::parse_metric_field(a.metric);
   std::vector<core::Metric> metrics;
@@ -453,17 +496,22 @@ int run_mesh_quality(const MeshQualityArgs& a) {
 
 Action add_mesh_quality_command(CLI::App& app) {
   auto args = std::make_shared<MeshQualityArgs>();
-  CLI::App* cmd = app.add_subcommand("mesh-quality", "Quality of a triangle mesh (e.g. another mesher's) in a metric field.");
+  CLI::App* cmd = app.add_subcommand("mesh-quality", "Quality of a triangle or tetrahedral mesh (e.g. another mesher's) in a metric field.");
   cmd->footer(
       "MESH is an ASCII Medit .mesh file (Dimension 2, or Dimension 3 with z = 0 as gmsh writes it).\n"
       "The metric field (the specifications of 'laguerre mesh --help') is evaluated at every vertex and the\n"
       "report is the one 'laguerre mesh' prints: per triangle the worst over its vertices' metrics of the\n"
       "smallest angle and radius-edge ratio, edge lengths in each endpoint's metric, distortion.\n"
       "With --domain, also checks that the mesh triangulates that domain.\n"
+      "A Dimension 3 mesh with tetrahedra is measured in a 3D field (the fields of 'laguerre mesh DOMAIN.off'):\n"
+      "smallest dihedral angle, radius-edge ratio, sliverity and slivers (below --sliver), edge lengths and\n"
+      "distortion; --domain is then a closed surface (.off) and the check that of a tetrahedralization.\n"
       "Exit status: 0, 3 when --domain is given and the mesh is not a valid triangulation of it, 2 bad input.");
   cmd->add_option("mesh", args->mesh, "Medit .mesh file")->required();
   cmd->add_option("--metric", args->metric, "Metric field specification")->required();
   cmd->add_option("--domain", args->domain, "Domain file, or 'square': check the mesh triangulates it");
+  cmd->add_option("--sliver", args->sliver_bound, "3D: the sliverity below which a tetrahedron is counted as a sliver")
+      ->check(CLI::Range(0.0, 0.1))->capture_default_str();
   cmd->add_flag("--json", args->json, "Print the JSON report instead of the table");
   return [args] { return run_mesh_quality(*args); };
 }

@@ -145,8 +145,9 @@ TetShape tet_shape(const Matrix3& f, const std::array<P3, 4>& q) {
 
 }  // namespace
 
-MeshQuality measure_quality(const TetMesh& mesh, const std::vector<Metric3>& metrics) {
+MeshQuality measure_quality(const TetMesh& mesh, const std::vector<Metric3>& metrics, double sliver_bound) {
   MeshQuality q;
+  q.sliver_bound = sliver_bound;
   std::vector<Matrix3> roots;
   roots.reserve(metrics.size());
   for (const Metric3& m : metrics) roots.push_back(square_root(m));
@@ -164,7 +165,7 @@ MeshQuality measure_quality(const TetMesh& mesh, const std::vector<Metric3>& met
         edges.emplace(std::minmax(t[k], t[l]), true);
       }
     }
-    if (e.smallest_angle < 10 && e.radius_edge <= 2) ++q.slivers;
+    if (e.sliverity < sliver_bound) ++q.slivers;
     q.elements.push_back(e);
   }
   summarize_quality(q, edges, [&](std::size_t v, std::size_t a, std::size_t b) {

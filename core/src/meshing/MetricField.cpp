@@ -446,7 +446,11 @@ public:
     const double base = 1 / (h_max_ * h_max_);
     if (!(r > 0)) return {base, 0, 0, base, 0, base};
     const double across = shock_size(h_min_, h_max_, width_, r - radius_);
-    const double k = 1 / (across * across) - base;
+    // The radial direction is undefined at the centre: the anisotropy fades to zero there, quadratically
+    // within min(R, WIDTH) of it (WIDTH when R = 0), so that the field is continuous (a discontinuity
+    // is refined forever, thesis §3.5).
+    const double fade = std::min(1.0, r / (radius_ > 0 ? std::min(radius_, width_) : width_));
+    const double k = (1 / (across * across) - base) * fade * fade;
     const double nx = dx / r, ny = dy / r, nz = dz / r;
     return checked({base + k * nx * nx, k * nx * ny, k * nx * nz, base + k * ny * ny, k * ny * nz, base + k * nz * nz},
                    x, y, z, *this);

@@ -508,11 +508,14 @@ private:
     }
   }
 
-  bool star_has(Index w, const Key& key) const {
+  /// The tetrahedron `key` in S_w, or null.
+  const StarTet* find_tet(Index w, const Key& key) const {
     for (const StarTet& t : stars_[w].tets)
-      if (sorted_key(w, t.a, t.b, t.c) == key) return true;
-    return false;
+      if (sorted_key(w, t.a, t.b, t.c) == key) return &t;
+    return nullptr;
   }
+
+  bool star_has(Index w, const Key& key) const { return find_tet(w, key) != nullptr; }
 
   bool consistent(Index v, const StarTet& t) const {
     const Key key = sorted_key(v, t.a, t.b, t.c);
@@ -538,27 +541,98 @@ private:
     return found;
   }
 
-  /// The worst sliverity of the star p would have among the current sites, in M_p (tetrahedra whose
-  /// circumball leaves the query are skipped: not certain members).
-  double sliverity_of_pick(const P3& p, double radius_hint) const {
+  /// What inserting p would do (Pick_valid, thesis §3.4): `conflicts` counts the inconsistencies it
+  /// would create, decided with exact metric in-sphere tests on the input points:
+  ///   - a tetrahedron (p, x, y, z) of p's star in M_p (among the sites within `radius` in M_p) whose
+  ///     M_u-circumsphere holds a site strictly inside for one of u = x, y, z (it would not be in S_u);
+  ///   - a tetrahedron τ of a current star S_w with p strictly inside its M_w-circumsphere (p destroys it
+  ///     in S_w) but not strictly inside its M_u-circumsphere for another vertex u whose star holds τ (it
+  ///     would stay in S_u), or the other way round.
+  /// Both are γ₀-cospherical configurations of p with four sites (§3.3.2). `sliverity` is the worst
+  /// sliverity in M_p of the new tetrahedra (Pick_valid_for_sliver). Tetrahedra whose circumball leaves
+  /// the query are skipped (not certain members).
+  struct PickScore {
+    std::size_t conflicts = 0;
+    double sliverity = INFINITY;
+    bool better_than(const PickScore& o, double sliver_bound) const {
+      const bool fat = sliverity >= sliver_bound, other_fat = o.sliverity >= sliver_bound;
+      if (conflicts != o.conflicts) return conflicts < o.conflicts;
+      if (fat != other_fat) return fat;
+      return sliverity > o.sliverity;
+    }
+  };
+
+  /// Whether q is strictly inside the M-circumsphere of the positively oriented tetrahedron (a, b, c, d),
+  /// whose M-circumcentre and M-circumradius (floating point) are `centre` and `radius`: a float filter
+  /// with a relative margin of 1e-6, trusted only for tetrahedra of sliverity at least 1e-3 (whose
+  /// circumcentre is computed to far better than the margin), and the exact predicate otherwise.
+  static bool strictly_inside(const Metric3& m, const P3& a, const P3& b, const P3& c, const P3& d, const P3& centre,
+                              double radius, double sliverity, const P3& q) {
+    if (sliverity >= 1e-3 && std::isfinite(radius)) {
+      const double dist = metric_length(m, sub(q, centre));
+      if (dist > radius * (1 + 1e-6)) return false;
+      if (dist < radius * (1 - 1e-6)) return true;
+    }
+    return detail::metric_in_sphere(a, b, c, d, q, entries(m)) > 0;
+  }
+
+  PickScore score_pick(const P3& p, double radius) const {
+    PickScore score;
     const Metric3 m = field_.at(p[0], p[1], p[2]);
     const Matrix3 f = square_root(m);
     std::vector<P3> local{p};
-    const P3 ext = ball_extent(m, radius_hint);
+    std::vector<Index> ids{kFacet};
+    const P3 ext = ball_extent(m, radius);
     sites_grid_.for_box(sub(p, ext), add(p, ext), [&](Index w) {
-      if (metric_length(m, sub(points_[w], p)) <= radius_hint) local.push_back(points_[w]);
+      if (metric_length(m, sub(points_[w], p)) <= radius) local.push_back(points_[w]), ids.push_back(w);
     });
     std::vector<std::array<std::size_t, 3>> raw;
     bool on_hull = false;
-    if (local.size() < 4 || !detail::delaunay_star3(local, 0, entries(m), raw, on_hull)) return 0;
-    double worst = INFINITY;
-    for (const auto& t : raw) {
-      const P3 a = multiply(f, sub(local[t[0]], p)), b = multiply(f, sub(local[t[1]], p)), c = multiply(f, sub(local[t[2]], p));
-      if (2 * norm(tet_circumcentre(a, b, c)) > radius_hint) continue;
-      const double shortest = std::min({norm(a), norm(b), norm(c), norm(sub(a, b)), norm(sub(b, c)), norm(sub(a, c))});
-      worst = std::min(worst, dot(a, cross(b, c)) / 6 / (shortest * shortest * shortest));
-    }
-    return worst;
+    if (local.size() >= 4 && detail::delaunay_star3(local, 0, entries(m), raw, on_hull))
+      for (const auto& t : raw) {
+        const P3 a = multiply(f, sub(local[t[0]], p)), b = multiply(f, sub(local[t[1]], p)), c = multiply(f, sub(local[t[2]], p));
+        if (2 * norm(tet_circumcentre(a, b, c)) > radius) continue;
+        const double shortest = std::min({norm(a), norm(b), norm(c), norm(sub(a, b)), norm(sub(b, c)), norm(sub(a, c))});
+        const double sliverity = dot(a, cross(b, c)) / 6 / (shortest * shortest * shortest);
+        score.sliverity = std::min(score.sliverity, sliverity);
+        bool conflict = false;
+        for (std::size_t i = 0; i < 3 && !conflict; ++i) {
+          // The tetrahedron in the metric of its vertex u = ids[t[i]].
+          const Index u = ids[t[i]];
+          const P3 ua = multiply(roots_[u], sub(local[t[0]], p)), ub = multiply(roots_[u], sub(local[t[1]], p)),
+                   uc = multiply(roots_[u], sub(local[t[2]], p));
+          const P3 o = tet_circumcentre(ua, ub, uc);
+          const P3 centre = add(p, solve(roots_[u], o));
+          const double r = norm(o);
+          // M_u's sliverity is within γ⁶ of M_p's; the filter's threshold asks for it in M_u.
+          const double su = std::min({norm(ua), norm(ub), norm(uc), norm(sub(ua, ub)), norm(sub(ub, uc)), norm(sub(ua, uc))});
+          const double sliverity_u = dot(ua, cross(ub, uc)) / 6 / (su * su * su);
+          for (std::size_t k = 1; k < local.size() && !conflict; ++k)
+            if (k != t[0] && k != t[1] && k != t[2])
+              conflict = strictly_inside(metrics_[u], p, local[t[0]], local[t[1]], local[t[2]], centre, r, sliverity_u, local[k]);
+        }
+        score.conflicts += conflict;
+      }
+    // The current stars whose conflict zone may hold p.
+    std::vector<Index> near;
+    zones_grid_.for_box(p, p, [&](Index w) { near.push_back(w); });
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    for (Index w : near)
+      for (const StarTet& t : stars_[w].tets) {
+        if (!strictly_inside(metrics_[w], points_[w], points_[t.a], points_[t.b], points_[t.c], t.centre, t.radius,
+                             t.sliverity, p))
+          continue;  // the other way round is seen from S_u, whose zone holds p
+        const Key key = sorted_key(w, t.a, t.b, t.c);
+        for (Index u : {t.a, t.b, t.c})
+          if (const StarTet* tu = find_tet(u, key);
+              tu && !strictly_inside(metrics_[u], points_[u], points_[tu->a], points_[tu->b], points_[tu->c], tu->centre,
+                                     tu->radius, tu->sliverity, p)) {
+            ++score.conflicts;
+            break;
+          }
+      }
+    return score;
   }
 
   /// A random point of the M_v-ball of radius ρ around c.
@@ -588,15 +662,16 @@ private:
     const StarTet tet = *t;  // insertions reallocate stars_
     const double rho = options_.picking_ratio * tet.radius;
     P3 pick = pick_in_ball(r.v, tet.centre, rho);
-    if (r.rule >= 5 && options_.picking_tries > 1) {
-      double best = -INFINITY;
+    if (options_.picking_tries > 1) {
+      PickScore best;
+      best.conflicts = std::numeric_limits<std::size_t>::max();
       P3 chosen = pick;
       for (int k = 0; k < options_.picking_tries; ++k) {
         if (k > 0) pick = pick_in_ball(r.v, tet.centre, rho);
         if (domain_.locate(pick) != DomainSide::inside) continue;  // snapped anyway
-        const double s = sliverity_of_pick(pick, 3 * tet.radius);
-        if (s > best) best = s, chosen = pick;
-        if (s >= options_.sliver_bound) break;
+        const PickScore s = score_pick(pick, 3 * tet.radius);
+        if (s.better_than(best, options_.sliver_bound)) best = s, chosen = pick;
+        if (s.conflicts == 0 && (r.rule != 5 || s.sliverity >= options_.sliver_bound)) break;
         ++stats_.rejected_picks;
       }
       pick = chosen;
@@ -707,29 +782,13 @@ private:
     TetMesh& mesh = result.mesh;
     mesh.points = points_;
     mesh.point_refs.assign(points_.size(), 0);
-    std::map<std::array<std::size_t, 3>, std::pair<std::array<std::size_t, 3>, int>> facets;  // sorted -> oriented, count
     for (Index v = 0; v < stars_.size(); ++v)
       for (const StarTet& t : stars_[v].tets)
         if (v < t.a && v < t.b && v < t.c && consistent(v, t)) {
-          const std::array<std::size_t, 4> q{v, t.a, t.b, t.c};
-          mesh.tetrahedra.push_back(q);
+          mesh.tetrahedra.push_back({v, t.a, t.b, t.c});
           mesh.tetrahedron_refs.push_back(0);
-          // Facet i, oriented with the tetrahedron on its negative (inner) side.
-          for (std::size_t i = 0; i < 4; ++i) {
-            std::array<std::size_t, 3> f{q[(i + 1) % 4], q[(i + 2) % 4], q[(i + 3) % 4]};
-            if (detail::orientation3(points_[f[0]], points_[f[1]], points_[f[2]], points_[q[i]]) > 0) std::swap(f[1], f[2]);
-            std::array<std::size_t, 3> key = f;
-            std::sort(key.begin(), key.end());
-            auto& entry = facets[key];
-            entry.first = f;
-            ++entry.second;
-          }
         }
-    for (const auto& [key, entry] : facets)
-      if (entry.second == 1) {
-        mesh.triangles.push_back(entry.first);
-        mesh.triangle_refs.push_back(1);
-      }
+    set_boundary_from_tetrahedra(mesh);
     result.metrics = metrics_;
   }
 
@@ -756,6 +815,30 @@ private:
 StarMesh3Result mesh_with_stars(const PolyhedralDomain& domain, const MetricField3& field,
                                 const StarMesh3Options& options) {
   return StarMesher3(domain, field, options).run();
+}
+
+void set_boundary_from_tetrahedra(TetMesh& mesh) {
+  const auto& p = mesh.points;
+  std::map<std::array<std::size_t, 3>, std::pair<std::array<std::size_t, 3>, int>> facets;  // sorted -> oriented, count
+  for (const auto& q : mesh.tetrahedra)
+    // Facet i, oriented with the tetrahedron on its negative (inner) side.
+    for (std::size_t i = 0; i < 4; ++i) {
+      std::array<std::size_t, 3> f{q[(i + 1) % 4], q[(i + 2) % 4], q[(i + 3) % 4]};
+      if (detail::orientation3(p[f[0]], p[f[1]], p[f[2]], p[q[i]]) > 0) std::swap(f[1], f[2]);
+      std::array<std::size_t, 3> key = f;
+      std::sort(key.begin(), key.end());
+      auto& entry = facets[key];
+      entry.first = f;
+      ++entry.second;
+    }
+  mesh.triangles.clear();
+  mesh.triangle_refs.clear();
+  mesh.triangle_lines.clear();
+  for (const auto& [key, entry] : facets)
+    if (entry.second == 1) {
+      mesh.triangles.push_back(entry.first);
+      mesh.triangle_refs.push_back(1);
+    }
 }
 
 std::string check_tetrahedralization(const TetMesh& mesh, const PolyhedralDomain& domain) {

@@ -160,5 +160,27 @@ TEST(StarMesher3, CheckRejectsBrokenMeshes) {
   EXPECT_NE(check_tetrahedralization(open, cube), "");
 }
 
+TEST(StarMesher3, SphereShockFieldTerminatesCheckedWithTheThesisBounds) {
+  // Non-diagonal metrics that rotate with the radial direction (a shock layer around a sphere inside
+  // the unit cube). The run must stop by itself (not at the cap) with every star consistent and a
+  // checked tetrahedralization, and the merged mesh has the bounds the rules enforce in every star
+  // (thesis §3.4): radius–edge ≤ ρ₀ and sliverity ≥ σ₀ in the metric of each vertex (no sliver
+  // counted), distortion < γ₀ between the vertices of each tetrahedron.
+  const PolyhedralDomain cube = read_polyhedral_domain(domains + "cube.off");
+  const auto field = parse_metric_field3("sphere:0.25:0.5:0.05:0.25:0.5:0.5:0.5");
+  StarMesh3Options options;
+  options.max_vertices = 2000;
+  const StarMesh3Result r = mesh_with_stars(cube, *field, options);
+  ASSERT_TRUE(r.converged) << r.status;
+  EXPECT_EQ(check_tetrahedralization(r.mesh, cube), "");
+  expect_locally_delaunay(r);
+  const MeshQuality q = measure_quality(r.mesh, r.metrics, options.sliver_bound);
+  EXPECT_LE(q.radius_edge.max, options.radius_edge_bound * (1 + 1e-9));
+  EXPECT_GE(q.sliverity.min, options.sliver_bound * (1 - 1e-9));
+  EXPECT_EQ(q.slivers, 0u);
+  EXPECT_LT(q.distortion.max, options.distortion_bound);
+  EXPECT_GT(q.distortion.max, 1.01);  // the metrics do differ between neighbours
+}
+
 }  // namespace
 }  // namespace laguerre::core

@@ -166,6 +166,18 @@ TEST_F(MeshCli, ThreeDimensionalDomainsMeshWithACheckedTetrahedralization) {
     while (medit >> word)
       if (word == "Tetrahedra") medit >> tets;
     EXPECT_EQ(tets, j["tetrahedra"].get<std::size_t>());
+    // `mesh-quality` of the tetrahedral .mesh gives the report `mesh` printed and checks it against
+    // the domain; against the other domain the check fails (exit 3).
+    const auto measured = laguerre::cli_test::run("mesh-quality " + stem + ".mesh --metric uniform:0.3:0.3:0.4 --json --domain " +
+                                                  domains + name + ".off");
+    ASSERT_EQ(measured.status, 0) << measured.out;
+    const auto m = nlohmann::json::parse(measured.out);
+    EXPECT_TRUE(m["valid_tetrahedralization"].get<bool>()) << m["validation"];
+    EXPECT_EQ(m["tetrahedra"], j["tetrahedra"]);
+    EXPECT_EQ(m["quality"], j["quality"]);
+    const char* other = std::string(name) == "cube" ? "box-with-hole" : "cube";
+    EXPECT_EQ(laguerre::cli_test::run("mesh-quality " + stem + ".mesh --metric uniform:0.3:0.3:0.4 --domain " + domains + other +
+                                      ".off").status, 3);
   }
   // The table names the 3D quantities.
   const MeshRun table = mesh(domains + "cube.off --metric uniform:0.4:0.4:0.4 --no-picture -o " + path("t3"));

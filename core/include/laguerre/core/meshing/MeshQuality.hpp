@@ -9,9 +9,8 @@
 /// Tetrahedral meshes (3D) get the same report, per tetrahedron in the metric of each of its four
 /// vertices: radius–edge ratio (√6/4 ≈ 0.61 for the regular tetrahedron), smallest *dihedral* angle
 /// (in `smallest_angle`, 70.5° for the regular one), sliverity σ = volume / shortest edge³ (thesis
-/// §3.4; 1/(6√2) ≈ 0.118 regular), and slivers counted: tetrahedra with a dihedral angle below 10° in
-/// one of their vertices' metrics although their radius–edge ratio is at most 2 (nearly flat with
-/// well-spaced vertices, what Delaunay refinement alone leaves).
+/// §3.4; 1/(6√2) ≈ 0.118 regular), and slivers counted as the thesis defines them (§3.3.3, Rule 4 of
+/// §3.4): tetrahedra whose sliverity in the metric of one of their vertices is below σ₀.
 
 #include "laguerre/core/meshing/Medit.hpp"
 #include "laguerre/core/meshing/Metric.hpp"
@@ -51,14 +50,19 @@ struct MeshQuality {
   QualitySummary distortion;             ///< of elements[i].distortion
   QualitySummary edge_length;            ///< of edge_lengths
   QualitySummary sliverity;              ///< 3D: of elements[i].sliverity
-  std::size_t slivers = 0;               ///< 3D: slivers (see the file comment)
+  std::size_t slivers = 0;               ///< 3D: tetrahedra of sliverity below sliver_bound
+  double sliver_bound = 0;               ///< 3D: the σ₀ slivers were counted with
 };
 
 /// Measures `mesh` with one metric per vertex.
 MeshQuality measure_quality(const TriangleMesh& mesh, const std::vector<Metric>& metrics);
 
-/// Measures a tetrahedral mesh with one metric per vertex (see the file comment).
-MeshQuality measure_quality(const TetMesh& mesh, const std::vector<Metric3>& metrics);
+/// σ₀, the sliverity below which a tetrahedron is a sliver (the 3D star mesher's default bound).
+inline constexpr double kSliverBound = 0.02;
+
+/// Measures a tetrahedral mesh with one metric per vertex (see the file comment); slivers are the
+/// tetrahedra of sliverity below `sliver_bound` in one of their vertices' metrics.
+MeshQuality measure_quality(const TetMesh& mesh, const std::vector<Metric3>& metrics, double sliver_bound = kSliverBound);
 
 /// Summarises `values` with `bins` equal bins over [lo, hi] (values outside go to the end bins).
 QualitySummary summarize(std::vector<double> values, double lo, double hi, std::size_t bins);

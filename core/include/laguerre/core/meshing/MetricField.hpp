@@ -26,8 +26,10 @@
 ///                                     with h as in 2D, HMAX along it (defaults 0.02, 0.2, 0.05, 0.5)
 ///   sphere[:HMIN:HMAX:WIDTH:R:CX:CY:CZ]  a shock layer around the sphere of centre C and radius R: size
 ///                                     h(|‖p − C‖ − R|) along the radius, HMAX tangentially, i.e.
-///                                     M = I/HMAX² + (1/h² − 1/HMAX²)·nnᵀ with n the unit radial direction
-///                                     (M = I/HMAX² at C itself) (defaults 0.02, 0.2, 0.05, 0.3, 0.5, 0.5, 0.5)
+///                                     M = I/HMAX² + (1/h² − 1/HMAX²)·nnᵀ with n the unit radial direction,
+///                                     the anisotropy fading as (‖p − C‖/min(R, WIDTH))² near C so that
+///                                     M is continuous (M = I/HMAX² at C; WIDTH alone when R = 0)
+///                                     (defaults 0.02, 0.2, 0.05, 0.3, 0.5, 0.5, 0.5)
 ///   expr:xx=EXPR;xy=EXPR;xz=EXPR;yy=EXPR;yz=EXPR;zz=EXPR   the six entries as expressions of x, y, z
 ///   mesh:FILE.mesh[:FILE.sol]         per-vertex metrics (6 entries, or a size) on a background
 ///                                     tetrahedral mesh, interpolated linearly inside each tetrahedron

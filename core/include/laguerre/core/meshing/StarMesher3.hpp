@@ -36,10 +36,14 @@
 ///      thesis's cosphericity rule: by its Lemma 3.3.3 such a tetrahedron is part of a
 ///      γ₀-cospherical configuration), or a tetrahedron at the gap of a star whose link is not closed.
 /// Rules 2–6 refine τ ∈ S_v by a point picked in its picking region, the M_v-ball of radius δ·R around
-/// its M_v-circumcentre; for rules 5 and 6 up to `picking_tries` picks are drawn and the first one
-/// whose own star (for its metric, among the current sites) has no sliver is taken, else the pick
-/// whose worst sliverity is largest (the thesis's Pick_valid_for_sliver, and our stand-in for its
-/// Pick_valid against cospherical configurations). Insert or snap: a pick that encroaches a
+/// its M_v-circumcentre: up to `picking_tries` picks are drawn and the first that creates no
+/// inconsistency is taken (for rule 5 also no sliver), else the one creating the fewest (the thesis's
+/// Pick_valid and Pick_valid_for_sliver). A pick p creates an inconsistency when a tetrahedron of its
+/// own star (in M_p, among the current sites) has a site strictly inside its circumsphere in the metric
+/// of another of its vertices, or when p is strictly inside the M_w-circumsphere of a tetrahedron of S_w
+/// but not inside its M_u-circumsphere for another vertex u whose star holds it: both are the
+/// γ₀-cospherical configurations of p with four sites that §3.3.2 forbids, decided with the exact metric
+/// in-sphere predicate. Insert or snap: a pick that encroaches a
 /// constraint edge splits it; one inside the equatorial ball of a boundary facet of a star whose
 /// conflict zone holds it refines that facet; one outside Ω refines the boundary facet crossed on
 /// the way from the tetrahedron's centroid (or the nearest one).
@@ -48,20 +52,24 @@
 /// checked with check_tetrahedralization before the result is called converged.
 ///
 /// Honest gaps: boundary points are midpoints and in-plane circumcentres, not random points of the
-/// restricted picking regions of §3.3.3 (off-centre points on a crease cascaded in a first version);
-/// Pick_valid's test of γ₀-cospherical configurations is replaced by the sliver test above; stars are
-/// M_v-Delaunay exactly (LocalDelaunay3.hpp: exact metric predicates on the input points); points on a
-/// face that is not axis-aligned are rounded off its plane (the bundled domains are axis-aligned, where
-/// midpoints and in-plane circumcentres keep the constant coordinate exactly). Termination is the
-/// thesis's theorem only under its hypotheses (dihedral input angles of at least 90° in the metric,
-/// small δ and σ₀, γ₀ close to 1); otherwise `max_vertices` turns a cascade into a status.
-/// Measured (tools/bench/mesh3.sh, README core/meshing): the bundled cube and box with a hole converge
-/// under `uniform` and `shock` fields; under the `sphere` field (non-diagonal metrics) the exact stars
-/// no longer hang, but inconsistencies still cascade (box with a hole: not converged at 4000 vertices,
-/// ~75% of insertions by the inconsistency rule, for γ₀ = 1.5, 2 and 2.5; cause not found).
+/// restricted picking regions of §3.3.3 (random points in the facet's disc, tried with the same
+/// validity test, made the face cascade below worse); stars are M_v-Delaunay exactly
+/// (LocalDelaunay3.hpp: exact metric predicates on the input points); points on a face that is not
+/// axis-aligned are rounded off its plane (the bundled domains are axis-aligned, where midpoints and
+/// in-plane circumcentres keep the constant coordinate exactly). Termination is the thesis's theorem
+/// only under its hypotheses (dihedral input angles of at least 90° in the metric, small δ and σ₀, γ₀
+/// close to 1); otherwise `max_vertices` turns a cascade into a status.
+/// Measured (tools/bench/mesh3.sh, README core/meshing): the inconsistencies that cascaded were not
+/// rare near-cospherical configurations but 10–40% of all star tetrahedra, between vertices whose
+/// metrics differ by γ = 1.2–1.5, and the old picks (a sliver test only) created as many as they
+/// removed; with the validity test the smoothly graded `expr` field converges (cube: 2 506 vertices at
+/// γ₀ = 1.5, where it had not at 10 000). Sphere shock layers whose anisotropy reaches the cube's
+/// faces still cascade, on the faces (edges of 10⁻³ in the metric between face points), at every γ₀
+/// tried; a layer inside the cube converges (tests/core/meshing/star_mesher3_test.cpp).
 
 #include "laguerre/core/meshing/Domain3.hpp"
 #include "laguerre/core/meshing/Medit.hpp"
+#include "laguerre/core/meshing/MeshQuality.hpp"
 #include "laguerre/core/meshing/MetricField.hpp"
 
 #include <cstddef>
@@ -77,7 +85,7 @@ struct StarMesh3Options {
   double size_bound = 1.0;          ///< largest M_v-circumradius of a tetrahedron
   double radius_edge_bound = 2.0;   ///< ρ₀ (a regular tetrahedron has √6/4 ≈ 0.61)
   double distortion_bound = 1.5;    ///< γ₀
-  double sliver_bound = 0.02;       ///< σ₀: smallest volume / shortest-edge³ (regular: 1/(6√2) ≈ 0.118)
+  double sliver_bound = kSliverBound;  ///< σ₀: smallest volume / shortest-edge³ (regular: 1/(6√2) ≈ 0.118)
   double picking_ratio = 0.1;       ///< δ
   int picking_tries = 8;            ///< picks drawn for rules 5–6 before settling for the best
   std::size_t max_vertices = 200000;  ///< stop (not converged) beyond this many sites
@@ -112,6 +120,11 @@ struct StarMesh3Result {
 /// Meshes `domain` for `field` by 3D star refinement. Deterministic for a given seed.
 StarMesh3Result mesh_with_stars(const PolyhedralDomain& domain, const MetricField3& field,
                                 const StarMesh3Options& options = {});
+
+/// Replaces `mesh.triangles` by the facets that are in exactly one tetrahedron, each oriented with its
+/// tetrahedron on the inner side (exact orientation), in sorted order, reference 1: the boundary of the
+/// union of the tetrahedra (what the mesher's merge and `mesh-quality` of another mesher's output use).
+void set_boundary_from_tetrahedra(TetMesh& mesh);
 
 /// Checks that `mesh` is a tetrahedralization of `domain` with boundary `mesh.triangles`: every
 /// tetrahedron positively oriented (exact), every facet in one or two tetrahedra, two tetrahedra at a
