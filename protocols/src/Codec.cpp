@@ -48,8 +48,12 @@ bool zero_bits(double v) { return std::bit_cast<std::uint64_t>(v) == 0; }
 bool finite(double a, double b) { return std::isfinite(a) && std::isfinite(b); }
 
 template <class Ar, Is<FaceCircle> M> void fields(Ar& ar, M& c) { ar(c.x, c.y, c.r); }
-template <class Ar, Is<DepthMsg> M> void fields(Ar& ar, M& m) { ar(m.pulse, m.final); }
-template <class Ar, Is<ElectionMsg> M> void fields(Ar& ar, M& m) { ar(m.depth, m.id); }
+template <class Ar, Is<DepthMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.pulse, m.final, m.parent).require(m.final || m.parent == 0);
+}
+template <class Ar, Is<ElectionMsg> M> void fields(Ar& ar, M& m) {
+  ar(code(m.stage, ElectionStage::report, ElectionStage::root), m.depth, m.id);
+}
 template <class Ar, Is<StartMsg> M> void fields(Ar& ar, M& m) { ar(m.root, m.first).require(m.root != m.first); }
 template <class Ar, Is<WaveMsg> M> void fields(Ar& ar, M& m) { ar(m.seq, m.wave, m.parent).require(m.seq >= 1); }
 template <class Ar, Is<RadiusMsg> M> void fields(Ar& ar, M& m) { ar(m.step, m.h).require(positive(m.h)); }

@@ -154,10 +154,13 @@ bool PackingAgent::better(std::uint32_t d1, NodeId id1, std::uint32_t d2, NodeId
 void PackingAgent::start() {
   if (phase_ != PackingPhase::idle) return;
   phase_ = PackingPhase::depth;
-  if (boundary_) depth_ = 0;
-  broadcast(DepthMsg{0, boundary_});
+  if (boundary_) {
+    depth_ = 0;
+    bfs_parent_ = deg_;
+  }
+  broadcast(DepthMsg{0, boundary_, boundary_ ? id_ : 0});
   advance_depth();
-  maybe_candidate();
+  advance_key();
 }
 
 void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
@@ -174,25 +177,21 @@ void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
 
 // ---- Depth: pulse-synchronized BFS from the boundary (over K) -----------------------------------
 
-bool PackingAgent::record_pulse(std::uint32_t& value, std::uint32_t& seen, std::size_t& known, std::uint32_t pulse,
-                                bool final) {
-  if (!final) {
-    seen = std::max(seen, pulse + 1);
-    return true;
-  }
-  if (value != unknown) return false;  // a neighbour's final pulse comes once
-  value = pulse;
-  ++known;
-  return true;
-}
-
 void PackingAgent::handle(std::size_t i, const DepthMsg& m) {
-  if (!record_pulse(peers_[i].depth, peers_[i].depth_seen, nbr_depths_known_, m.pulse, m.final)) {
+  // Neighbour status at a pulse: `final` fixes its depth (once), otherwise it has passed the pulse.
+  Peer& p = peers_[i];
+  if (!m.final) {
+    p.depth_seen = std::max(p.depth_seen, m.pulse + 1);
+  } else if (p.depth != unknown) {
     ++counters().unexpected;
     return;
+  } else {
+    p.depth = m.pulse;
+    ++nbr_depths_known_;
+    if (m.parent == id_) p.bfs |= 1;  // a child in the BFS forest
   }
   advance_depth();
-  maybe_candidate();
+  advance_key();
   if (nbr_depths_known_ == deg_) {
     advance_wave();
     release_wave();
@@ -202,90 +201,109 @@ void PackingAgent::handle(std::size_t i, const DepthMsg& m) {
 void PackingAgent::advance_depth() {
   // Status of neighbour i at pulse p is known if its final depth is known or it said "unknown" at
   // some pulse ≥ p. In a synchronous BFS the first pulse at which a neighbour's depth is known is that
-  // depth, so v's depth is 1 + the first pulse p at which some neighbour has depth ≤ p.
+  // depth, so v's depth is 1 + the first pulse p at which some neighbour has depth ≤ p; the first
+  // such neighbour is its BFS parent.
   while (depth_ == unknown) {
     const std::uint32_t p = depth_pulse_;
-    bool found = false;
+    std::size_t parent = deg_;
     for (std::size_t i = 0; i < deg_; ++i) {
       if (peers_[i].depth == unknown && peers_[i].depth_seen <= p) return;
-      found = found || peers_[i].depth <= p;
+      if (parent == deg_ && peers_[i].depth <= p) parent = i;
     }
     ++depth_pulse_;
-    if (found) depth_ = depth_pulse_;
-    broadcast(DepthMsg{depth_pulse_, found});
+    if (parent != deg_) {
+      depth_ = depth_pulse_;
+      bfs_parent_ = static_cast<std::uint32_t>(parent);
+    }
+    broadcast(DepthMsg{depth_pulse_, parent != deg_, parent != deg_ ? peers_[parent].id : 0});
   }
 }
 
-// ---- Election: echo with extinction over (depth, id), original vertices only -----------------------
+// ---- Election: the best key up the BFS forest, round the boundary ring, down to the root --------------
+//
+// core::choose_root takes the interior vertex of G with the best key (depth, id) (RootRule). Once a
+// vertex knows every neighbour's depth (hence its BFS children: the neighbours whose final DepthMsg
+// named it) and has every child's report, it reports the best key of its subtree (its own included
+// if it is an interior vertex of G) to its BFS parent. A boundary vertex, a BFS root, then offers its
+// subtree's best key round the boundary ring (to the neighbour after its outer wedge, so every key
+// travels the outer face's way round): a key goes on only while it beats every key the vertex has
+// offered or forwarded (Chang–Roberts on the maximum), so the best key of all, which beats every
+// other, goes round and comes back to the boundary vertex that offered it, while every other key dies
+// at that vertex at the latest. That vertex sends the key down its subtree, each vertex to the child
+// that reported it, to the vertex whose key it is: the root. Every vertex learns its depths before it
+// reports, so the result is core's whatever the delays; messages: one report per vertex, the ring
+// (at most b² for b boundary vertices, O(b log b) for random keys) and one path of the root's depth.
 
-void PackingAgent::maybe_candidate() {
-  if (candidate_checked_ || wave_started_ || depth_ == unknown || nbr_depths_known_ < deg_) return;
-  candidate_checked_ = true;
+void PackingAgent::advance_key() {
+  if (key_reported_ || depth_ == unknown || nbr_depths_known_ < deg_) return;
+  std::uint32_t children = 0, reports = 0;
+  for (std::size_t i = 0; i < deg_; ++i) {
+    children += peers_[i].bfs & 1;
+    reports += peers_[i].bfs >> 1;
+  }
+  if (reports < children) return;
+  if (reports != children) ++counters().unexpected;  // a report from a vertex that is no child
+  key_reported_ = true;
   if (phase_ == PackingPhase::depth) phase_ = PackingPhase::election;
-  start_own_wave();
-  maybe_echo();  // an echo held back until this decision (see maybe_echo) may go now
+  if (!boundary_ && !is_face_) {  // core::choose_root ranges over the vertices of G
+    const std::uint32_t key = params_.root == core::RootRule::deepest ? depth_ : 0;
+    if (better_key(key, id_)) {
+      best_depth_ = key;
+      best_id_ = id_;
+      best_child_ = deg_;
+    }
+  }
+  if (!boundary_) {
+    send(bfs_parent_, ElectionMsg{ElectionStage::report, best_depth_, best_id_});
+    return;
+  }
+  // A held ring key that beats the subtree's goes on instead of it.
+  if (held_id_ != no_key && better_key(held_depth_, held_id_)) offer_ring(held_depth_, held_id_);
+  else if (best_id_ != no_key) offer_ring(best_depth_, best_id_);
 }
 
-void PackingAgent::start_own_wave() {
-  // core::choose_root ranges over the vertices of G: face vertices only relay the election.
-  if (boundary_ || is_face_) return;
-  const bool deepest = params_.root == core::RootRule::deepest;
-  const std::uint32_t key = deepest ? depth_ : 0;
-  // Only local maxima among interior G-neighbours start a wave: the global maximum is one.
-  for (std::size_t i = 0; i < deg_; ++i)
-    if (interior_nbr(i) && !peers_[i].face && !better(key, id_, deepest ? peers_[i].depth : 0, peers_[i].id))
-      return;
-  if (in_wave_ && !better(key, id_, best_depth_, best_id_)) return;
-  in_wave_ = true;
-  best_depth_ = key;
-  best_id_ = id_;
-  echo_parent_ = deg_;
-  echo_count_ = 0;
-  echoed_ = false;
-  broadcast(ElectionMsg{key, id_});
+void PackingAgent::offer_ring(std::uint32_t depth, NodeId id) {
+  if (ring_id_ != no_key && !better(depth, id, ring_depth_, ring_id_)) return;
+  ring_depth_ = depth;
+  ring_id_ = id;
+  send(outer_gap_, ElectionMsg{ElectionStage::ring, depth, id});
 }
 
 void PackingAgent::handle(std::size_t i, const ElectionMsg& m) {
-  if (wave_started_) return;  // a late token of an extinguished wave
-  // A token weaker than this vertex's own key cannot win: this vertex, or an interior G-vertex with a
-  // still stronger key reached by climbing (a local maximum), is a candidate that beats it. So it
-  // dies here, as soon as it meets a better key, not only a better wave.
-  if (!boundary_ && !is_face_ && (depth_ != unknown || params_.root != core::RootRule::deepest) &&
-      better(params_.root == core::RootRule::deepest ? depth_ : 0, id_, m.depth, m.id))
-    return;
-  if (!in_wave_ || better(m.depth, m.id, best_depth_, best_id_)) {
-    in_wave_ = true;
-    best_depth_ = m.depth;
-    best_id_ = m.id;
-    echo_parent_ = i;
-    echo_count_ = 1;
-    echoed_ = false;
-    encode(m, buffer());
-    for (std::size_t j = 0; j < deg_; ++j)
-      if (j != i) send_encoded(j);
-  } else if (m.depth == best_depth_ && m.id == best_id_) {
-    ++echo_count_;
-  } else {
-    return;  // weaker wave: extinguished here
+  if (wave_started_) return;  // a late ring key, beaten by the root's
+  switch (m.stage) {
+    case ElectionStage::report:
+      if (key_reported_ || (peers_[i].bfs >> 1) != 0) break;
+      peers_[i].bfs |= 2;
+      if (better_key(m.depth, m.id)) {
+        best_depth_ = m.depth;
+        best_id_ = m.id;
+        best_child_ = i;
+      }
+      advance_key();
+      return;
+    case ElectionStage::ring:
+      if (!boundary_ || i != (outer_gap_ + 1) % deg_ || m.id == no_key) break;
+      if (key_reported_ && m.id == best_id_ && m.depth == best_depth_) {  // our key came back: the best
+        if (best_child_ != deg_) send(best_child_, ElectionMsg{ElectionStage::root, m.depth, m.id});
+        return;
+      }
+      if (!key_reported_) {  // held until the subtree's key is known
+        if (held_id_ == no_key || better(m.depth, m.id, held_depth_, held_id_)) {
+          held_depth_ = m.depth;
+          held_id_ = m.id;
+        }
+        return;
+      }
+      if (better_key(m.depth, m.id)) offer_ring(m.depth, m.id);
+      return;
+    case ElectionStage::root:
+      if (!key_reported_ || boundary_ || i != bfs_parent_ || m.id != best_id_ || m.depth != best_depth_) break;
+      if (best_child_ == deg_) start_layout_wave();
+      else send(best_child_, ElectionMsg{ElectionStage::root, m.depth, m.id});
+      return;
   }
-  if (echo_count_ > deg_) {
-    ++counters().unexpected;
-    return;
-  }
-  maybe_echo();
-}
-
-void PackingAgent::maybe_echo() {
-  // A vertex echoes a wave (or, as its initiator, wins) once every neighbour's token is in — and only
-  // once it has decided whether it is a candidate itself. Without that wait, a vertex whose depth is
-  // known late (long delays, retransmissions) could echo a weaker wave, let it complete and elect the
-  // wrong root before starting its own stronger wave. With it, no wave completes without the
-  // strongest candidate's echo, which that candidate never gives to a weaker wave: only the strongest
-  // wave completes, whatever the delays.
-  if (!candidate_checked_ || !in_wave_ || echoed_ || echo_count_ < deg_) return;
-  echoed_ = true;
-  if (echo_parent_ == deg_) start_layout_wave();
-  else send(echo_parent_, ElectionMsg{best_depth_, best_id_});
+  ++counters().unexpected;
 }
 
 // ---- Layout wave: the combinatorial layout wave on K, event-driven ------------------------------------

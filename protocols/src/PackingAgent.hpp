@@ -91,6 +91,7 @@ private:
     std::uint8_t face = 0;            // 1 if it is a face vertex
     std::uint8_t child = 0;           // 1 if it is a child in the layout tree
     std::uint8_t height_up = 0;       // 1 once its height report is in (radius-flood set-up)
+    std::uint8_t bfs = 0;             // BFS forest: bit 0 it is a child, bit 1 its key report is in
   };
   // What placing needs of an anchor (the first neighbour's parent, or anchor a / b) in a round.
   struct AnchorSlot {
@@ -140,13 +141,12 @@ private:
   void handle(std::size_t i, const GateRadiusMsg& m);
   void handle(std::size_t i, const HeightMsg& m);
 
-  // Neighbour status at a pulse (depth or wave): `final` fixes `value` to `pulse`, otherwise the
-  // neighbour has passed `pulse` (`seen`); false for a second final pulse.
-  static bool record_pulse(std::uint32_t& value, std::uint32_t& seen, std::size_t& known, std::uint32_t pulse, bool final);
   void advance_depth();
-  void maybe_candidate();
-  void start_own_wave();
-  void maybe_echo();
+  // Election (PackingAgent.cpp, "Election"): the subtree's best key up the BFS forest, the boundary's
+  // round the ring, the winner's down the forest.
+  void advance_key();
+  void offer_ring(std::uint32_t depth, NodeId id);  // a boundary vertex forwards a ring key if it is the best yet
+  bool better_key(std::uint32_t d1, NodeId id1) const { return better(d1, id1, best_depth_, best_id_); }
   // Layout wave (PackingAgent.cpp, "Layout wave"): the root starts it; a vertex joins it at its first
   // StartMsg / WaveMsg; advance_wave re-estimates its placement from its neighbours' estimates.
   void start_layout_wave();
@@ -207,14 +207,18 @@ private:
   std::uint32_t depth_pulse_ = 0;
   std::size_t nbr_depths_known_ = 0;
 
-  // Election.
-  bool candidate_checked_ = false;
-  bool in_wave_ = false;
-  bool echoed_ = false;  // the current wave's echo (or win) is done
+  // Election. The best key of the BFS subtree (own and reported; no_key until one is heard) and the
+  // child it came from (deg: this vertex); on the boundary, the best ring key forwarded (or sent) so
+  // far and the best one held until the subtree's key is known.
+  static constexpr NodeId no_key = ~NodeId{0};
+  std::uint32_t bfs_parent_ = unknown;  // K index (deg for a boundary vertex)
+  std::uint32_t bfs_reports_ = 0;
+  bool key_reported_ = false;
   std::uint32_t best_depth_ = 0;
-  NodeId best_id_ = 0;
-  std::size_t echo_parent_ = 0;
-  std::size_t echo_count_ = 0;
+  NodeId best_id_ = no_key;
+  std::size_t best_child_ = 0;
+  std::uint32_t ring_depth_ = 0, held_depth_ = 0;
+  NodeId ring_id_ = no_key, held_id_ = no_key;
 
   // Layout wave. Dijkstra–Scholten termination: `ds_parent_` is the K index of the neighbour whose
   // message engaged this vertex (deg for the root, the initiator; unknown while idle), `ds_deficit_`

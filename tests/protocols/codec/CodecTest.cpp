@@ -14,8 +14,9 @@ namespace {
 std::vector<Message> samples() {
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   return {DepthMsg{0, false},
-          DepthMsg{0xfffffffe, true},
-          ElectionMsg{7, 0xfedcba9876543210ull},
+          DepthMsg{0xfffffffe, true, 0xffffffffffffffffull},
+          ElectionMsg{ElectionStage::report, 7, 0xfedcba9876543210ull},
+          ElectionMsg{ElectionStage::root, 0xffffffff, 0},
           StartMsg{3, 0xffffffffffffffffull},
           WaveMsg{1, 0, 0},
           WaveMsg{0xffffffff, 12, 99},
@@ -126,6 +127,8 @@ TEST(Codec, RejectsOutOfRangeFields) {
     return b;
   };
   EXPECT_EQ(decode(with(DepthMsg{1, true}, 6, 2), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(encode(DepthMsg{1, false, 3}), out), DecodeStatus::out_of_range);  // parent without a depth
+  EXPECT_EQ(decode(with(ElectionMsg{ElectionStage::ring, 1, 3}, 2, 3), out), DecodeStatus::out_of_range);
   EXPECT_EQ(decode(encode(WaveMsg{0, 1, 3}), out), DecodeStatus::out_of_range);  // seq counts from 1
   EXPECT_EQ(decode(with(ReportMsg{1, true}, 6, 0xff), out), DecodeStatus::out_of_range);
   EXPECT_EQ(decode(with(DecisionMsg{1, Verdict::cap}, 6, 4), out), DecodeStatus::out_of_range);

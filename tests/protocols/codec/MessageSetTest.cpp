@@ -13,7 +13,7 @@ namespace {
 // One message of every type, in type-code order.
 std::vector<Message> one_of_each() {
   return {DepthMsg{3, true},
-          ElectionMsg{2, 9},
+          ElectionMsg{ElectionStage::ring, 2, 9},
           StartMsg{1, 2},
           WaveMsg{4, 2, 7},
           RadiusMsg{5, 0.5},

@@ -49,7 +49,7 @@ inline constexpr std::uint8_t wire_version = 3;
 /// Message types (byte 1 of every message).
 enum class MessageType : std::uint8_t {
   depth = 1,     ///< DepthMsg: a pulse of the breadth-first search from the boundary
-  election = 2,  ///< ElectionMsg: a token of the echo-with-extinction leader election
+  election = 2,  ///< ElectionMsg: the root election's best key (BFS forest, boundary ring, path down)
   start = 3,     ///< StartMsg: the elected root starts the layout wave (to its neighbours)
   wave = 4,      ///< WaveMsg: a placement estimate of the combinatorial layout wave (set-up)
   radius = 5,    ///< RadiusMsg: a Thurston-step radius exchange
@@ -77,18 +77,30 @@ inline constexpr std::uint8_t max_message_type = 21;
 /// Name of a message type ("depth", "election", …), "?" for values outside the enum.
 std::string_view to_string(MessageType t);
 
-/// Depth pulse p of the BFS from the boundary: `final` = 1 says "my depth is p" (and covers every
-/// later pulse); 0 says "my depth is greater than p". Fields: u32 pulse, u8 final ∈ {0, 1}.
+/// Depth pulse p of the BFS from the boundary: `final` = 1 says "my depth is p, my parent in the BFS
+/// forest is `parent`" (a boundary vertex names itself; it covers every later pulse); 0 says "my depth
+/// is greater than p" (`parent` then 0). Fields: u32 pulse, u8 final ∈ {0, 1}, u64 parent.
 struct DepthMsg {
-  std::uint32_t pulse = 0;  ///< pulse number
-  bool final = false;       ///< whether the sender's depth equals `pulse`
+  std::uint32_t pulse = 0;   ///< pulse number
+  bool final = false;        ///< whether the sender's depth equals `pulse`
+  std::uint64_t parent = 0;  ///< the sender's BFS parent (when final)
   friend bool operator==(const DepthMsg&, const DepthMsg&) = default;
 };
 
-/// Election token carrying a candidate's key (depth, id). Fields: u32 depth, u64 id.
+/// The three legs of the root election (docs/protocol.md, "Set-up").
+enum class ElectionStage : std::uint8_t {
+  report = 0,  ///< up the BFS forest: the best key of the sender's subtree
+  ring = 1,    ///< round the boundary ring: a boundary vertex's best key, forwarded while it is the best seen
+  root = 2,    ///< down the BFS forest, towards the vertex whose key it is (the root)
+};
+
+/// A key (depth, id) of the root election: larger depth wins, then smaller id (RootRule::deepest;
+/// depth 0 for every key under RootRule::smallest_id); (0, 2^64 − 1) is "no key" (a subtree without
+/// an interior vertex of G). Fields: u8 stage ∈ {0, 1, 2}, u32 depth, u64 id.
 struct ElectionMsg {
-  std::uint32_t depth = 0;  ///< candidate's depth from the boundary (0 under RootRule::smallest_id)
-  std::uint64_t id = 0;     ///< candidate's id
+  ElectionStage stage = ElectionStage::report;  ///< which leg it travels
+  std::uint32_t depth = 0;  ///< the key's depth from the boundary (0 under RootRule::smallest_id)
+  std::uint64_t id = 0;     ///< the key's vertex id
   friend bool operator==(const ElectionMsg&, const ElectionMsg&) = default;
 };
 
