@@ -225,7 +225,7 @@ void PackingAgent::advance_depth() {
 // vertex knows every neighbour's depth (hence its BFS children: the neighbours whose final DepthMsg
 // named it) and has every child's report, it reports the best key of its subtree (its own included
 // if it is an interior vertex of G) to its BFS parent. A boundary vertex, a BFS root, then offers its
-// subtree's best key round the boundary ring (to the neighbour after its outer wedge, so every key
+// subtree's best key round the boundary ring (to the neighbour that opens its outer wedge, so every key
 // travels the outer face's way round): a key goes on only while it beats every key the vertex has
 // offered or forwarded (Chang–Roberts on the maximum), so the best key of all, which beats every
 // other, goes round and comes back to the boundary vertex that offered it, while every other key dies

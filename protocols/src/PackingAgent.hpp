@@ -212,7 +212,6 @@ private:
   // far and the best one held until the subtree's key is known.
   static constexpr NodeId no_key = ~NodeId{0};
   std::uint32_t bfs_parent_ = unknown;  // K index (deg for a boundary vertex)
-  std::uint32_t bfs_reports_ = 0;
   bool key_reported_ = false;
   std::uint32_t best_depth_ = 0;
   NodeId best_id_ = no_key;
