@@ -48,12 +48,14 @@ bool zero_bits(double v) { return std::bit_cast<std::uint64_t>(v) == 0; }
 bool finite(double a, double b) { return std::isfinite(a) && std::isfinite(b); }
 
 template <class Ar, Is<FaceCircle> M> void fields(Ar& ar, M& c) { ar(c.x, c.y, c.r); }
-template <class Ar, Is<DepthMsg> M> void fields(Ar& ar, M& m) { ar(m.pulse, m.final); }
-template <class Ar, Is<ElectionMsg> M> void fields(Ar& ar, M& m) { ar(m.depth, m.id); }
-template <class Ar, Is<StartMsg> M> void fields(Ar& ar, M& m) { ar(m.root, m.first).require(m.root != m.first); }
-template <class Ar, Is<WaveMsg> M> void fields(Ar& ar, M& m) {
-  ar(m.pulse, m.placed, m.parent).require(m.placed || m.parent == 0);
+template <class Ar, Is<DepthMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.pulse, m.final, m.parent).require(m.final || m.parent == 0);
 }
+template <class Ar, Is<ElectionMsg> M> void fields(Ar& ar, M& m) {
+  ar(code(m.stage, ElectionStage::report, ElectionStage::root), m.depth, m.id);
+}
+template <class Ar, Is<StartMsg> M> void fields(Ar& ar, M& m) { ar(m.root, m.first).require(m.root != m.first); }
+template <class Ar, Is<WaveMsg> M> void fields(Ar& ar, M& m) { ar(m.seq, m.wave, m.parent).require(m.seq >= 1); }
 template <class Ar, Is<RadiusMsg> M> void fields(Ar& ar, M& m) { ar(m.step, m.h).require(positive(m.h)); }
 template <class Ar, Is<PlacedMsg> M> void fields(Ar& ar, M& m) {
   ar(m.round, m.h, m.centre_re, m.centre_im, m.cx, m.cy, m.cr).require(positive(m.h));
@@ -62,7 +64,8 @@ template <class Ar, Is<ReportMsg> M> void fields(Ar& ar, M& m) { ar(m.round, m.o
 template <class Ar, Is<DecisionMsg> M> void fields(Ar& ar, M& m) {
   ar(m.round, code(m.verdict, Verdict::next, Verdict::layout));
 }
-template <class Ar, Is<ShapeMsg> M> void fields(Ar& ar, M& m) { ar(m.down, m.polygon, m.height); }
+template <class Ar, Is<ShapeMsg> M> void fields(Ar& ar, M& m) { ar(m.down, m.polygon); }
+template <class Ar, Is<HeightMsg> M> void fields(Ar& ar, M& m) { ar(m.down, m.height); }
 template <class Ar, Is<FaceCirclesMsg> M> void fields(Ar& ar, M& m) {
   ar(m.round, counted(m.circles, 3, max_face_circles));
 }
@@ -303,7 +306,7 @@ void place(std::variant<A...>& out, T&& m) {
   place(out.template emplace<k>(), std::move(m));
 }
 
-// Calls f.template operator()<T>() for the message struct T whose type code is `code` (1 … 19).
+// Calls f.template operator()<T>() for the message struct T whose type code is `code` (1 … max_message_type).
 template <class F>
 void with_message_type(std::uint8_t code, F&& f) {
   [&]<std::size_t... I>(std::index_sequence<I...>) {
@@ -345,7 +348,7 @@ std::string_view to_string(MessageType t) {
   static constexpr std::string_view names[] = {"?",      "depth",        "election", "start", "wave",  "radius",
                                                "placed", "report",       "decision", "shape", "face_circles",
                                                "relay",  "data",         "frame",    "ack",   "failure", "route",
-                                               "krylov_value", "krylov_sum", "krylov_decision", "gate_radius"};
+                                               "krylov_value", "krylov_sum", "krylov_decision", "gate_radius", "height"};
   static_assert(std::size(names) == max_message_type + 1);
   const auto code = static_cast<std::size_t>(t);
   return code <= max_message_type ? names[code] : names[0];
@@ -436,6 +439,7 @@ template void encode(const KrylovValueMsg&, std::vector<std::byte>&);
 template void encode(const KrylovSumMsg&, std::vector<std::byte>&);
 template void encode(const KrylovDecisionMsg&, std::vector<std::byte>&);
 template void encode(const GateRadiusMsg&, std::vector<std::byte>&);
+template void encode(const HeightMsg&, std::vector<std::byte>&);
 
 void encode(const RelayView& m, std::vector<std::byte>& out) { encode_as(code_of<RelayMsg>(), m, out); }
 

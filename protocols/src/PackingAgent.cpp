@@ -154,10 +154,13 @@ bool PackingAgent::better(std::uint32_t d1, NodeId id1, std::uint32_t d2, NodeId
 void PackingAgent::start() {
   if (phase_ != PackingPhase::idle) return;
   phase_ = PackingPhase::depth;
-  if (boundary_) depth_ = 0;
-  broadcast(DepthMsg{0, boundary_});
+  if (boundary_) {
+    depth_ = 0;
+    bfs_parent_ = deg_;
+  }
+  broadcast(DepthMsg{0, boundary_, boundary_ ? id_ : 0});
   advance_depth();
-  maybe_candidate();
+  advance_key();
 }
 
 void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
@@ -174,252 +177,339 @@ void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
 
 // ---- Depth: pulse-synchronized BFS from the boundary (over K) -----------------------------------
 
-bool PackingAgent::record_pulse(std::uint32_t& value, std::uint32_t& seen, std::size_t& known, std::uint32_t pulse,
-                                bool final) {
-  if (!final) {
-    seen = std::max(seen, pulse + 1);
-    return true;
-  }
-  if (value != unknown) return false;  // a neighbour's final pulse comes once
-  value = pulse;
-  ++known;
-  return true;
-}
-
 void PackingAgent::handle(std::size_t i, const DepthMsg& m) {
-  if (!record_pulse(peers_[i].depth, peers_[i].depth_seen, nbr_depths_known_, m.pulse, m.final)) {
+  // Neighbour status at a pulse: `final` fixes its depth (once), otherwise it has passed the pulse.
+  Peer& p = peers_[i];
+  if (!m.final) {
+    p.depth_seen = std::max(p.depth_seen, m.pulse + 1);
+  } else if (p.depth != unknown) {
     ++counters().unexpected;
     return;
+  } else {
+    p.depth = m.pulse;
+    ++nbr_depths_known_;
+    if (m.parent == id_) p.bfs |= 1;  // a child in the BFS forest
   }
   advance_depth();
-  maybe_candidate();
+  advance_key();
   if (nbr_depths_known_ == deg_) {
     advance_wave();
-    maybe_finish_setup();
+    release_wave();
   }
 }
 
 void PackingAgent::advance_depth() {
   // Status of neighbour i at pulse p is known if its final depth is known or it said "unknown" at
   // some pulse ≥ p. In a synchronous BFS the first pulse at which a neighbour's depth is known is that
-  // depth, so v's depth is 1 + the first pulse p at which some neighbour has depth ≤ p.
+  // depth, so v's depth is 1 + the first pulse p at which some neighbour has depth ≤ p; the first
+  // such neighbour is its BFS parent.
   while (depth_ == unknown) {
     const std::uint32_t p = depth_pulse_;
-    bool found = false;
+    std::size_t parent = deg_;
     for (std::size_t i = 0; i < deg_; ++i) {
       if (peers_[i].depth == unknown && peers_[i].depth_seen <= p) return;
-      found = found || peers_[i].depth <= p;
+      if (parent == deg_ && peers_[i].depth <= p) parent = i;
     }
     ++depth_pulse_;
-    if (found) depth_ = depth_pulse_;
-    broadcast(DepthMsg{depth_pulse_, found});
+    if (parent != deg_) {
+      depth_ = depth_pulse_;
+      bfs_parent_ = static_cast<std::uint32_t>(parent);
+    }
+    broadcast(DepthMsg{depth_pulse_, parent != deg_, parent != deg_ ? peers_[parent].id : 0});
   }
 }
 
-// ---- Election: echo with extinction over (depth, id), original vertices only -----------------------
+// ---- Election: the best key up the BFS forest, round the boundary ring, down to the root --------------
+//
+// core::choose_root takes the interior vertex of G with the best key (depth, id) (RootRule). Once a
+// vertex knows every neighbour's depth (hence its BFS children: the neighbours whose final DepthMsg
+// named it) and has every child's report, it reports the best key of its subtree (its own included
+// if it is an interior vertex of G) to its BFS parent. A boundary vertex, a BFS root, then offers its
+// subtree's best key round the boundary ring (to the neighbour that opens its outer wedge, so every key
+// travels the outer face's way round): a key goes on only while it beats every key the vertex has
+// offered or forwarded (Chang–Roberts on the maximum), so the best key of all, which beats every
+// other, goes round and comes back to the boundary vertex that offered it, while every other key dies
+// at that vertex at the latest. That vertex sends the key down its subtree, each vertex to the child
+// that reported it, to the vertex whose key it is: the root. Every vertex learns its depths before it
+// reports, so the result is core's whatever the delays; messages: one report per vertex, the ring
+// (at most b² for b boundary vertices, O(b log b) for random keys) and one path of the root's depth.
 
-void PackingAgent::maybe_candidate() {
-  if (candidate_checked_ || wave_started_ || depth_ == unknown || nbr_depths_known_ < deg_) return;
-  candidate_checked_ = true;
+void PackingAgent::advance_key() {
+  if (key_reported_ || depth_ == unknown || nbr_depths_known_ < deg_) return;
+  std::uint32_t children = 0, reports = 0;
+  for (std::size_t i = 0; i < deg_; ++i) {
+    children += peers_[i].bfs & 1;
+    reports += peers_[i].bfs >> 1;
+  }
+  if (reports < children) return;
+  if (reports != children) ++counters().unexpected;  // a report from a vertex that is no child
+  key_reported_ = true;
   if (phase_ == PackingPhase::depth) phase_ = PackingPhase::election;
-  start_own_wave();
-  maybe_echo();  // an echo held back until this decision (see maybe_echo) may go now
+  if (!boundary_ && !is_face_) {  // core::choose_root ranges over the vertices of G
+    const std::uint32_t key = params_.root == core::RootRule::deepest ? depth_ : 0;
+    if (better_key(key, id_)) {
+      best_depth_ = key;
+      best_id_ = id_;
+      best_child_ = deg_;
+    }
+  }
+  if (!boundary_) {
+    send(bfs_parent_, ElectionMsg{ElectionStage::report, best_depth_, best_id_});
+    return;
+  }
+  // A held ring key that beats the subtree's goes on instead of it.
+  if (held_id_ != no_key && better_key(held_depth_, held_id_)) offer_ring(held_depth_, held_id_);
+  else if (best_id_ != no_key) offer_ring(best_depth_, best_id_);
 }
 
-void PackingAgent::start_own_wave() {
-  // core::choose_root ranges over the vertices of G: face vertices only relay the election.
-  if (boundary_ || is_face_) return;
-  const bool deepest = params_.root == core::RootRule::deepest;
-  const std::uint32_t key = deepest ? depth_ : 0;
-  // Only local maxima among interior G-neighbours start a wave: the global maximum is one.
-  for (std::size_t i = 0; i < deg_; ++i)
-    if (interior_nbr(i) && !peers_[i].face && !better(key, id_, deepest ? peers_[i].depth : 0, peers_[i].id))
-      return;
-  if (in_wave_ && !better(key, id_, best_depth_, best_id_)) return;
-  in_wave_ = true;
-  best_depth_ = key;
-  best_id_ = id_;
-  echo_parent_ = deg_;
-  echo_count_ = 0;
-  echoed_ = false;
-  broadcast(ElectionMsg{key, id_});
+void PackingAgent::offer_ring(std::uint32_t depth, NodeId id) {
+  if (ring_id_ != no_key && !better(depth, id, ring_depth_, ring_id_)) return;
+  ring_depth_ = depth;
+  ring_id_ = id;
+  send(outer_gap_, ElectionMsg{ElectionStage::ring, depth, id});
 }
 
 void PackingAgent::handle(std::size_t i, const ElectionMsg& m) {
-  if (wave_started_) return;  // a late token of an extinguished wave
-  if (!in_wave_ || better(m.depth, m.id, best_depth_, best_id_)) {
-    in_wave_ = true;
-    best_depth_ = m.depth;
-    best_id_ = m.id;
-    echo_parent_ = i;
-    echo_count_ = 1;
-    echoed_ = false;
-    encode(m, buffer());
-    for (std::size_t j = 0; j < deg_; ++j)
-      if (j != i) send_encoded(j);
-  } else if (m.depth == best_depth_ && m.id == best_id_) {
-    ++echo_count_;
-  } else {
-    return;  // weaker wave: extinguished here
+  if (wave_started_) return;  // a late ring key, beaten by the root's
+  switch (m.stage) {
+    case ElectionStage::report:
+      if (key_reported_ || (peers_[i].bfs >> 1) != 0) break;
+      peers_[i].bfs |= 2;
+      if (better_key(m.depth, m.id)) {
+        best_depth_ = m.depth;
+        best_id_ = m.id;
+        best_child_ = i;
+      }
+      advance_key();
+      return;
+    case ElectionStage::ring:
+      if (!boundary_ || i != (outer_gap_ + 1) % deg_ || m.id == no_key) break;
+      if (key_reported_ && m.id == best_id_ && m.depth == best_depth_) {  // our key came back: the best
+        if (best_child_ != deg_) send(best_child_, ElectionMsg{ElectionStage::root, m.depth, m.id});
+        return;
+      }
+      if (!key_reported_) {  // held until the subtree's key is known
+        if (held_id_ == no_key || better(m.depth, m.id, held_depth_, held_id_)) {
+          held_depth_ = m.depth;
+          held_id_ = m.id;
+        }
+        return;
+      }
+      if (better_key(m.depth, m.id)) offer_ring(m.depth, m.id);
+      return;
+    case ElectionStage::root:
+      if (!key_reported_ || boundary_ || i != bfs_parent_ || m.id != best_id_ || m.depth != best_depth_) break;
+      if (best_child_ == deg_) start_layout_wave();
+      else send(best_child_, ElectionMsg{ElectionStage::root, m.depth, m.id});
+      return;
   }
-  if (echo_count_ > deg_) {
+  ++counters().unexpected;
+}
+
+// ---- Layout wave: the combinatorial layout wave on K, event-driven ------------------------------------
+//
+// core::lay_out places the root and its first neighbour at wave 0 and a vertex at wave p + 1 when some
+// inner-face wedge has both ends placed by wave p, taking the wedge choose_placement_wedge picks among
+// those: wave(v) = 1 + min over inner wedges (a, b) of max(wave(a), wave(b)), a fixed point of a
+// monotone map. Each vertex holds its neighbours' newest estimates (∞ until heard), recomputes its own
+// and sends WaveMsg whenever its (wave, parent) changes; estimates only decrease and stay ≥ the true
+// waves, so they reach them (chaotic relaxation), whatever the delays — in a network of equal link
+// delays the first finite estimate is already the wave, so a vertex sends about one WaveMsg. The end
+// is detected by Dijkstra–Scholten: every StartMsg / WaveMsg is acknowledged (ShapeMsg up); the
+// message that engages an idle vertex is acknowledged only once the vertex is passive (its depth
+// neighbourhood known) and all its own messages are acknowledged. When the root's are, every vertex's
+// estimate is final and every WaveMsg delivered, so the root sends ShapeMsg down the layout tree
+// (every vertex knows its children from their last WaveMsg), with the OR of the face-vertex bits that
+// the acknowledgements carried up the engagement trees (an OR of fixed bits survives re-engagement).
+
+void PackingAgent::start_layout_wave() {
+  wave_started_ = true;
+  phase_ = PackingPhase::wave;
+  root_id_ = id_;
+  is_root_ = true;
+  wave_ = 0;
+  parent_ = id_;
+  parent_index_ = deg_;
+  ds_parent_ = deg_;
+  ds_polygon_ = polygon_here_;
+  ds_deficit_ += deg_;
+  broadcast(StartMsg{id_, peers_[0].id});  // the root's placement, to its neighbours only
+  release_wave();
+}
+
+bool PackingAgent::join_wave(std::size_t from) {
+  if (!wave_started_) {
+    wave_started_ = true;
+    phase_ = PackingPhase::wave;
+    ds_polygon_ = polygon_here_;
+  }
+  if (ds_parent_ != unknown) return false;
+  ds_parent_ = static_cast<std::uint32_t>(from);
+  return true;
+}
+
+void PackingAgent::handle(std::size_t i, const StartMsg& m) {
+  if (is_root_ || peers_[i].wave_seq != 0 || m.root != peers_[i].id) {
     ++counters().unexpected;
     return;
   }
-  maybe_echo();
-}
-
-void PackingAgent::maybe_echo() {
-  // A vertex echoes a wave (or, as its initiator, wins) once every neighbour's token is in — and only
-  // once it has decided whether it is a candidate itself. Without that wait, a vertex whose depth is
-  // known late (long delays, retransmissions) could echo a weaker wave, let it complete and elect the
-  // wrong root before starting its own stronger wave. With it, no wave completes without the
-  // strongest candidate's echo, which that candidate never gives to a weaker wave: only the strongest
-  // wave completes, whatever the delays.
-  if (!candidate_checked_ || !in_wave_ || echoed_ || echo_count_ < deg_) return;
-  echoed_ = true;
-  if (echo_parent_ == deg_) begin_wave(deg_, id_, peers_[0].id);
-  else send(echo_parent_, ElectionMsg{best_depth_, best_id_});
-}
-
-// ---- Wave set-up: the combinatorial layout wave on K ------------------------------------------------
-
-void PackingAgent::handle(std::size_t i, const StartMsg& m) {
-  if (wave_started_) {
-    if (m.root != root_id_) ++counters().unexpected;
-    return;
-  }
-  begin_wave(i, m.root, m.first);
-}
-
-void PackingAgent::begin_wave(std::size_t from, NodeId root, NodeId first) {
-  wave_started_ = true;
-  phase_ = PackingPhase::wave;
-  root_id_ = root;
-  is_root_ = root == id_;
-  is_first_ = first == id_;
-  encode(StartMsg{root, first}, buffer());
-  for (std::size_t j = 0; j < deg_; ++j)
-    if (j != from) send_encoded(j);
-  const std::size_t root_index = index_of(root);
-  if (is_root_) {
+  const bool engaged_now = join_wave(i);
+  root_id_ = m.root;
+  peers_[i].wave_seq = 1;
+  peers_[i].wave = 0;
+  if (m.first == id_ && !is_first_) {
+    is_first_ = true;
     wave_ = 0;
-    parent_ = id_;
-    parent_index_ = deg_;
-    broadcast(WaveMsg{0, true, parent_});
-  } else if (is_first_ && root_index != deg_) {
-    wave_ = 0;
-    parent_ = root;
-    parent_index_ = root_index;
-    broadcast(WaveMsg{0, true, parent_});
-  } else {
-    broadcast(WaveMsg{0, false, 0});
+    parent_ = m.root;
+    parent_index_ = i;
+    ++wave_seq_;
+    ds_deficit_ += deg_;
+    broadcast(WaveMsg{wave_seq_, 0, parent_});
   }
   advance_wave();
-  maybe_finish_setup();
+  end_wave_message(i, engaged_now);
 }
 
 void PackingAgent::handle(std::size_t i, const WaveMsg& m) {
-  if (!record_pulse(peers_[i].wave, peers_[i].wave_seen, nbr_waves_known_, m.pulse, m.placed)) {
-    ++counters().unexpected;
-    return;
+  const bool engaged_now = join_wave(i);
+  Peer& p = peers_[i];
+  if (m.seq > p.wave_seq) {  // else an older estimate overtaken by a newer one: acknowledged only
+    if (p.wave != unknown && m.wave > p.wave) ++counters().unexpected;  // estimates never increase
+    p.wave_seq = m.seq;
+    p.wave = m.wave;
+    p.child = m.parent == id_ ? 1 : 0;
+    advance_wave();
   }
-  if (m.placed) peers_[i].child = m.parent == id_ ? 1 : 0;
-  advance_wave();
-  maybe_finish_setup();
+  end_wave_message(i, engaged_now);
 }
 
 void PackingAgent::advance_wave() {
-  // Pulse p decides whether v is placed in wave p + 1 (core::lay_out's round p + 1): it needs every
-  // K-neighbour's status at p and which neighbours are interior. Face vertices take part exactly as
-  // lay_out treats them: as vertices of K, placed and anchoring by the same rule.
-  if (!wave_started_ || nbr_depths_known_ < deg_) return;
-  while (wave_ == unknown) {
-    const std::uint32_t p = wave_pulse_;
-    for (std::size_t i = 0; i < deg_; ++i)
-      if (peers_[i].wave == unknown && peers_[i].wave_seen <= p) return;
-    const auto d = static_cast<std::uint32_t>(deg_);
-    const std::uint32_t w = core::choose_placement_wedge(
-        d, [&](std::uint32_t j) { return j != outer_gap_; },
-        [&](std::uint32_t j) { return peers_[j].wave <= p; }, [&](std::uint32_t j) { return interior_nbr(j); });
-    ++wave_pulse_;
-    if (w == d) {
-      broadcast(WaveMsg{wave_pulse_, false, 0});
-      continue;
-    }
-    wave_ = wave_pulse_;
-    anchor_a_ = w;
-    anchor_b_ = w + 1 == d ? 0 : w + 1;
-    parent_index_ = core::parent_is_first_anchor(interior_nbr(anchor_a_), interior_nbr(anchor_b_)) ? anchor_a_ : anchor_b_;
-    parent_ = peers_[parent_index_].id;
-    broadcast(WaveMsg{wave_pulse_, true, parent_});
+  // Needs which neighbours are interior (the wedge rule), hence every neighbour's depth. Face vertices
+  // take part exactly as lay_out treats them: as vertices of K, placed and anchoring by the same rule.
+  if (!wave_started_ || is_root_ || is_first_ || nbr_depths_known_ < deg_) return;
+  const auto d = static_cast<std::uint32_t>(deg_);
+  std::uint32_t p = unknown;  // the earliest wave by which some inner wedge has both ends placed
+  for (std::uint32_t j = 0; j < d; ++j) {
+    const std::uint32_t k = j + 1 == d ? 0 : j + 1;
+    if (j != outer_gap_ && peers_[j].wave != unknown && peers_[k].wave != unknown)
+      p = std::min(p, std::max(peers_[j].wave, peers_[k].wave));
   }
+  if (p == unknown) return;
+  const std::uint32_t w = core::choose_placement_wedge(
+      d, [&](std::uint32_t j) { return j != outer_gap_; }, [&](std::uint32_t j) { return peers_[j].wave <= p; },
+      [&](std::uint32_t j) { return interior_nbr(j); });
+  const std::size_t a = w, b = w + 1 == d ? 0 : w + 1;
+  const std::size_t parent = core::parent_is_first_anchor(interior_nbr(a), interior_nbr(b)) ? a : b;
+  if (wave_ == p + 1 && parent == parent_index_ && a == anchor_a_) return;
+  wave_ = p + 1;
+  anchor_a_ = a;
+  anchor_b_ = b;
+  parent_index_ = parent;
+  parent_ = peers_[parent].id;
+  ++wave_seq_;
+  ds_deficit_ += deg_;
+  broadcast(WaveMsg{wave_seq_, wave_, parent_});
 }
 
-void PackingAgent::maybe_finish_setup() {
-  if (setup_done_ || wave_ == unknown || nbr_waves_known_ < deg_ || nbr_depths_known_ < deg_) return;
-  setup_done_ = true;
-  for (std::size_t i = 0; i < deg_; ++i) interior_nbrs_ += interior_nbr(i);
-  advance_shape();
+void PackingAgent::end_wave_message(std::size_t from, bool engaged_now) {
+  if (!engaged_now) send(from, ShapeMsg{false, false});
+  release_wave();
 }
 
-// ---- Shape: OR of "touches a face vertex" up the layout tree, then down -----------------------------
+void PackingAgent::release_wave() {
+  if (ds_parent_ == unknown || ds_deficit_ != 0 || nbr_depths_known_ < deg_) return;
+  const std::uint32_t to = ds_parent_;
+  ds_parent_ = unknown;
+  if (to == deg_) {  // the root: the wave has ended everywhere
+    learn_shape(ds_polygon_);
+    return;
+  }
+  send(to, ShapeMsg{false, ds_polygon_});
+}
+
+// ---- Shape and height: the root's answers down the final layout tree ---------------------------------
 
 void PackingAgent::handle(std::size_t i, const ShapeMsg& m) {
-  if (!m.down) {
-    // From a child (checked once the tree is known, in advance_shape); may precede our set-up's end.
-    if (peers_[i].shape_up != 0) {
+  if (!m.down) {  // an acknowledgement of one of our StartMsg / WaveMsg
+    if (ds_deficit_ == 0) {
       ++counters().unexpected;
       return;
     }
-    peers_[i].shape_up = m.polygon ? 2 : 1;
-    height_ = std::max(height_, m.height);
-    advance_shape();
+    --ds_deficit_;
+    ds_polygon_ = ds_polygon_ || m.polygon;
+    release_wave();
     return;
   }
-  if (!setup_done_ || shape_known_ || is_root_ || i != parent_index_) {
+  if (!wave_started_ || shape_known_ || is_root_ || i != parent_index_ || ds_parent_ != unknown) {
     ++counters().unexpected;
     return;
   }
-  learn_shape(m.polygon, m.height);
+  learn_shape(m.polygon);
 }
 
-void PackingAgent::advance_shape() {
-  if (!setup_done_ || shape_sent_) return;
-  bool any = polygon_here_;
-  for (std::size_t i = 0; i < deg_; ++i) {
-    Peer& p = peers_[i];
-    if (p.shape_up != 0 && !p.child) {
-      ++counters().unexpected;
-      p.shape_up = 0;
-    }
-    if (!p.child) continue;
-    if (p.shape_up == 0) return;
-    any = any || p.shape_up == 2;
-  }
-  shape_sent_ = true;
-  const std::uint32_t height = std::max(height_, wave_);  // the subtree's largest wave
-  if (!is_root_) {
-    send(parent_index_, ShapeMsg{false, any, height});
-    return;
-  }
-  // The root knows the answer for the whole of K (the tree spans it).
-  learn_shape(any, height);
-}
-
-void PackingAgent::learn_shape(bool polygon, std::uint32_t height) {
-  // The answer for the whole of K: pass it down the tree and start round 0.
+void PackingAgent::learn_shape(bool polygon) {
+  // The wave has ended: pass the answer for the whole of K down the tree, then (radius-flood) learn the
+  // tree's height, and start round 0.
   shape_known_ = true;
   polygon_ = polygon;
-  height_ = height;
-  encode(ShapeMsg{true, polygon_, height_}, buffer());
+  for (std::size_t i = 0; i < deg_; ++i) interior_nbrs_ += interior_nbr(i);
+  encode(ShapeMsg{true, polygon_}, buffer());
   for (std::size_t j = 0; j < deg_; ++j)
     if (peers_[j].child) send_encoded(j);
+  if (flood_) {
+    advance_height();
+    return;
+  }
+  begin_rounds();
+}
+
+// The height convergecast, once on the final tree: the largest wave of each subtree up, of K down
+// (radius-flood's D = 2·height + 2; any mode that needs the height can run it the same way).
+void PackingAgent::handle(std::size_t i, const HeightMsg& m) {
+  if (!m.down) {
+    if (!flood_ || !shape_known_ || !peers_[i].child || peers_[i].height_up) {
+      ++counters().unexpected;
+      return;
+    }
+    peers_[i].height_up = 1;
+    height_ = std::max(height_, m.height);
+    advance_height();
+    return;
+  }
+  if (!flood_ || !height_sent_ || is_root_ || i != parent_index_ || phase_ != PackingPhase::wave) {
+    ++counters().unexpected;
+    return;
+  }
+  learn_height(m.height);
+}
+
+void PackingAgent::advance_height() {
+  if (!shape_known_ || height_sent_) return;
+  for (std::size_t i = 0; i < deg_; ++i)
+    if (peers_[i].child && !peers_[i].height_up) return;
+  height_sent_ = true;
+  const std::uint32_t height = std::max(height_, wave_);  // the subtree's largest wave
+  if (!is_root_) {
+    send(parent_index_, HeightMsg{false, height});
+    return;
+  }
+  learn_height(height);
+}
+
+void PackingAgent::learn_height(std::uint32_t height) {
+  height_ = height;
+  encode(HeightMsg{true, height_}, buffer());
+  for (std::size_t j = 0; j < deg_; ++j)
+    if (peers_[j].child) send_encoded(j);
+  begin_rounds();
+}
+
+void PackingAgent::begin_rounds() {
   phase_ = PackingPhase::rounds;
+  round_ = 0;
   if (flood_) {
     flood_->depth = core::radius_flood_depth(height_);
     flood_->period = core::radius_flood_period(static_cast<int>(flood_->depth), params_.steps_per_check);
-    round_ = 0;
     flood_advance();
     return;
   }
@@ -427,7 +517,6 @@ void PackingAgent::learn_shape(bool polygon, std::uint32_t height) {
   if (params_.asynchronous)
     for (std::size_t i = 0; i < deg_; ++i)
       if (!interior_nbr(i)) radius_[i] = std::numeric_limits<double>::infinity();
-  round_ = 0;
   begin_round();
 }
 

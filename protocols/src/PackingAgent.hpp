@@ -82,15 +82,16 @@ private:
     NodeId id = 0;
     std::uint32_t depth = unknown;    // its final depth
     std::uint32_t depth_seen = 0;     // depth pulses it has passed
-    std::uint32_t wave = unknown;     // its final wave
-    std::uint32_t wave_seen = 0;      // wave pulses it has passed
+    std::uint32_t wave = unknown;     // its placement estimate in the layout wave (final once it has ended)
+    std::uint32_t wave_seq = 0;       // seq of its newest WaveMsg (StartMsg: 1)
     std::uint32_t radius_tag[2] = {unknown, unknown};  // step of the radius in radius_[parity][i]
     std::uint32_t placed_tag[2] = {unknown, unknown};  // round of circle[parity]
     core::Circle circle[2];           // its circle in the layout of a round, by parity
     std::uint32_t latest_step = 0;    // asynchronous mode: version of its newest radius
     std::uint8_t face = 0;            // 1 if it is a face vertex
     std::uint8_t child = 0;           // 1 if it is a child in the layout tree
-    std::uint8_t shape_up = 0;        // its shape report: 0 none, 1 false, 2 true
+    std::uint8_t height_up = 0;       // 1 once its height report is in (radius-flood set-up)
+    std::uint8_t bfs = 0;             // BFS forest: bit 0 it is a child, bit 1 its key report is in
   };
   // What placing needs of an anchor (the first neighbour's parent, or anchor a / b) in a round.
   struct AnchorSlot {
@@ -138,19 +139,25 @@ private:
   void handle(std::size_t i, const KrylovSumMsg& m);
   void handle(std::size_t i, const KrylovDecisionMsg& m);
   void handle(std::size_t i, const GateRadiusMsg& m);
+  void handle(std::size_t i, const HeightMsg& m);
 
-  // Neighbour status at a pulse (depth or wave): `final` fixes `value` to `pulse`, otherwise the
-  // neighbour has passed `pulse` (`seen`); false for a second final pulse.
-  static bool record_pulse(std::uint32_t& value, std::uint32_t& seen, std::size_t& known, std::uint32_t pulse, bool final);
   void advance_depth();
-  void maybe_candidate();
-  void start_own_wave();
-  void maybe_echo();
-  void begin_wave(std::size_t from, NodeId root, NodeId first);
+  // Election (PackingAgent.cpp, "Election"): the subtree's best key up the BFS forest, the boundary's
+  // round the ring, the winner's down the forest.
+  void advance_key();
+  void offer_ring(std::uint32_t depth, NodeId id);  // a boundary vertex forwards a ring key if it is the best yet
+  bool better_key(std::uint32_t d1, NodeId id1) const { return better(d1, id1, best_depth_, best_id_); }
+  // Layout wave (PackingAgent.cpp, "Layout wave"): the root starts it; a vertex joins it at its first
+  // StartMsg / WaveMsg; advance_wave re-estimates its placement from its neighbours' estimates.
+  void start_layout_wave();
+  bool join_wave(std::size_t from);  // true if this message engages the vertex (Dijkstra–Scholten)
   void advance_wave();
-  void maybe_finish_setup();
-  void learn_shape(bool polygon, std::uint32_t height);
-  void advance_shape();
+  void end_wave_message(std::size_t from, bool engaged_now);  // acknowledges, maybe releases
+  void release_wave();
+  void learn_shape(bool polygon);
+  void advance_height();
+  void learn_height(std::uint32_t height);
+  void begin_rounds();
   void begin_round();
   void advance_steps();
   void advance_async_steps();
@@ -200,33 +207,40 @@ private:
   std::uint32_t depth_pulse_ = 0;
   std::size_t nbr_depths_known_ = 0;
 
-  // Election.
-  bool candidate_checked_ = false;
-  bool in_wave_ = false;
-  bool echoed_ = false;  // the current wave's echo (or win) is done
+  // Election. The best key of the BFS subtree (own and reported; no_key until one is heard) and the
+  // child it came from (deg: this vertex); on the boundary, the best ring key forwarded (or sent) so
+  // far and the best one held until the subtree's key is known.
+  static constexpr NodeId no_key = ~NodeId{0};
+  std::uint32_t bfs_parent_ = unknown;  // K index (deg for a boundary vertex)
+  bool key_reported_ = false;
   std::uint32_t best_depth_ = 0;
-  NodeId best_id_ = 0;
-  std::size_t echo_parent_ = 0;
-  std::size_t echo_count_ = 0;
+  NodeId best_id_ = no_key;
+  std::size_t best_child_ = 0;
+  std::uint32_t ring_depth_ = 0, held_depth_ = 0;
+  NodeId ring_id_ = no_key, held_id_ = no_key;
 
-  // Wave set-up.
+  // Layout wave. Dijkstra–Scholten termination: `ds_parent_` is the K index of the neighbour whose
+  // message engaged this vertex (deg for the root, the initiator; unknown while idle), `ds_deficit_`
+  // the StartMsg / WaveMsg it sent that are not yet acknowledged, `ds_polygon_` the OR of its own
+  // "touches a face vertex" and of the acknowledgements it received.
   bool wave_started_ = false;
   bool is_root_ = false;
   bool is_first_ = false;
-  bool setup_done_ = false;
   NodeId root_id_ = 0;
   std::uint32_t wave_ = unknown;
-  std::uint32_t wave_pulse_ = 0;
+  std::uint32_t wave_seq_ = 0;  // WaveMsg sent
   NodeId parent_ = 0;
   std::size_t parent_index_ = 0;
   std::size_t anchor_a_ = 0, anchor_b_ = 0;
-  std::size_t nbr_waves_known_ = 0;
+  std::uint32_t ds_parent_ = unknown;
+  std::uint32_t ds_deficit_ = 0;
+  bool ds_polygon_ = false;
   std::uint32_t interior_nbrs_ = 0;  // known at the end of the set-up
 
-  // Shape.
-  bool shape_sent_ = false;
+  // Shape and height (after the wave).
   bool shape_known_ = false;
   bool polygon_ = false;
+  bool height_sent_ = false;
 
   // Rounds.
   std::uint32_t round_ = 0;
@@ -255,7 +269,7 @@ private:
   std::uint32_t final_sent_ = unknown;
   bool radius_ok_ = false;
   double gap_ = 0;
-  std::uint32_t height_ = 0;  // the largest wave of K, from the shape broadcast
+  std::uint32_t height_ = 0;  // the largest wave of the subtree heard so far, then of K (HeightMsg)
   std::unique_ptr<FloodState> flood_;  // Termination::radius_flood only
 };
 

@@ -15,10 +15,10 @@ int main(int argc, char** argv) {
   }
   const std::vector<std::byte> placed = p::encode(p::PlacedMsg{3, 0.5, 0.25, -0.125, 1.5, -2.0, 0.75});
   const std::vector<p::Message> messages = {
-      p::DepthMsg{7, true},
-      p::ElectionMsg{2, 42},
+      p::DepthMsg{7, true, 3},
+      p::ElectionMsg{p::ElectionStage::ring, 2, 42},
       p::StartMsg{1, 9},
-      p::WaveMsg{4, true, 17},
+      p::WaveMsg{4, 2, 17},
       p::RadiusMsg{12, 0.693},
       p::PlacedMsg{3, 0.5, 0.25, -0.125, 1.5, -2.0, 0.75},
       p::ReportMsg{5, true},
@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
       p::KrylovSumMsg{9, 1, 2, 3, 0.5},
       p::KrylovDecisionMsg{9, 0, 0.25, 0.75},
       p::GateRadiusMsg{9, 0.5, 0x3},
+      p::HeightMsg{true, 12},
   };
   for (std::size_t i = 0; i < messages.size(); ++i) {
     const std::vector<std::byte> bytes = p::encode(messages[i]);

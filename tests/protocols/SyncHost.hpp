@@ -5,6 +5,7 @@
 // reordering, still reliable). It proves that the protocol code needs nothing but the Runtime.
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -17,6 +18,7 @@
 
 #include "laguerre/core/graph/PlanarGraph.hpp"
 #include "laguerre/core/random/Random.hpp"
+#include "laguerre/protocols/Codec.hpp"
 #include "laguerre/protocols/PackingNode.hpp"
 #include "laguerre/protocols/Runtime.hpp"
 
@@ -94,6 +96,7 @@ public:
       queue_.pop_front();
       ++delivered_;
       bytes_ += e.bytes.size();
+      if (e.bytes.size() >= 2) ++by_type_[std::to_integer<std::uint8_t>(e.bytes[1])];
       nodes_[index_.at(e.to)]->on_message(e.from, e.bytes);
     }
   }
@@ -106,6 +109,8 @@ public:
   std::size_t size() const { return nodes_.size(); }
   std::uint64_t delivered() const { return delivered_; }
   std::uint64_t bytes() const { return bytes_; }
+  // Messages delivered of type t (a relayed message counts as a relay).
+  std::uint64_t delivered(MessageType t) const { return by_type_[static_cast<std::uint8_t>(t)]; }
 
 private:
   std::vector<std::unique_ptr<NodeRuntime>> runtimes_;
@@ -114,6 +119,7 @@ private:
   std::deque<Envelope> queue_;
   std::uint64_t delivered_ = 0;
   std::uint64_t bytes_ = 0;
+  std::array<std::uint64_t, 256> by_type_{};
   TimerHandle timers_ = 0;
 };
 

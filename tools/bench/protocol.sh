@@ -16,7 +16,8 @@
 # is time the cores spent on other processes; the load averages (uptime) are printed before and after.
 # --termination radius-only (or both: a row each) runs `simulate --termination radius-only`
 # (docs/radius-only.md); its rows are labelled MODE+ro (radius-flood: MODE+rf; all: the three), and the waves column counts the layout waves
-# a run made (its PlacedMsg count over the darts, exact on triangulations).
+# a run made (its PlacedMsg count over the darts, exact on triangulations); setup/node counts the set-up's messages
+# (depth, election, start, wave, shape, height) per node.
 # LAGUERRE_EXE=path uses that program instead of building the release preset with tools/bootstrap.sh.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -33,7 +34,7 @@ while [ $# -gt 0 ]; do
     --seed) seed=$2; shift 2 ;;
     --termination) case "$2" in both) terminations="layout radius-only" ;; all) terminations="layout radius-only radius-flood" ;;
                      *) terminations=$2 ;; esac; shift 2 ;;
-    -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
     *) sizes+=("$1"); shift ;;
   esac
 done
@@ -42,8 +43,8 @@ done
 . tools/bench/common.sh
 echo "load before: $(uptime)"
 : >"$dir/rows"
-printf '%-24s %7s %-15s %4s %6s %6s %6s %10s %11s %9s %9s %8s %9s %8s %-13s %s\n' family nodes mode N rounds iters \
-  waves msgs/node bytes/node sim_s wall_s cpu_s events/s KiB/node status '=core'
+printf '%-24s %7s %-15s %4s %6s %6s %6s %10s %10s %11s %9s %9s %8s %9s %8s %-13s %s\n' family nodes mode N rounds iters \
+  waves msgs/node setup/node bytes/node sim_s wall_s cpu_s events/s KiB/node status '=core'
 for family in $families; do
   for n in "${sizes[@]}"; do
     g="$dir/$family-$n.txt"
@@ -79,12 +80,15 @@ v = d.get("verify")
 same = "-" if v is None else ("bit-exact" if "identical" in v else "DIFFERS")
 status = "converged" if rc == 0 else "NOT converged"
 waves = d["by_phase"].get("placed", {}).get("messages", 0) // (2 * d["edges"])  # one PlacedMsg per dart and wave
+# Set-up: depth BFS, election, layout wave and its acknowledgements, shape and height broadcasts (relayed
+# set-up messages of face vertices count as relays, not here).
+setup = sum(d["by_phase"].get(t, {}).get("messages", 0) for t in ("depth", "election", "start", "wave", "shape", "height"))
 print(family, n, mode, N, d["rounds"], d["iterations"], waves, d["messages_per_node_mean"], d["bytes_per_node_mean"],
       d["simulated_seconds"], d["wall_seconds"], cpu, d["events_per_second"], d["peak_memory_bytes"] / 1024 / n,
-      status.replace(" ", "_"), same)
+      status.replace(" ", "_"), same, setup / n)
 PY
-      tail -1 "$dir/rows" | awk '{printf "%-24s %7s %-15s %4s %6s %6s %6s %10.0f %11.0f %9.2f %9.1f %8.1f %9.3g %8.2f %-13s %s\n",
-        $1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16}' | sed 's/NOT_converged/NOT converged/'
+      tail -1 "$dir/rows" | awk '{printf "%-24s %7s %-15s %4s %6s %6s %6s %10.0f %10.1f %11.0f %9.2f %9.1f %8.1f %9.3g %8.2f %-13s %s\n",
+        $1, $2, $3, $4, $5, $6, $7, $8, $17, $9, $10, $11, $12, $13, $14, $15, $16}' | sed 's/NOT_converged/NOT converged/'
      done
     done
   done

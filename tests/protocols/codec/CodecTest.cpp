@@ -14,11 +14,12 @@ namespace {
 std::vector<Message> samples() {
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   return {DepthMsg{0, false},
-          DepthMsg{0xfffffffe, true},
-          ElectionMsg{7, 0xfedcba9876543210ull},
+          DepthMsg{0xfffffffe, true, 0xffffffffffffffffull},
+          ElectionMsg{ElectionStage::report, 7, 0xfedcba9876543210ull},
+          ElectionMsg{ElectionStage::root, 0xffffffff, 0},
           StartMsg{3, 0xffffffffffffffffull},
-          WaveMsg{0, false, 0},
-          WaveMsg{12, true, 99},
+          WaveMsg{1, 0, 0},
+          WaveMsg{0xffffffff, 12, 99},
           RadiusMsg{5, std::numeric_limits<double>::infinity()},
           RadiusMsg{0x01020304, 0.1353352832366127},
           RadiusMsg{1, 5e-324},
@@ -30,8 +31,10 @@ std::vector<Message> samples() {
           DecisionMsg{9, Verdict::converged},
           DecisionMsg{0xffffffff, Verdict::cap},
           DecisionMsg{3, Verdict::layout},
-          ShapeMsg{false, true, 7},
+          ShapeMsg{false, true},
           ShapeMsg{true, false},
+          HeightMsg{false, 7},
+          HeightMsg{true, 0xffffffff},
           GateRadiusMsg{7, std::numeric_limits<double>::infinity(), 0xffffffffffffffffull},
           FaceCirclesMsg{3, {{0.1, 0.2, 0.3}, {nan, -inf, 0.0}, {-0.0, 1e300, 5e-324}}},
           FaceCirclesMsg{0xffffffff, std::vector<FaceCircle>(17, FaceCircle{0.5, -0.5, 0.25})},
@@ -124,8 +127,9 @@ TEST(Codec, RejectsOutOfRangeFields) {
     return b;
   };
   EXPECT_EQ(decode(with(DepthMsg{1, true}, 6, 2), out), DecodeStatus::out_of_range);
-  EXPECT_EQ(decode(with(WaveMsg{1, true, 3}, 6, 7), out), DecodeStatus::out_of_range);
-  EXPECT_EQ(decode(encode(WaveMsg{1, false, 3}), out), DecodeStatus::out_of_range);  // parent without placement
+  EXPECT_EQ(decode(encode(DepthMsg{1, false, 3}), out), DecodeStatus::out_of_range);  // parent without a depth
+  EXPECT_EQ(decode(with(ElectionMsg{ElectionStage::ring, 1, 3}, 2, 3), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(encode(WaveMsg{0, 1, 3}), out), DecodeStatus::out_of_range);  // seq counts from 1
   EXPECT_EQ(decode(with(ReportMsg{1, true}, 6, 0xff), out), DecodeStatus::out_of_range);
   EXPECT_EQ(decode(with(DecisionMsg{1, Verdict::cap}, 6, 4), out), DecodeStatus::out_of_range);
   EXPECT_EQ(decode(encode(StartMsg{5, 5}), out), DecodeStatus::out_of_range);
@@ -136,6 +140,7 @@ TEST(Codec, RejectsOutOfRangeFields) {
   }
   EXPECT_EQ(decode(with(ShapeMsg{true, true}, 2, 2), out), DecodeStatus::out_of_range);
   EXPECT_EQ(decode(with(ShapeMsg{true, true}, 3, 9), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(with(HeightMsg{true, 4}, 2, 2), out), DecodeStatus::out_of_range);
   // Variable sizes: the count is range-checked before it sizes the message.
   const FaceCirclesMsg three{1, {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}};
   EXPECT_EQ(decode(encode(FaceCirclesMsg{1, {{0, 0, 1}, {1, 0, 1}}}), out), DecodeStatus::out_of_range);

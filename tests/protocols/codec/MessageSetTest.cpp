@@ -13,9 +13,9 @@ namespace {
 // One message of every type, in type-code order.
 std::vector<Message> one_of_each() {
   return {DepthMsg{3, true},
-          ElectionMsg{2, 9},
+          ElectionMsg{ElectionStage::ring, 2, 9},
           StartMsg{1, 2},
-          WaveMsg{4, true, 7},
+          WaveMsg{4, 2, 7},
           RadiusMsg{5, 0.5},
           PlacedMsg{1, 0.25, 0.1, 0.2, 0.3, 0.4, 0.5},
           ReportMsg{2, true},
@@ -31,7 +31,8 @@ std::vector<Message> one_of_each() {
           KrylovValueMsg{3, -0.125},
           KrylovSumMsg{3, 1.5, -2.5, 0.25, 7},
           KrylovDecisionMsg{3, 2, 0.5, 0},
-          GateRadiusMsg{4, 1.5, 0x8000000000000001ull}};
+          GateRadiusMsg{4, 1.5, 0x8000000000000001ull},
+          HeightMsg{false, 5}};
 }
 
 // The type codes each set accepts.
@@ -50,10 +51,10 @@ std::vector<int> accepted_types() {
 TEST(MessageSets, EachSetAcceptsExactlyItsTypes) {
   ASSERT_EQ(one_of_each().size(), std::size_t{max_message_type});
   for (std::size_t k = 0; k < one_of_each().size(); ++k) EXPECT_EQ(one_of_each()[k].index(), k);
-  EXPECT_EQ(accepted_types<PackingMessage>(), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 18, 19, 20}));
-  EXPECT_EQ(accepted_types<PackingHop>(), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 17, 18, 19, 20}));
+  EXPECT_EQ(accepted_types<PackingMessage>(), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 18, 19, 20, 21}));
+  EXPECT_EQ(accepted_types<PackingHop>(), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 17, 18, 19, 20, 21}));
   EXPECT_EQ(accepted_types<LinkMessage>(), (std::vector<int>{13, 14}));
-  EXPECT_EQ(accepted_types<FramePayload>(), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 15, 17, 18, 19, 20}));
+  EXPECT_EQ(accepted_types<FramePayload>(), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 15, 17, 18, 19, 20, 21}));
   EXPECT_EQ(accepted_types<ForwardingMessage>(), (std::vector<int>{12, 16}));
   EXPECT_EQ(accepted_types<Message>().size(), std::size_t{max_message_type});
 }

@@ -155,6 +155,30 @@ TEST(RadiusFloodTermination, ConvergesOnlyOnAPassedExactCheck) {
   }
 }
 
+// D = 2H + 2 comes from the height convergecast on the final layout tree (HeightMsg, once, before
+// round 0): one report up and one answer down per tree edge, and every vertex then runs exactly the
+// steps 0 … core's decision step (iterations + D), exchanging GateRadiusMsg on every dart at each.
+TEST(RadiusFloodTermination, HeightConvergecastGivesCoresDepth) {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed)
+    for (std::uint64_t order : {std::uint64_t{0}, 7 * seed}) {
+      SCOPED_TRACE("seed " + std::to_string(seed) + " order " + std::to_string(order));
+      const core::PlanarGraph g = delaunay(120, seed + 40);
+      const core::PackResult r = core::pack(g, pack_options(flood(1, 0.3)));
+      ASSERT_EQ(r.status, core::PackStatus::converged);
+      ASSERT_EQ(r.flood_depth, static_cast<int>(core::radius_flood_depth(r.layout)));
+      DequeHost host(g, flood(1, 0.3));
+      host.run(order);
+      const std::uint64_t n = g.num_vertices();
+      EXPECT_EQ(host.delivered(MessageType::height), 2 * (n - 1));
+      EXPECT_EQ(host.delivered(MessageType::gate_radius), 2 * g.num_edges() * (static_cast<std::uint64_t>(r.decision_step) + 1));
+      for (core::Vertex v = 0; v < n; ++v) {
+        EXPECT_EQ(host.node(v).outcome(), PackingOutcome::converged);
+        EXPECT_EQ(host.node(v).steps(), static_cast<std::uint32_t>(r.iterations));
+        EXPECT_EQ(host.node(v).counters().unexpected, 0u);
+      }
+    }
+}
+
 TEST(RadiusOnlyTermination, RefusesAsynchronousModeAndBadGap) {
   const core::PlanarGraph g = delaunay(10, 1);
   PackingParams p = radius_only();

@@ -25,13 +25,13 @@
 ///
 /// Message sets: each receiver decodes only the messages it handles (docs/protocol.md describes the
 /// protocols):
-///  - PackingMessage (types 1–10 and 17–19): between protocol vertices of the packing protocol;
+///  - PackingMessage (types 1–10 and 17–21): between protocol vertices of the packing protocol;
 ///  - PackingHop: what a packing node sends a neighbour without the reliability layer, a
 ///    PackingMessage or a RelayMsg (type 11, an envelope between a face vertex and a face member);
 ///  - LinkMessage (types 13, 14): the reliability layer's frames and acknowledgements on one link;
 ///  - FramePayload: what a frame carries, a PackingHop or a FailureMsg (type 15);
 ///  - ForwardingMessage (types 12, 16): data packets of the forwarding schemes (Forwarding.hpp);
-///  - Message: any of the 19 types.
+///  - Message: any of the 21 types.
 
 #include <cstddef>
 #include <cstdint>
@@ -44,19 +44,19 @@
 namespace laguerre::protocols {
 
 /// Version of the wire format written into byte 0.
-inline constexpr std::uint8_t wire_version = 2;
+inline constexpr std::uint8_t wire_version = 3;
 
 /// Message types (byte 1 of every message).
 enum class MessageType : std::uint8_t {
   depth = 1,     ///< DepthMsg: a pulse of the breadth-first search from the boundary
-  election = 2,  ///< ElectionMsg: a token of the echo-with-extinction leader election
-  start = 3,     ///< StartMsg: the elected root starts the wave set-up (flooded)
-  wave = 4,      ///< WaveMsg: a pulse of the combinatorial layout wave (set-up)
+  election = 2,  ///< ElectionMsg: the root election's best key (BFS forest, boundary ring, path down)
+  start = 3,     ///< StartMsg: the elected root starts the layout wave (to its neighbours)
+  wave = 4,      ///< WaveMsg: a placement estimate of the combinatorial layout wave (set-up)
   radius = 5,    ///< RadiusMsg: a Thurston-step radius exchange
   placed = 6,    ///< PlacedMsg: a node's circle in one round's layout
   report = 7,    ///< ReportMsg: the AND convergecast of local checks
   decision = 8,  ///< DecisionMsg: the root's stop / next-round broadcast
-  shape = 9,     ///< ShapeMsg: whether some inner face is not a triangle (set-up convergecast / broadcast)
+  shape = 9,     ///< ShapeMsg: the layout wave's acknowledgements up, its end and the graph's shape down
   face_circles = 10,  ///< FaceCirclesMsg: a face vertex sends every circle of its face (one round)
   relay = 11,    ///< RelayMsg: an envelope relayed along a face between a face vertex and a face member
   data = 12,     ///< DataMsg: a data packet forwarded greedily (Forwarding.hpp)
@@ -68,44 +68,58 @@ enum class MessageType : std::uint8_t {
   krylov_sum = 18,       ///< KrylovSumMsg: a Newton–Krylov partial sum, up the layout tree
   krylov_decision = 19,  ///< KrylovDecisionMsg: the root's Newton–Krylov decision, down the layout tree
   gate_radius = 20,      ///< GateRadiusMsg: a radius exchange carrying the flooded radius-only gate
+  height = 21,           ///< HeightMsg: the layout tree's height (set-up convergecast / broadcast)
 };
 
 /// Largest MessageType value (types 1 … max_message_type exist).
-inline constexpr std::uint8_t max_message_type = 20;
+inline constexpr std::uint8_t max_message_type = 21;
 
 /// Name of a message type ("depth", "election", …), "?" for values outside the enum.
 std::string_view to_string(MessageType t);
 
-/// Depth pulse p of the BFS from the boundary: `final` = 1 says "my depth is p" (and covers every
-/// later pulse); 0 says "my depth is greater than p". Fields: u32 pulse, u8 final ∈ {0, 1}.
+/// Depth pulse p of the BFS from the boundary: `final` = 1 says "my depth is p, my parent in the BFS
+/// forest is `parent`" (a boundary vertex names itself; it covers every later pulse); 0 says "my depth
+/// is greater than p" (`parent` then 0). Fields: u32 pulse, u8 final ∈ {0, 1}, u64 parent.
 struct DepthMsg {
-  std::uint32_t pulse = 0;  ///< pulse number
-  bool final = false;       ///< whether the sender's depth equals `pulse`
+  std::uint32_t pulse = 0;   ///< pulse number
+  bool final = false;        ///< whether the sender's depth equals `pulse`
+  std::uint64_t parent = 0;  ///< the sender's BFS parent (when final)
   friend bool operator==(const DepthMsg&, const DepthMsg&) = default;
 };
 
-/// Election token carrying a candidate's key (depth, id). Fields: u32 depth, u64 id.
+/// The three legs of the root election (docs/protocol.md, "Set-up").
+enum class ElectionStage : std::uint8_t {
+  report = 0,  ///< up the BFS forest: the best key of the sender's subtree
+  ring = 1,    ///< round the boundary ring: a boundary vertex's best key, forwarded while it is the best seen
+  root = 2,    ///< down the BFS forest, towards the vertex whose key it is (the root)
+};
+
+/// A key (depth, id) of the root election: larger depth wins, then smaller id (RootRule::deepest;
+/// depth 0 for every key under RootRule::smallest_id); (0, 2^64 − 1) is "no key" (a subtree without
+/// an interior vertex of G). Fields: u8 stage ∈ {0, 1, 2}, u32 depth, u64 id.
 struct ElectionMsg {
-  std::uint32_t depth = 0;  ///< candidate's depth from the boundary (0 under RootRule::smallest_id)
-  std::uint64_t id = 0;     ///< candidate's id
+  ElectionStage stage = ElectionStage::report;  ///< which leg it travels
+  std::uint32_t depth = 0;  ///< the key's depth from the boundary (0 under RootRule::smallest_id)
+  std::uint64_t id = 0;     ///< the key's vertex id
   friend bool operator==(const ElectionMsg&, const ElectionMsg&) = default;
 };
 
-/// The elected root and its first neighbour (placed at wave 0). Fields: u64 root, u64 first;
-/// root ≠ first.
+/// From the elected root to each of its neighbours: the root and its first neighbour, both placed at
+/// wave 0 (the root's placement; it starts the layout wave). Fields: u64 root, u64 first; root ≠ first.
 struct StartMsg {
   std::uint64_t root = 0;   ///< the root's id
   std::uint64_t first = 0;  ///< the id of the root's first neighbour
   friend bool operator==(const StartMsg&, const StartMsg&) = default;
 };
 
-/// Wave pulse p of the layout set-up: `placed` = 1 says "I am placed in wave p, from `parent`" (and
-/// covers every later pulse); 0 says "not placed by wave p" (`parent` then 0). Fields: u32 pulse,
-/// u8 placed ∈ {0, 1}, u64 parent (the root names itself).
+/// The sender's current placement in the layout wave (docs/protocol.md, "Set-up"): placed in wave
+/// `wave` from `parent`; an estimate that only decreases (a later message, higher `seq`, replaces an
+/// earlier one; the last is final). Fields: u32 seq ≥ 1 (the sender's count of WaveMsg), u32 wave,
+/// u64 parent.
 struct WaveMsg {
-  std::uint32_t pulse = 0;   ///< pulse number
-  bool placed = false;       ///< whether the sender is placed in wave `pulse`
-  std::uint64_t parent = 0;  ///< the sender's parent in the layout tree (when placed)
+  std::uint32_t seq = 1;     ///< the sender's WaveMsg number (1, 2, …): the highest is the newest
+  std::uint32_t wave = 0;    ///< the wave in which the sender is placed
+  std::uint64_t parent = 0;  ///< the sender's parent in the layout tree
   friend bool operator==(const WaveMsg&, const WaveMsg&) = default;
 };
 
@@ -157,16 +171,26 @@ struct DecisionMsg {
   friend bool operator==(const DecisionMsg&, const DecisionMsg&) = default;
 };
 
-/// Set-up, after the layout wave: whether some inner face of G is not a triangle (the graph is then
-/// packed as G′, with overlap angles everywhere, and checked with GLPD). `down` = 0: the OR of the
-/// sender's subtree, sent to its parent; 1: the root's answer, sent to the children. Fields:
-/// u8 down ∈ {0, 1}, u8 polygon ∈ {0, 1}, u32 height (the largest wave of the subtree, or of K: the
-/// radius-flood termination's D = 2·height + 2, core::radius_flood_depth).
+/// Set-up, the layout wave's termination (Dijkstra–Scholten) and the graph's shape: `down` = 0
+/// acknowledges one StartMsg or WaveMsg, with `polygon` the OR of "is or touches a face vertex" over
+/// the vertices whose work the acknowledgement closes (0 for an immediate one); `down` = 1, from the
+/// root down the layout tree once the wave has ended: whether some inner face of G is not a triangle
+/// (the graph is then packed as G′, with overlap angles everywhere, and checked with GLPD). Fields:
+/// u8 down ∈ {0, 1}, u8 polygon ∈ {0, 1}.
 struct ShapeMsg {
-  bool down = false;     ///< direction: up the layout tree (false) or down (true)
-  bool polygon = false;  ///< whether some inner face (of the subtree, or of G) has more than 3 vertices
-  std::uint32_t height = 0;  ///< largest wave in the sender's subtree (up) or in K (down)
+  bool down = false;     ///< an acknowledgement (false) or the root's answer (true)
+  bool polygon = false;  ///< whether some face vertex exists (in the acknowledged work, or in K)
   friend bool operator==(const ShapeMsg&, const ShapeMsg&) = default;
+};
+
+/// Set-up, after the shape broadcast: the largest wave of the sender's subtree of the layout tree
+/// (`down` = 0, to its parent) or of K (`down` = 1, the root's answer, to the children); run when the
+/// termination needs it (radius-flood: D = 2·height + 2, core::radius_flood_depth). Fields:
+/// u8 down ∈ {0, 1}, u32 height.
+struct HeightMsg {
+  bool down = false;          ///< up the layout tree (false) or down (true)
+  std::uint32_t height = 0;   ///< largest wave in the sender's subtree (up) or in K (down)
+  friend bool operator==(const HeightMsg&, const HeightMsg&) = default;
 };
 
 /// Largest number of circles in a FaceCirclesMsg (the size of a face).
@@ -339,22 +363,22 @@ struct GateRadiusMsg {
   friend bool operator==(const GateRadiusMsg&, const GateRadiusMsg&) = default;
 };
 
-/// Messages between protocol vertices of the packing protocol (types 1–10, 17–20).
+/// Messages between protocol vertices of the packing protocol (types 1–10, 17–21).
 using PackingMessage = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg,
                                     DecisionMsg, ShapeMsg, FaceCirclesMsg, KrylovValueMsg, KrylovSumMsg, KrylovDecisionMsg,
-                                    GateRadiusMsg>;
-/// What a packing node sends a neighbour without the reliability layer (types 1–11, 17–20).
+                                    GateRadiusMsg, HeightMsg>;
+/// What a packing node sends a neighbour without the reliability layer (types 1–11, 17–21).
 using PackingHop = std::variant<PackingMessage, RelayMsg>;
 /// The reliability layer's messages on one link (types 13, 14).
 using LinkMessage = std::variant<FrameMsg, AckMsg>;
-/// What a FrameMsg carries (types 1–11, 15 and 17–20).
+/// What a FrameMsg carries (types 1–11, 15 and 17–21).
 using FramePayload = std::variant<PackingHop, FailureMsg>;
 /// Data packets of the forwarding schemes (types 12, 16).
 using ForwardingMessage = std::variant<DataMsg, RouteMsg>;
 /// Any message; the alternatives are in type-code order (alternative k has type k + 1).
 using Message = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg, DecisionMsg,
                              ShapeMsg, FaceCirclesMsg, RelayMsg, DataMsg, FrameMsg, AckMsg, FailureMsg, RouteMsg,
-                             KrylovValueMsg, KrylovSumMsg, KrylovDecisionMsg, GateRadiusMsg>;
+                             KrylovValueMsg, KrylovSumMsg, KrylovDecisionMsg, GateRadiusMsg, HeightMsg>;
 
 namespace detail {
 template <class T, class Variant>
@@ -363,7 +387,7 @@ template <class T, class... Ts>
 struct IsAlternative<T, std::variant<Ts...>> : std::disjunction<std::is_same<T, Ts>...> {};
 }  // namespace detail
 
-/// Whether T is one of the 19 message structs.
+/// Whether T is one of the 21 message structs.
 template <class T>
 inline constexpr bool is_message_v = detail::IsAlternative<T, Message>::value;
 
@@ -394,7 +418,7 @@ inline constexpr std::size_t decode_status_count = 7;
 /// Name of a decode status ("ok", "truncated", …).
 std::string_view to_string(DecodeStatus s);
 
-/// Encodes message `m` (one of the 19 structs), replacing the contents of `out`.
+/// Encodes message `m` (one of the 21 structs), replacing the contents of `out`.
 template <class M>
   requires is_message_v<M>
 void encode(const M& m, std::vector<std::byte>& out);
