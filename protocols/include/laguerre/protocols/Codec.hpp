@@ -387,7 +387,8 @@ struct HyperbolicAddressMsg {
   friend bool operator==(const HyperbolicAddressMsg&, const HyperbolicAddressMsg&) = default;
 };
 
-/// Bits of one side in a packed address: ⌈log2 q⌉ (core::hyperbolic_side_bits).
+/// Bits of one side in a packed address: ⌈log2 q⌉, as core::hyperbolic_side_bits (repeated here: the
+/// codec is compiled without core in the fuzzing build, tests/fuzz).
 std::size_t hyperbolic_address_width(std::uint32_t q);
 /// The sides packed as HyperbolicAddressMsg carries them.
 std::vector<std::byte> pack_hyperbolic_address(std::span<const std::uint32_t> sides, std::uint32_t q);
