@@ -92,6 +92,29 @@ template <class Ar, Is<KrylovDecisionMsg> M> void fields(Ar& ar, M& m) {
   ar(m.seq, m.action, m.a, m.b).require(m.action <= 4);
 }
 
+// A packed address is canonical: its length fits the levels, every side is a side, unused bits are 0.
+bool valid_address(const HyperbolicAddressMsg& m) {
+  if (m.q < 3) return false;
+  const std::size_t width = hyperbolic_address_width(m.q), bits = std::size_t{m.levels} * width;
+  if (m.packed.size() != (bits + 7) / 8) return false;
+  const std::vector<std::uint32_t> sides = unpack_hyperbolic_address(m.packed, m.levels, m.q);
+  for (std::size_t k = 0; k < sides.size(); ++k)
+    if (sides[k] >= m.q || (k > 0 && sides[k] == 0)) return false;
+  return pack_hyperbolic_address(sides, m.q) == m.packed;
+}
+template <class Ar, Is<HyperbolicSweepMsg> M> void fields(Ar& ar, M& m) { ar(m.sweep, m.depth, m.parent).require(m.sweep <= 2); }
+template <class Ar, Is<HyperbolicEchoMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.sweep, m.value, m.id).require(m.sweep <= 2 && (m.sweep < 2 || m.id == 0));
+}
+template <class Ar, Is<HyperbolicRootMsg> M> void fields(Ar& ar, M& m) {
+  ar(m.stage, m.hops_left).require(m.stage <= 1 && (m.stage == 1 || m.hops_left == 0));
+}
+template <class Ar, Is<HyperbolicAddressMsg> M> void fields(Ar& ar, M& m) {
+  // 2^24 levels bound the count before it sizes anything (a tree deeper than that is not a sensor field).
+  ar(m.q, m.whose, m.levels, counted(m.packed, 0, 1u << 24));
+  ar.require(m.whose <= 1 && m.levels < (1u << 24) && valid_address(m));
+}
+
 template <class Ar, Is<RouteMsg> M>
 void fields(Ar& ar, M& m) {
   ar(m.packet, m.source, m.target, code(m.scheme, RouteScheme::greedy_euclid, RouteScheme::gfg), m.tx, m.ty, m.ttl,
@@ -348,7 +371,9 @@ std::string_view to_string(MessageType t) {
   static constexpr std::string_view names[] = {"?",      "depth",        "election", "start", "wave",  "radius",
                                                "placed", "report",       "decision", "shape", "face_circles",
                                                "relay",  "data",         "frame",    "ack",   "failure", "route",
-                                               "krylov_value", "krylov_sum", "krylov_decision", "gate_radius", "height"};
+                                               "krylov_value", "krylov_sum", "krylov_decision", "gate_radius", "height",
+                                               "hyperbolic_sweep", "hyperbolic_echo", "hyperbolic_root",
+                                               "hyperbolic_address"};
   static_assert(std::size(names) == max_message_type + 1);
   const auto code = static_cast<std::size_t>(t);
   return code <= max_message_type ? names[code] : names[0];
@@ -440,6 +465,38 @@ template void encode(const KrylovSumMsg&, std::vector<std::byte>&);
 template void encode(const KrylovDecisionMsg&, std::vector<std::byte>&);
 template void encode(const GateRadiusMsg&, std::vector<std::byte>&);
 template void encode(const HeightMsg&, std::vector<std::byte>&);
+template void encode(const HyperbolicSweepMsg&, std::vector<std::byte>&);
+template void encode(const HyperbolicEchoMsg&, std::vector<std::byte>&);
+template void encode(const HyperbolicRootMsg&, std::vector<std::byte>&);
+template void encode(const HyperbolicAddressMsg&, std::vector<std::byte>&);
+
+std::size_t hyperbolic_address_width(std::uint32_t q) {
+  std::size_t width = 0;
+  while ((std::size_t{1} << width) < q) ++width;
+  return width;
+}
+
+std::vector<std::byte> pack_hyperbolic_address(std::span<const std::uint32_t> sides, std::uint32_t q) {
+  const std::size_t width = hyperbolic_address_width(q);
+  std::vector<std::byte> out((sides.size() * width + 7) / 8, std::byte{0});
+  for (std::size_t k = 0; k < sides.size(); ++k)
+    for (std::size_t b = 0; b < width; ++b)
+      if ((sides[k] >> b) & 1u) out[(k * width + b) / 8] |= std::byte{static_cast<std::uint8_t>(1u << ((k * width + b) % 8))};
+  return out;
+}
+
+std::vector<std::uint32_t> unpack_hyperbolic_address(std::span<const std::byte> packed, std::uint32_t levels,
+                                                     std::uint32_t q) {
+  const std::size_t width = hyperbolic_address_width(q);
+  std::vector<std::uint32_t> sides(levels, 0);
+  for (std::size_t k = 0; k < levels; ++k)
+    for (std::size_t b = 0; b < width; ++b) {
+      const std::size_t bit = k * width + b;
+      if (bit / 8 < packed.size() && (std::to_integer<std::uint8_t>(packed[bit / 8]) >> (bit % 8)) & 1u)
+        sides[k] |= 1u << b;
+    }
+  return sides;
+}
 
 void encode(const RelayView& m, std::vector<std::byte>& out) { encode_as(code_of<RelayMsg>(), m, out); }
 
@@ -461,5 +518,6 @@ DecodeStatus decode(std::span<const std::byte> bytes, PackingHop& out) { return 
 DecodeStatus decode(std::span<const std::byte> bytes, LinkMessage& out) { return decode_set(bytes, out); }
 DecodeStatus decode(std::span<const std::byte> bytes, FramePayload& out) { return decode_set(bytes, out); }
 DecodeStatus decode(std::span<const std::byte> bytes, ForwardingMessage& out) { return decode_set(bytes, out); }
+DecodeStatus decode(std::span<const std::byte> bytes, HyperbolicMessage& out) { return decode_set(bytes, out); }
 
 }  // namespace laguerre::protocols

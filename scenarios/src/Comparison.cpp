@@ -121,6 +121,7 @@ std::vector<ComparisonRow> compare_runs(const Scenario& scenario, const std::vec
       row.scheme = scheme_name(cfg.routing.schemes[k]);
       PairAccumulator core_pairs, all_pairs;
       double nodes = 0, sensors = 0, core_nodes = 0, disconnected = 0, iters = 0, rounds = 0, msgs = 0, simt = 0;
+      double bytes = 0, state = 0;
       for (const RunRecord& r : records) {
         if (r.plan.point != p.index) continue;
         ++row.runs;
@@ -141,6 +142,9 @@ std::vector<ComparisonRow> compare_runs(const Scenario& scenario, const std::vec
         rounds += r.rounds;
         // A scheme with its own setup (hyperbolic) reports its messages; the others share the protocol's.
         msgs += std::isnan(s.setup_messages_per_node) ? r.messages_per_node : s.setup_messages_per_node;
+        const double packed = r.core_nodes ? static_cast<double>(r.core_nodes) : 1.0;  // the protocol's nodes
+        bytes += std::isnan(s.setup_bytes_per_node) ? static_cast<double>(r.bytes) / packed : s.setup_bytes_per_node;
+        state += s.state_bytes_per_node;
         simt += r.simulated_seconds;
       }
       const PairSummary core = core_pairs.summary();
@@ -160,6 +164,8 @@ std::vector<ComparisonRow> compare_runs(const Scenario& scenario, const std::vec
       row.iterations_mean = iters / routed;
       row.rounds_mean = rounds / routed;
       row.messages_per_node_mean = msgs / routed;
+      row.bytes_per_node_mean = bytes / routed;
+      row.state_bytes_per_node_mean = state / routed;
       row.simulated_seconds_mean = simt / routed;
       rows.push_back(row);
     }
@@ -181,10 +187,11 @@ std::string csv_num(double x) { return std::isfinite(x) ? fmt("%.6g", x) : ""; }
 std::string comparison_table(const std::vector<ComparisonRow>& rows) {
   std::string out;
   char line[512];
-  std::snprintf(line, sizeof line, "%-40s %6s %-22s %-14s %5s %9s %17s %7s %7s %7s %8s %7s %9s %10s %8s %8s %8s %9s %17s %7s %7s %7s\n",
+  std::snprintf(line, sizeof line,
+                "%-40s %6s %-22s %-14s %5s %9s %17s %7s %7s %7s %8s %7s %9s %10s %8s %10s %8s %8s %8s %9s %17s %7s %7s %7s\n",
                 "family", "n", "network", "scheme", "runs", "delivery", "95% CI", "stretch", "p95", "max", "iters",
-                "rounds", "msgs/node", "sim time", "sensors", "nodes", "packed", "all-pairs", "95% CI", "stretch", "p95",
-                "discon");
+                "rounds", "msgs/node", "bytes/node", "state B", "sim time", "sensors", "nodes", "packed", "all-pairs",
+                "95% CI", "stretch", "p95", "discon");
   out += line;
   std::string last_group;
   for (const auto& r : rows) {
@@ -201,13 +208,14 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows) {
                                    : "[" + fmt("%.1f", 100 * a.delivery_ci.low) + ", " +
                                          fmt("%.1f", 100 * a.delivery_ci.high) + "]" + (a.ci_method == "wilson" ? "w" : "");
     std::snprintf(line, sizeof line,
-                  "%-40s %6s %-22s %-14s %2zu/%-2zu %8s%% %17s %7s %7s %7s %8s %7s %9s %9ss %8s %8s %8s %8s%% %17s %7s %7s "
-                  "%6s%%\n",
+                  "%-40s %6s %-22s %-14s %2zu/%-2zu %8s%% %17s %7s %7s %7s %8s %7s %9s %10s %8s %9ss %8s %8s %8s %8s%% "
+                  "%17s %7s %7s %6s%%\n",
                   r.family.c_str(), r.size.c_str(), r.network.substr(0, 22).c_str(), r.scheme.c_str(), r.routed, r.runs,
                   fmt("%.2f", 100 * r.delivery_mean).c_str(), ci.c_str(), fmt("%.3f", r.stretch_mean).c_str(),
                   fmt("%.3f", r.stretch_p95).c_str(), fmt("%.2f", r.stretch_max).c_str(),
                   fmt("%.1f", r.iterations_mean).c_str(), fmt("%.1f", r.rounds_mean).c_str(),
-                  fmt("%.1f", r.messages_per_node_mean).c_str(), fmt("%.4f", r.simulated_seconds_mean).c_str(),
+                  fmt("%.1f", r.messages_per_node_mean).c_str(), fmt("%.0f", r.bytes_per_node_mean).c_str(),
+                  fmt("%.0f", r.state_bytes_per_node_mean).c_str(), fmt("%.4f", r.simulated_seconds_mean).c_str(),
                   fmt("%.1f", r.sensors_mean).c_str(), fmt("%.1f", r.nodes_mean).c_str(),
                   fmt("%.1f", r.core_nodes_mean).c_str(), fmt("%.2f", 100 * a.delivery_mean).c_str(), all_ci.c_str(), fmt("%.3f", a.stretch_mean).c_str(),
                   fmt("%.3f", a.stretch_p95).c_str(), fmt("%.2f", 100 * r.disconnected_mean).c_str());
@@ -215,6 +223,8 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows) {
   }
   out += "delivery = mean per-run delivery rate; 95% CI: Student t over repetitions (w: Wilson on the pairs of a single "
          "run); stretch = hop stretch (mean, mean per-run p95, max) against BFS in the routed graph.\n"
+         "msgs/node, bytes/node: the scheme's own set-up (hyperbolic, simulated) or the packing protocol's (per packed "
+         "node; 0 with protocol.mode central); state B = routing state per node (own and neighbours' coordinates).\n"
          "Fields with attach: sensors = deployed, nodes = routed (every sensor), packed = the 3-connected core; delivery/stretch above are over pairs "
          "of the packed core; all-pairs = delivery over pairs of all sensors in one link component (greedy power with "
          "the attachment, the others on the planarization of all sensors), stretch against BFS in the link graph; "
@@ -226,7 +236,7 @@ std::string comparison_csv(const std::vector<ComparisonRow>& rows) {
   std::string out =
       "scenario,point,family,n,network,scheme,runs,routed,nodes_mean,delivery_mean,delivery_ci_low,delivery_ci_high,"
       "ci_method,stretch_mean,stretch_p95,stretch_max,iterations_mean,rounds_mean,messages_per_node_mean,"
-      "simulated_seconds_mean,sensors_mean,core_nodes_mean,all_pairs_delivery_mean,all_pairs_delivery_ci_low,all_pairs_delivery_ci_high,"
+      "simulated_seconds_mean,bytes_per_node_mean,state_bytes_per_node_mean,sensors_mean,core_nodes_mean,all_pairs_delivery_mean,all_pairs_delivery_ci_low,all_pairs_delivery_ci_high,"
       "all_pairs_ci_method,all_pairs_stretch_mean,all_pairs_stretch_p95,all_pairs_stretch_max,disconnected_mean\n";
   auto q = [](const std::string& s) {
     if (s.find_first_of(",\"\n") == std::string::npos) return s;
@@ -240,7 +250,8 @@ std::string comparison_csv(const std::vector<ComparisonRow>& rows) {
            csv_num(r.delivery_mean) + "," + csv_num(r.delivery_ci.low) + "," + csv_num(r.delivery_ci.high) + "," +
            r.ci_method + "," + csv_num(r.stretch_mean) + "," + csv_num(r.stretch_p95) + "," + csv_num(r.stretch_max) +
            "," + csv_num(r.iterations_mean) + "," + csv_num(r.rounds_mean) + "," + csv_num(r.messages_per_node_mean) +
-           "," + csv_num(r.simulated_seconds_mean) + "," + csv_num(r.sensors_mean) + "," +
+           "," + csv_num(r.simulated_seconds_mean) + "," + csv_num(r.bytes_per_node_mean) + "," +
+           csv_num(r.state_bytes_per_node_mean) + "," + csv_num(r.sensors_mean) + "," +
            csv_num(r.core_nodes_mean) + "," + csv_num(r.all_pairs.delivery_mean) + "," + csv_num(r.all_pairs.delivery_ci.low) + "," +
            csv_num(r.all_pairs.delivery_ci.high) + "," + r.all_pairs.ci_method + "," + csv_num(r.all_pairs.stretch_mean) +
            "," + csv_num(r.all_pairs.stretch_p95) + "," + csv_num(r.all_pairs.stretch_max) + "," +
@@ -270,6 +281,8 @@ std::string comparison_json(const std::vector<ComparisonRow>& rows) {
                    {"rounds_mean", num(r.rounds_mean)},
                    {"messages_per_node_mean", num(r.messages_per_node_mean)},
                    {"simulated_seconds_mean", num(r.simulated_seconds_mean)},
+                   {"bytes_per_node_mean", num(r.bytes_per_node_mean)},
+                   {"state_bytes_per_node_mean", num(r.state_bytes_per_node_mean)},
                    {"sensors_mean", num(r.sensors_mean)},
                    {"core_nodes_mean", num(r.core_nodes_mean)}});
     if (r.all_pairs_runs > 0)

@@ -179,6 +179,64 @@ void watch_progress(sim::SimHost& host, const std::function<void(const ProtocolP
 }
 }  // namespace
 
+HyperbolicSetupOutcome run_hyperbolic_setup(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
+                                            const sim::LinkModel& link, std::uint64_t seed, core::Vertex root) {
+  link.validate();
+  if (link.loss > 0 || link.duplication > 0)
+    throw core::InputError("network", 0, "the hyperbolic set-up runs on reliable links only (found loss or duplication)");
+  if (link.latency.kind == sim::LatencyKind::distance && positions.empty())
+    throw core::InputError("a distance latency needs node positions, and this topology has none");
+  const std::size_t n = g.num_vertices();
+  protocols::HyperbolicSetupParams params;
+  if (n > 0) params.initiator = g.id(0);
+  if (root != core::none) params.root = g.id(root);
+  sim::SimConfig config;
+  config.seed = seed;
+  sim::SimHost host(
+      make_network(g, positions, link), config,
+      [&](protocols::Runtime& rt, sim::NodeIndex v) -> std::unique_ptr<protocols::Node> {
+        std::vector<protocols::NodeId> nb;
+        for (const core::Vertex u : g.neighbours(v)) nb.push_back(g.id(u));
+        return std::make_unique<protocols::HyperbolicSetupNode>(rt, g.id(v), std::move(nb), params);
+      },
+      traffic_phase);
+  const sim::RunReport report = host.run({});
+  HyperbolicSetupOutcome out;
+  ProtocolOutcome traffic;
+  collect_traffic(host.simulator().traffic(), traffic);
+  out.messages = traffic.messages;
+  out.bytes = traffic.bytes;
+  out.max_node_messages = traffic.max_node_messages;
+  out.by_phase = std::move(traffic.by_phase);
+  out.simulated_time = report.simulated_time;
+  out.wall_seconds = report.wall_seconds;
+  out.parents.assign(n, core::none);
+  out.depths.assign(n, 0);
+  out.addresses.resize(n);
+  for (core::Vertex v = 0; v < n; ++v) {
+    const auto& node = static_cast<const protocols::HyperbolicSetupNode&>(host.node(v));
+    out.done_nodes += node.done();
+    out.rejected += node.counters().rejected;
+    const std::size_t state = node.state_bytes();
+    out.state_bytes += state;
+    out.max_state_bytes = std::max(out.max_state_bytes, state);
+    out.depths[v] = node.depth();
+    out.addresses[v] = node.address();
+    if (node.is_root()) {
+      out.root = v;
+      out.tiling_degree = node.tiling_degree();
+    } else if (const auto p = host.simulator().network().index_of(node.parent())) {
+      out.parents[v] = *p;
+    }
+  }
+  for (core::Vertex v = 0; v < n; ++v) {
+    const auto& node = static_cast<const protocols::HyperbolicSetupNode&>(host.node(v));
+    for (std::size_t i = 0; i < g.degree(v); ++i)
+      out.inconsistent_tables += node.neighbour_address(i) != out.addresses[g.neighbours(v)[i]];
+  }
+  return out;
+}
+
 ProtocolOutcome run_packing_protocol(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
                                      const ProtocolSetup& setup) {
   const std::size_t n = g.num_vertices();

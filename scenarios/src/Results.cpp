@@ -61,6 +61,8 @@ std::string results_json(const Scenario& scenario, const std::vector<RunRecord>&
                {"hops_mean", num(s.hops_mean)},
                {"positions", s.positions},
                {"setup_messages_per_node", num(s.setup_messages_per_node)},
+               {"setup_bytes_per_node", num(s.setup_bytes_per_node)},
+               {"state_bytes_per_node", num(s.state_bytes_per_node)},
                {"coordinate_bits_mean", num(s.coordinate_bits_mean)},
                {"coordinate_bits_max", num(s.coordinate_bits_max)}};
       if (s.all_pairs) {
@@ -208,6 +210,8 @@ std::string summary_table(const Scenario& scenario, const std::vector<RunRecord>
     for (std::size_t k = 0; k < p.config.routing.schemes.size(); ++k) {
       std::size_t pairs = 0, delivered = 0, w = 0, all_pairs = 0, all_connected = 0, all_delivered = 0, all_w = 0;
       double stretch = 0, smax = std::numeric_limits<double>::quiet_NaN(), all_stretch = 0;
+      double setup_msgs = 0, setup_bytes = 0, state = 0;
+      std::size_t runs_k = 0;
       std::string where;
       for (const RunRecord& r : records) {
         if (r.plan.point != p.index || k >= r.routing.size()) continue;
@@ -224,6 +228,12 @@ std::string summary_table(const Scenario& scenario, const std::vector<RunRecord>
         pairs += s.pairs;
         delivered += s.delivered;
         where = s.positions;
+        // The scheme's own set-up, or the packing protocol's (per packed node), as in compare.
+        const double packed = r.core_nodes ? static_cast<double>(r.core_nodes) : 1.0;
+        ++runs_k;
+        setup_msgs += std::isnan(s.setup_messages_per_node) ? r.messages_per_node : s.setup_messages_per_node;
+        setup_bytes += std::isnan(s.setup_bytes_per_node) ? static_cast<double>(r.bytes) / packed : s.setup_bytes_per_node;
+        state += s.state_bytes_per_node;
         if (s.delivered) {
           stretch += s.stretch_mean * static_cast<double>(s.delivered);
           w += s.delivered;
@@ -231,11 +241,15 @@ std::string summary_table(const Scenario& scenario, const std::vector<RunRecord>
         }
       }
       if (pairs == 0) continue;
-      std::snprintf(line, sizeof line, "    %-14s %9zu/%-9zu delivered (%6.2f%%)  stretch mean %s, max %s  [%s positions]\n",
+      const double rk = static_cast<double>(runs_k);
+      std::snprintf(line, sizeof line,
+                    "    %-14s %9zu/%-9zu delivered (%6.2f%%)  stretch mean %s, max %s  [%s positions]  set-up %s msgs, "
+                    "%s B per node; state %s B per node\n",
                     scheme_name(p.config.routing.schemes[k]).c_str(), delivered, pairs,
                     100.0 * static_cast<double>(delivered) / static_cast<double>(pairs),
                     fmt("%.3f", w ? stretch / static_cast<double>(w) : std::nan("")).c_str(), fmt("%.2f", smax).c_str(),
-                    where.c_str());
+                    where.c_str(), fmt("%.1f", setup_msgs / rk).c_str(), fmt("%.0f", setup_bytes / rk).c_str(),
+                    fmt("%.0f", state / rk).c_str());
       out += line;
       if (all_pairs == 0) continue;
       std::snprintf(line, sizeof line,

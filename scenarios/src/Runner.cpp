@@ -210,11 +210,27 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
       sr.stretch_max = st.stretch_max;
       sr.hops_mean = st.hops_mean;
       sr.positions = on_physical ? "physical" : "packing";
+      // A coordinate per node and per neighbour: a circle (3 doubles) or a position (2).
+      const double per_node = n ? static_cast<double>(n + 2 * g.num_edges()) / static_cast<double>(n) : 0.0;
+      sr.state_bytes_per_node = (s == core::Scheme::greedy_power ? 24.0 : 16.0) * per_node;
       if (s == core::Scheme::hyperbolic) {
         sr.positions = "tree";
         const core::HyperbolicSetupCost cost =
             core::hyperbolic_setup_cost(core::HyperbolicTreeEmbedding(g), g.num_edges());
-        sr.setup_messages_per_node = n ? static_cast<double>(cost.messages) / static_cast<double>(n) : 0.0;
+        // The set-up simulated node by node, on the run's links (reliable: its protocol has no
+        // reliability layer), every message counted.
+        sim::LinkModel links = setup.link;
+        links.loss = links.duplication = 0;
+        const HyperbolicSetupOutcome so = run_hyperbolic_setup(g, topo.positions, links, plan.seed);
+        if (so.done_nodes != n || so.rejected != 0 || so.inconsistent_tables != 0 ||
+            (links.is_deterministic() && so.messages != cost.messages))  // equal to the central tree's
+          throw core::InternalError("hyperbolic set-up: " + std::to_string(so.done_nodes) + "/" + std::to_string(n) +
+                                    " nodes done, " + std::to_string(so.rejected) + " messages rejected, " +
+                                    std::to_string(so.messages) + " messages against " + std::to_string(cost.messages));
+        const double nn = n ? static_cast<double>(n) : 1.0;
+        sr.setup_messages_per_node = static_cast<double>(so.messages) / nn;
+        sr.setup_bytes_per_node = static_cast<double>(so.bytes) / nn;
+        sr.state_bytes_per_node = static_cast<double>(so.state_bytes) / nn;
         sr.coordinate_bits_mean = cost.address_bits_mean;
         sr.coordinate_bits_max = static_cast<double>(cost.address_bits_max);
       }
@@ -294,7 +310,8 @@ void encode_record(const RunRecord& r, std::vector<std::byte>& out) {
     append_bytes(out, x.delivery_rate), append_bytes(out, x.stretch_mean), append_bytes(out, x.stretch_p95);
     append_bytes(out, x.stretch_max), append_bytes(out, x.hops_mean);
     put_text(out, x.positions);
-    append_bytes(out, x.setup_messages_per_node), append_bytes(out, x.coordinate_bits_mean);
+    append_bytes(out, x.setup_messages_per_node), append_bytes(out, x.setup_bytes_per_node);
+    append_bytes(out, x.state_bytes_per_node), append_bytes(out, x.coordinate_bits_mean);
     append_bytes(out, x.coordinate_bits_max);
     append_bytes(out, x.all_pairs.has_value());
     if (x.all_pairs) append_bytes(out, *x.all_pairs);
@@ -324,7 +341,8 @@ RunRecord decode_record(std::span<const std::byte> in, std::size_t& at) {
     x.stretch_mean = read_bytes<double>(in, at), x.stretch_p95 = read_bytes<double>(in, at);
     x.stretch_max = read_bytes<double>(in, at), x.hops_mean = read_bytes<double>(in, at);
     x.positions = get_text(in, at);
-    x.setup_messages_per_node = read_bytes<double>(in, at), x.coordinate_bits_mean = read_bytes<double>(in, at);
+    x.setup_messages_per_node = read_bytes<double>(in, at), x.setup_bytes_per_node = read_bytes<double>(in, at);
+    x.state_bytes_per_node = read_bytes<double>(in, at), x.coordinate_bits_mean = read_bytes<double>(in, at);
     x.coordinate_bits_max = read_bytes<double>(in, at);
     if (read_bytes<bool>(in, at)) x.all_pairs = read_bytes<AllPairsStats>(in, at);
   }

@@ -37,6 +37,10 @@ int main(int argc, char** argv) {
       p::KrylovDecisionMsg{9, 0, 0.25, 0.75},
       p::GateRadiusMsg{9, 0.5, 0x3},
       p::HeightMsg{true, 12},
+      p::HyperbolicSweepMsg{1, 6, 21},
+      p::HyperbolicEchoMsg{0, 11, 4},
+      p::HyperbolicRootMsg{1, 2},
+      p::HyperbolicAddressMsg{8, 0, 5, p::pack_hyperbolic_address(std::vector<std::uint32_t>{7, 1, 3, 6, 2}, 8)},
   };
   for (std::size_t i = 0; i < messages.size(); ++i) {
     const std::vector<std::byte> bytes = p::encode(messages[i]);

@@ -160,11 +160,14 @@ std::optional<Sign> compare_norms(const HyperbolicTreeEmbedding::Norm& x, const 
   return std::nullopt;
 }
 
-// BFS from `from` over CSR adjacency: distances and parents (neighbour order = adjacency order).
+// BFS from `from` over CSR adjacency: distances, and as parent of each vertex its smallest-index
+// neighbour one level up — the rule a node applies locally in the distributed set-up
+// (protocols/HyperbolicSetup.hpp), where it hears all of that level at once.
 void bfs(const std::vector<std::uint32_t>& off, const std::vector<Vertex>& tgt, Vertex from,
          std::vector<std::uint32_t>& dist, std::vector<Vertex>& parent) {
   const std::size_t n = off.size() - 1;
-  dist.assign(n, std::numeric_limits<std::uint32_t>::max());
+  constexpr std::uint32_t unseen = std::numeric_limits<std::uint32_t>::max();
+  dist.assign(n, unseen);
   parent.assign(n, none);
   std::vector<Vertex> queue{from};
   queue.reserve(n);
@@ -173,10 +176,11 @@ void bfs(const std::vector<std::uint32_t>& off, const std::vector<Vertex>& tgt, 
     const Vertex v = queue[head];
     for (std::uint32_t k = off[v]; k < off[v + 1]; ++k) {
       const Vertex u = tgt[k];
-      if (dist[u] != std::numeric_limits<std::uint32_t>::max()) continue;
-      dist[u] = dist[v] + 1;
-      parent[u] = v;
-      queue.push_back(u);
+      if (dist[u] == unseen) {
+        dist[u] = dist[v] + 1;
+        queue.push_back(u);
+      }
+      if (dist[u] == dist[v] + 1 && (parent[u] == none || v < parent[u])) parent[u] = v;
     }
   }
 }
@@ -298,6 +302,8 @@ void HyperbolicTreeEmbedding::build(const std::vector<std::uint32_t>& off, const
       if (dist[v] == std::numeric_limits<std::uint32_t>::max())
         throw InputError("graph", 0, "vertex " + std::to_string(v) + " is not connected to vertex 0, expected a connected graph");
     const Vertex a = farthest(dist);
+    swept_ = true;
+    sweep_start_depth_ = dist[a];
     bfs(off, tgt, a, dist, par);
     Vertex b = farthest(dist);
     sweep_length_ = dist[b];
@@ -338,17 +344,34 @@ void HyperbolicTreeEmbedding::build(const std::vector<std::uint32_t>& off, const
       const Vertex u = tgt[k];
       if (u == root || par[u] != v) continue;
       ++i;
-      const std::uint64_t kids = children[v];
-      if (v == root) {
-        index_[u] = static_cast<std::uint32_t>((i - 1) * q_ / kids);
-      } else {
-        const auto side = static_cast<std::uint32_t>(1 + (2 * i - 1) * (q_ - 1) / (2 * kids));
-        index_[u] = dist[v] % 2 == 1 ? q_ - side : side;
-      }
+      index_[u] = hyperbolic_child_side(q_, v == root, dist[v], static_cast<std::uint32_t>(i), children[v]);
     }
   }
   gen_ = evaluation_matrices(q_);
   if (o.coordinates == HyperbolicCoordinates::disc_double) disc_ = disc_boxes(*this, dist, par);
+}
+
+std::uint32_t hyperbolic_child_side(std::uint32_t q, bool root, std::uint32_t depth, std::uint32_t rank,
+                                    std::uint32_t children) {
+  LAGUERRE_PRECONDITION(rank >= 1 && rank <= children && children + (root ? 0 : 1) <= q,
+                        "child " + std::to_string(rank) + " of " + std::to_string(children) + " with q = " +
+                            std::to_string(q));
+  const std::uint64_t i = rank, kids = children;
+  if (root) return static_cast<std::uint32_t>((i - 1) * q / kids);
+  const auto side = static_cast<std::uint32_t>(1 + (2 * i - 1) * (q - 1) / (2 * kids));
+  return depth % 2 == 1 ? q - side : side;
+}
+
+std::vector<std::uint32_t> HyperbolicTreeEmbedding::address(Vertex v) const {
+  std::vector<std::uint32_t> word(depth_.at(v));
+  for (Vertex x = v; x != root_; x = parent_[x]) word[depth_[x] - 1] = index_[x];
+  return word;
+}
+
+std::size_t hyperbolic_side_bits(std::uint32_t q) {
+  std::size_t per_level = 0;
+  while ((std::size_t{1} << per_level) < q) ++per_level;
+  return per_level;
 }
 
 double HyperbolicTreeEmbedding::edge_length() const {
@@ -439,11 +462,7 @@ double HyperbolicTreeEmbedding::distance(Vertex a, Vertex b) const {
   return ln_f > 30 ? ln_f : std::acosh(0.5 * std::exp(ln_f));  // acosh(F/2) = ln F − O(F⁻²)
 }
 
-std::size_t HyperbolicTreeEmbedding::address_bits(Vertex v) const {
-  std::size_t per_level = 0;
-  while ((std::size_t{1} << per_level) < q_) ++per_level;
-  return depth_[v] * per_level;
-}
+std::size_t HyperbolicTreeEmbedding::address_bits(Vertex v) const { return depth_[v] * hyperbolic_side_bits(q_); }
 
 std::size_t HyperbolicTreeEmbedding::disc_coordinate_bits(Vertex v) const {
   return 2 * (static_cast<std::size_t>(std::ceil(distance(root_, v) / std::log(2.0))) + 53);
@@ -452,8 +471,9 @@ std::size_t HyperbolicTreeEmbedding::disc_coordinate_bits(Vertex v) const {
 HyperbolicSetupCost hyperbolic_setup_cost(const HyperbolicTreeEmbedding& e, std::size_t edges) {
   HyperbolicSetupCost c;
   const std::uint64_t n = e.size(), m = edges;
-  const bool swept = e.sweep_length() > 0 || n == 1;
-  c.messages = (swept ? 3 : 1) * 2 * m + (swept ? 3 : 1) * (n - 1) + (e.sweep_length() + 1) / 2 + (n - 1);
+  const std::uint64_t bfs_runs = e.swept() ? 3 : 1;
+  c.messages = bfs_runs * (2 * m + (n - 1)) + (n - 1) + 2 * (m - (n - 1));
+  if (e.swept()) c.messages += e.sweep_start_depth() + (e.sweep_length() + 1) / 2;
   double sum = 0;
   for (Vertex v = 0; v < n; ++v) {
     const std::size_t bits = e.address_bits(v);

@@ -32,7 +32,12 @@ std::vector<Message> one_of_each() {
           KrylovSumMsg{3, 1.5, -2.5, 0.25, 7},
           KrylovDecisionMsg{3, 2, 0.5, 0},
           GateRadiusMsg{4, 1.5, 0x8000000000000001ull},
-          HeightMsg{false, 5}};
+          HeightMsg{false, 5},
+
+          HyperbolicSweepMsg{1, 4, 9},
+          HyperbolicEchoMsg{0, 7, 12},
+          HyperbolicRootMsg{1, 3},
+          HyperbolicAddressMsg{5, 0, 3, pack_hyperbolic_address(std::vector<std::uint32_t>{4, 1, 2}, 5)}};
 }
 
 // The type codes each set accepts.
@@ -56,6 +61,7 @@ TEST(MessageSets, EachSetAcceptsExactlyItsTypes) {
   EXPECT_EQ(accepted_types<LinkMessage>(), (std::vector<int>{13, 14}));
   EXPECT_EQ(accepted_types<FramePayload>(), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 15, 17, 18, 19, 20, 21}));
   EXPECT_EQ(accepted_types<ForwardingMessage>(), (std::vector<int>{12, 16}));
+  EXPECT_EQ(accepted_types<HyperbolicMessage>(), (std::vector<int>{22, 23, 24, 25}));
   EXPECT_EQ(accepted_types<Message>().size(), std::size_t{max_message_type});
 }
 
@@ -105,6 +111,7 @@ TEST(MessageSets, EncodingASetIsEncodingItsMessage) {
     FramePayload payload;
     ForwardingMessage forwarding;
     LinkMessage link;
+    HyperbolicMessage hyperbolic;
     std::size_t decoded = 0;
     if (decode(bytes, payload) == DecodeStatus::ok) {
       ++decoded;
@@ -118,6 +125,10 @@ TEST(MessageSets, EncodingASetIsEncodingItsMessage) {
       ++decoded;
       EXPECT_EQ(encode(link), bytes) << to_string(type_of(m));
     }
-    EXPECT_EQ(decoded, 1u) << "the three sets partition the types: " << to_string(type_of(m));
+    if (decode(bytes, hyperbolic) == DecodeStatus::ok) {
+      ++decoded;
+      EXPECT_EQ(encode(hyperbolic), bytes) << to_string(type_of(m));
+    }
+    EXPECT_EQ(decoded, 1u) << "the four sets partition the types: " << to_string(type_of(m));
   }
 }

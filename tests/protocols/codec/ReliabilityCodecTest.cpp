@@ -48,7 +48,7 @@ TEST(ReliabilityCodec, TypesHaveNamesAndSizes) {
   EXPECT_EQ(encoded_size(MessageType::frame), 22u);
   EXPECT_EQ(encoded_size(MessageType::ack), 14u);
   EXPECT_EQ(encoded_size(MessageType::failure), 10u);
-  EXPECT_EQ(max_message_type, 21);  // route (Forwarding.hpp), the Newton–Krylov, gate-radius and height messages came after it
+  EXPECT_EQ(max_message_type, 25);  // route (Forwarding.hpp), the Newton–Krylov, gate-radius, height and hyperbolic set-up messages came after it
 }
 
 TEST(ReliabilityCodec, TruncationsExtensionsAndOversizedCountsAreRejected) {

@@ -31,7 +31,8 @@
 ///  - LinkMessage (types 13, 14): the reliability layer's frames and acknowledgements on one link;
 ///  - FramePayload: what a frame carries, a PackingHop or a FailureMsg (type 15);
 ///  - ForwardingMessage (types 12, 16): data packets of the forwarding schemes (Forwarding.hpp);
-///  - Message: any of the 21 types.
+///  - HyperbolicMessage (types 22–25): the set-up of the hyperbolic baseline (HyperbolicSetup.hpp);
+///  - Message: any of the 25 types.
 
 #include <cstddef>
 #include <cstdint>
@@ -69,10 +70,14 @@ enum class MessageType : std::uint8_t {
   krylov_decision = 19,  ///< KrylovDecisionMsg: the root's Newton–Krylov decision, down the layout tree
   gate_radius = 20,      ///< GateRadiusMsg: a radius exchange carrying the flooded radius-only gate
   height = 21,           ///< HeightMsg: the layout tree's height (set-up convergecast / broadcast)
+  hyperbolic_sweep = 22,    ///< HyperbolicSweepMsg: a BFS flood of the hyperbolic set-up
+  hyperbolic_echo = 23,     ///< HyperbolicEchoMsg: its echo up the BFS tree
+  hyperbolic_root = 24,     ///< HyperbolicRootMsg: steering along the double sweep's path
+  hyperbolic_address = 25,  ///< HyperbolicAddressMsg: a tree address (to a child, or to a neighbour)
 };
 
 /// Largest MessageType value (types 1 … max_message_type exist).
-inline constexpr std::uint8_t max_message_type = 21;
+inline constexpr std::uint8_t max_message_type = 25;
 
 /// Name of a message type ("depth", "election", …), "?" for values outside the enum.
 std::string_view to_string(MessageType t);
@@ -363,6 +368,58 @@ struct GateRadiusMsg {
   friend bool operator==(const GateRadiusMsg&, const GateRadiusMsg&) = default;
 };
 
+/// Hyperbolic set-up (HyperbolicSetup.hpp): BFS flood `sweep` (0, 1: the double sweep that picks
+/// the root; 2: the tree), the sender's depth and its parent (its own id at the BFS's origin). Sent
+/// once to every neighbour per sweep. Fields: u8 sweep ∈ [0, 2], u32 depth, u64 parent.
+struct HyperbolicSweepMsg {
+  std::uint8_t sweep = 0;    ///< which BFS
+  std::uint32_t depth = 0;   ///< the sender's hops from the origin
+  std::uint64_t parent = 0;  ///< the sender's parent (itself at the origin)
+  friend bool operator==(const HyperbolicSweepMsg&, const HyperbolicSweepMsg&) = default;
+};
+
+/// The echo of BFS `sweep` from a child to its parent, once its subtree is done: for sweeps 0 and 1
+/// the subtree's farthest node (largest depth, smallest id), for sweep 2 the most tiles' sides a node
+/// of the subtree needs (its children, plus one for its parent). Fields: u8 sweep ∈ [0, 2], u32 value,
+/// u64 id (0 for sweep 2).
+struct HyperbolicEchoMsg {
+  std::uint8_t sweep = 0;   ///< which BFS
+  std::uint32_t value = 0;  ///< farthest depth (sweeps 0, 1) or sides needed (sweep 2)
+  std::uint64_t id = 0;     ///< farthest node (sweeps 0, 1)
+  friend bool operator==(const HyperbolicEchoMsg&, const HyperbolicEchoMsg&) = default;
+};
+
+/// Steering down the echo's path towards a sweep's farthest node: stage 0 goes to the farthest node of
+/// sweep 0, which starts sweep 1; stage 1 goes `hops_left` more hops towards sweep 1's farthest node,
+/// where the receiver becomes the root. Fields: u8 stage ∈ {0, 1}, u32 hops_left (0 at stage 0).
+struct HyperbolicRootMsg {
+  std::uint8_t stage = 0;       ///< 0 or 1
+  std::uint32_t hops_left = 0;  ///< stage 1: hops after this one
+  friend bool operator==(const HyperbolicRootMsg&, const HyperbolicRootMsg&) = default;
+};
+
+/// A tree address (core::HyperbolicTreeEmbedding::address): `levels` child sides of
+/// hyperbolic_address_width(q) bits each, packed little-endian from the root's child
+/// (pack_hyperbolic_address). whose = 0: the receiver's own address, from its parent; 1: the
+/// sender's, for the receiver's neighbour table. Fields: u32 q ≥ 3, u8 whose ∈ {0, 1}, u32 levels,
+/// u32 count = ⌈levels·width/8⌉, count bytes; every side < q, sides below the first ≥ 1, unused bits 0.
+struct HyperbolicAddressMsg {
+  std::uint32_t q = 3;            ///< the tiling degree
+  std::uint8_t whose = 0;         ///< 0: the receiver's, 1: the sender's
+  std::uint32_t levels = 0;       ///< the address's length (its node's depth)
+  std::vector<std::byte> packed;  ///< the sides, packed
+  friend bool operator==(const HyperbolicAddressMsg&, const HyperbolicAddressMsg&) = default;
+};
+
+/// Bits of one side in a packed address: ⌈log2 q⌉, as core::hyperbolic_side_bits (repeated here: the
+/// codec is compiled without core in the fuzzing build, tests/fuzz).
+std::size_t hyperbolic_address_width(std::uint32_t q);
+/// The sides packed as HyperbolicAddressMsg carries them.
+std::vector<std::byte> pack_hyperbolic_address(std::span<const std::uint32_t> sides, std::uint32_t q);
+/// The sides of a packed address (`levels` of them); no range checks (decode made them).
+std::vector<std::uint32_t> unpack_hyperbolic_address(std::span<const std::byte> packed, std::uint32_t levels,
+                                                     std::uint32_t q);
+
 /// Messages between protocol vertices of the packing protocol (types 1–10, 17–21).
 using PackingMessage = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg,
                                     DecisionMsg, ShapeMsg, FaceCirclesMsg, KrylovValueMsg, KrylovSumMsg, KrylovDecisionMsg,
@@ -375,10 +432,14 @@ using LinkMessage = std::variant<FrameMsg, AckMsg>;
 using FramePayload = std::variant<PackingHop, FailureMsg>;
 /// Data packets of the forwarding schemes (types 12, 16).
 using ForwardingMessage = std::variant<DataMsg, RouteMsg>;
+/// The hyperbolic baseline's set-up (types 22–25).
+using HyperbolicMessage = std::variant<HyperbolicSweepMsg, HyperbolicEchoMsg, HyperbolicRootMsg, HyperbolicAddressMsg>;
 /// Any message; the alternatives are in type-code order (alternative k has type k + 1).
 using Message = std::variant<DepthMsg, ElectionMsg, StartMsg, WaveMsg, RadiusMsg, PlacedMsg, ReportMsg, DecisionMsg,
                              ShapeMsg, FaceCirclesMsg, RelayMsg, DataMsg, FrameMsg, AckMsg, FailureMsg, RouteMsg,
-                             KrylovValueMsg, KrylovSumMsg, KrylovDecisionMsg, GateRadiusMsg, HeightMsg>;
+                             KrylovValueMsg, KrylovSumMsg, KrylovDecisionMsg, GateRadiusMsg, HeightMsg,
+                             HyperbolicSweepMsg,
+                             HyperbolicEchoMsg, HyperbolicRootMsg, HyperbolicAddressMsg>;
 
 namespace detail {
 template <class T, class Variant>
@@ -387,7 +448,7 @@ template <class T, class... Ts>
 struct IsAlternative<T, std::variant<Ts...>> : std::disjunction<std::is_same<T, Ts>...> {};
 }  // namespace detail
 
-/// Whether T is one of the 21 message structs.
+/// Whether T is one of the message structs.
 template <class T>
 inline constexpr bool is_message_v = detail::IsAlternative<T, Message>::value;
 
@@ -448,6 +509,8 @@ DecodeStatus decode(std::span<const std::byte> bytes, LinkMessage& out);
 DecodeStatus decode(std::span<const std::byte> bytes, FramePayload& out);
 /// (As above, for a ForwardingMessage.)
 DecodeStatus decode(std::span<const std::byte> bytes, ForwardingMessage& out);
+/// (As above, for a HyperbolicMessage.)
+DecodeStatus decode(std::span<const std::byte> bytes, HyperbolicMessage& out);
 
 /// A RelayMsg whose payload is a view (of the bytes it was decoded from, or of the buffer it is
 /// encoded from): how a relay forwards or opens an envelope without copying its payload. Same

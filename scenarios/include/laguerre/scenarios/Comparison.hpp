@@ -68,7 +68,9 @@ struct ComparisonRow {
   double stretch_max = 0;            ///< largest over the runs
   double iterations_mean = 0;        ///< protocol iterations, mean over routed runs
   double rounds_mean = 0;            ///< protocol rounds
-  double messages_per_node_mean = 0; ///< messages per node
+  double messages_per_node_mean = 0; ///< messages per node (the scheme's own set-up, else the protocol's)
+  double bytes_per_node_mean = 0;    ///< their bytes per node
+  double state_bytes_per_node_mean = 0;  ///< routing state per node, bytes (SchemeResult::state_bytes_per_node)
   double simulated_seconds_mean = 0; ///< simulated time of the protocol
   double sensors_mean = 0;           ///< mean sensors deployed (= nodes_mean unless a field drops sensors)
   double core_nodes_mean = 0;        ///< mean vertices packed (the 3-connected core of a field)

@@ -25,6 +25,7 @@
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 #include "laguerre/core/routing/Routing.hpp"
 #include "laguerre/protocols/Forwarding.hpp"
+#include "laguerre/protocols/HyperbolicSetup.hpp"
 #include "laguerre/protocols/PackingNode.hpp"
 #include "laguerre/protocols/Reliable.hpp"
 #include "laguerre/protocols/Runtime.hpp"
@@ -234,6 +235,35 @@ public:
   void on_packet_end(const protocols::PacketReport& r) override { reports.push_back(r); }
   std::vector<protocols::PacketReport> reports;  ///< in the order the packets ended
 };
+
+/// What the distributed set-up of the hyperbolic baseline produced (protocols/HyperbolicSetup.hpp).
+struct HyperbolicSetupOutcome {
+  std::size_t done_nodes = 0;                 ///< nodes that ended with their and their neighbours' addresses
+  core::Vertex root = core::none;             ///< the root the nodes chose
+  std::uint32_t tiling_degree = 0;            ///< q (the root's)
+  std::vector<core::Vertex> parents;          ///< per vertex, its tree parent (none at the root)
+  std::vector<std::uint32_t> depths;          ///< per vertex, its depth
+  std::vector<std::vector<std::uint32_t>> addresses;  ///< per vertex, its address (child sides from the root)
+  std::uint64_t messages = 0;                 ///< messages sent
+  std::uint64_t bytes = 0;                    ///< their bytes
+  std::uint64_t max_node_messages = 0;        ///< most messages sent by one node
+  std::vector<sim::TrafficCounters> by_phase; ///< traffic per codec message type
+  std::uint64_t state_bytes = 0;              ///< Σ HyperbolicSetupNode::state_bytes
+  std::size_t max_state_bytes = 0;            ///< the largest
+  std::uint64_t rejected = 0;                 ///< messages the nodes rejected (0 on a correct run)
+  std::size_t inconsistent_tables = 0;        ///< neighbour-table entries unlike that neighbour's own address (0 likewise)
+  sim::Time simulated_time = 0;               ///< simulated time at the end
+  double wall_seconds = 0;                    ///< wall-clock time of the simulation
+};
+
+/// Runs the hyperbolic set-up on `g` (placed at `positions`, if not empty) over links of `link`
+/// (reliable: no loss, duplication or outage), neighbours in g's adjacency order, the double sweep
+/// from vertex 0 (or from `root`, when given, the tree alone); every message simulated and counted
+/// (traffic_phase). Throws core::InputError for a lossy link model or a distance latency without
+/// positions.
+HyperbolicSetupOutcome run_hyperbolic_setup(const core::PlanarGraph& g, const std::vector<core::Point2>& positions,
+                                            const sim::LinkModel& link, std::uint64_t seed,
+                                            core::Vertex root = core::none);
 
 /// Throws InputError (source "--scheme") if `schemes` holds one the per-node forwarding protocol lacks
 /// (Scheme::hyperbolic, evaluated by the central router only).

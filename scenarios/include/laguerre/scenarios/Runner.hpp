@@ -83,9 +83,15 @@ struct SchemeResult {
   double stretch_max = 0;                            ///< largest
   double hops_mean = 0;                              ///< mean hops of delivered pairs
   std::string positions;                             ///< "packing", "physical" or "tree" (hyperbolic)
-  /// Schemes with their own setup (hyperbolic): messages per node to set it up, and the bits of a
-  /// node's coordinate (mean, max); NaN for the others, whose setup is the run's protocol.
+  /// Schemes with their own setup (hyperbolic): messages and bytes per node to set it up (its
+  /// protocol simulated, protocols/HyperbolicSetup.hpp), and the bits of a node's coordinate (mean,
+  /// max); NaN for the others, whose setup is the run's protocol.
   double setup_messages_per_node = std::numeric_limits<double>::quiet_NaN();
+  double setup_bytes_per_node = std::numeric_limits<double>::quiet_NaN();
+  /// Routing state a node holds once set up, mean bytes: its and its neighbours' coordinates (greedy
+  /// power 24-byte circles, the geometric schemes 16-byte positions, hyperbolic the set-up's
+  /// HyperbolicSetupNode::state_bytes).
+  double state_bytes_per_node = std::numeric_limits<double>::quiet_NaN();
   double coordinate_bits_mean = std::numeric_limits<double>::quiet_NaN();
   double coordinate_bits_max = std::numeric_limits<double>::quiet_NaN();
   /// A field with `attach: true`: the same scheme over pairs of all sensors (greedy power with the

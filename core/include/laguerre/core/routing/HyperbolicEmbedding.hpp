@@ -46,7 +46,9 @@ struct HyperbolicOptions {
 /// The embedding of one connected graph. Deterministic: a function of the adjacency order and options.
 class HyperbolicTreeEmbedding {
 public:
-  /// Embeds a BFS tree of `g` (neighbours visited in g's rotation order).
+  /// Embeds a BFS tree of `g`: each vertex's parent is its smallest-index neighbour one level up (the
+  /// local rule of the distributed set-up, protocols/HyperbolicSetup.hpp); children take their sides
+  /// in g's rotation order.
   explicit HyperbolicTreeEmbedding(const PlanarGraph& g, const HyperbolicOptions& options = {});
   /// Same from adjacency lists (any connected simple graph; InputError if disconnected or empty).
   explicit HyperbolicTreeEmbedding(const std::vector<std::vector<Vertex>>& adjacency,
@@ -60,6 +62,12 @@ public:
   std::uint32_t max_depth() const { return max_depth_; }     ///< the tree's height
   /// Length of the double sweep's second BFS path (0 when the root was given).
   std::uint32_t sweep_length() const { return sweep_length_; }
+  /// Hops from vertex 0 to the far end of the double sweep's first BFS (0 when the root was given).
+  std::uint32_t sweep_start_depth() const { return sweep_start_depth_; }
+  /// Whether the root was chosen by the double sweep (HyperbolicOptions::root was none).
+  bool swept() const { return swept_; }
+  /// v's tree address: the child index of each vertex on the tree path from the root (excluded) to v.
+  std::vector<std::uint32_t> address(Vertex v) const;
   /// The side of the parent's tile v's tile is glued to: in [0, q) at depth 1, [1, q) deeper.
   std::uint32_t child_index(Vertex v) const { return index_[v]; }
   /// D = 2 artanh cos(π/q), the hyperbolic distance between a parent and a child.
@@ -97,18 +105,28 @@ private:
   std::vector<Vertex> parent_;
   std::vector<std::uint32_t> depth_, index_;
   Vertex root_ = none;
-  std::uint32_t q_ = 3, max_depth_ = 0, sweep_length_ = 0;
+  std::uint32_t q_ = 3, max_depth_ = 0, sweep_length_ = 0, sweep_start_depth_ = 0;
+  bool swept_ = false;
   std::vector<double> gen_;   // evaluation matrices (see the .cpp), 8 doubles each
   std::vector<double> disc_;  // disc_double: 4 doubles per node
 };
 
-/// What setting the embedding up costs in a distributed run (counted, not simulated: each node sends
-/// one message per neighbour per flood and one to its parent per echo, unicast), and what a node holds.
+/// The side of its parent's tile that child number `rank` (1-based, in the parent's adjacency order)
+/// of `children` takes: spread evenly over the root's sides 0..q−1, or over a non-root parent's
+/// 1..q−1 (mirrored j ↦ q − j below parents at odd `depth`). One rule for the central embedding and
+/// the distributed set-up.
+std::uint32_t hyperbolic_child_side(std::uint32_t q, bool root, std::uint32_t depth, std::uint32_t rank,
+                                    std::uint32_t children);
+/// ⌈log2 q⌉: the bits of one level of an address.
+std::size_t hyperbolic_side_bits(std::uint32_t q);
+
+/// What the distributed set-up of the embedding costs (protocols/HyperbolicSetup.hpp, whose simulated
+/// counts equal these), and what a node holds.
 struct HyperbolicSetupCost {
-  /// 3 floods (the two sweeps of the root choice and the tree's BFS) of 2|E| messages, 3 echoes of
-  /// |V| − 1 (each sweep's farthest node; the tree's children with their subtree's degree, for q),
-  /// ⌈sweep length / 2⌉ to hand the root role to the middle, and |V| − 1 coordinate messages (parent
-  /// to child: q and the child's address).
+  /// Per BFS (the double sweep's two, when the root is not given, and the tree's): a flood of 2|E|
+  /// (every node tells each neighbour its depth and parent once) and an echo of |V| − 1; the steering
+  /// messages of the sweep (sweep_start_depth to its far end, ⌈sweep length / 2⌉ to the middle);
+  /// |V| − 1 addresses down the tree; 2(|E| − |V| + 1) over the non-tree edges (neighbour table).
   std::uint64_t messages = 0;
   double address_bits_mean = 0;  ///< a node's own coordinate (its address), mean over nodes
   std::size_t address_bits_max = 0;  ///< and largest
