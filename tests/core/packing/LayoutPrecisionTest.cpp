@@ -112,14 +112,21 @@ TEST(LayoutPrecision, FramesAndQuadrupleAgreeWithTheWaveWhereDoublesSuffice) {
 }
 
 TEST(LayoutPrecision, CirclesBelowTheDoublesResolutionAreNeverClaimed) {
-  // 45 nested circles: the last ones are ~1e-20 of the disc, far below the ulp of their centres.
+  // 45 nested circles: the last ones are < 1e-18 of the disc, far below the ulp of their centres.
   const PlanarGraph g = nested_chain(45);
   for (LayoutMethod m : methods) {
     PackOptions opt;
     opt.acceleration = Acceleration::newton;
-    opt.max_iterations = 60;
+    opt.stop = StopRule::angle;  // the packing itself, not the first LPD on the way
+    opt.angle_epsilon = 1e-12;
+    opt.max_iterations = 80;
     opt.layout_method = m;
+    // The deepest root would be the chain's last vertex, and the smallest circles would sit at the
+    // origin, where doubles resolve them; rooted at the chain's first vertex they sit near 0.3.
+    opt.root = RootRule::smallest_id;
     const PackResult r = pack(g, opt);
+    EXPECT_LT(r.angle_error, 1e-12);
+    EXPECT_LT(r.layout.smallest_radius, 1e-18);
     EXPECT_LT(r.layout.resolution, Layout::collapsed_resolution);
     EXPECT_EQ(r.layout.precision, Precision::collapsed);
     EXPECT_EQ(r.status, PackStatus::precision_loss);
@@ -127,6 +134,8 @@ TEST(LayoutPrecision, CirclesBelowTheDoublesResolutionAreNeverClaimed) {
   // The first 12 of them are well inside what doubles resolve: claimed as usual.
   PackOptions opt;
   opt.acceleration = Acceleration::newton;
+  opt.stop = StopRule::angle;
+  opt.angle_epsilon = 1e-12;
   opt.layout_method = LayoutMethod::frames;
   const PackResult r = pack(nested_chain(12), opt);
   EXPECT_EQ(r.status, PackStatus::converged);
