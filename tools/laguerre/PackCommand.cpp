@@ -1,5 +1,7 @@
 // `laguerre pack`: compute a greedy power embedding and write it as JSON plus a picture.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <cstdio>
@@ -99,6 +101,12 @@ int run_pack(const PackArgs& a) {
   // Every LPD/GLPD decision is an exact predicate on the stored doubles; they are "exact decisions on
   // representable coordinates" when those doubles carry every circle (docs/precision.md).
   const bool exact_decisions = r.layout.precision == core::Precision::ok || r.layout.precision == core::Precision::degraded;
+  // The significand a node would need for every circle to span 2^20 ulps (Layout::degraded_resolution):
+  // p bits divide binary64's ulp by 2^(p − 53).
+  const int bits_needed =
+      r.layout.resolution > 0
+          ? std::max(53, static_cast<int>(std::ceil(53 + std::log2(core::Layout::degraded_resolution / r.layout.resolution))))
+          : 0;
   nlohmann::json doc = embedding_to_json(g, r.circles);
   doc["format"] = "laguerre-embedding";
   doc["version"] = 1;
@@ -127,7 +135,8 @@ int run_pack(const PackArgs& a) {
                                    {"resolution", r.layout.resolution},
                                    {"layout", a.layout_method},
                                    {"arithmetic", a.layout_arithmetic},
-                                   {"bytes_per_coordinate", 8}}},
+                                   {"bytes_per_coordinate", 8},
+                                   {"significand_bits_needed", bits_needed}}},
                     {"root", r.layout.root == core::none ? nlohmann::json() : nlohmann::json(g.id(r.layout.root))},
                     {"seconds", seconds},
                     {"cpu_seconds", cpu_seconds}};
@@ -188,6 +197,8 @@ int run_pack(const PackArgs& a) {
      << ", " << a.layout_arithmetic << "); decisions "
      << (exact_decisions ? "exact on representable coordinates" : "exact on the stored numbers, which do not carry the packing")
      << '\n';
+  if (bits_needed > 53)
+    os << "             coordinates with a " << bits_needed << "-bit significand would carry every circle to 2^-20 (binary128 has 113)\n";
   if (!a.json_stdout) os << "wrote        " << stem << ".json\n";
   for (const auto& p : pictures) os << "wrote        " << p << '\n';
   return r.status == core::PackStatus::converged ? 0 : 3;

@@ -56,6 +56,7 @@ TEST_F(PackNewtonCli, PrecisionStatusNamesTheLayoutAndBadLayoutIsAnInputError) {
     EXPECT_EQ(p["layout"], layout);
     EXPECT_EQ(p["arithmetic"], "binary64");
     EXPECT_EQ(p["bytes_per_coordinate"], 8);
+    EXPECT_EQ(p["significand_bits_needed"], 53);
     EXPECT_GE(p["resolution"].get<double>(), 1 << 20);
   }
   const Outcome bad = run("pack " + example + " --layout spiral --no-picture -o " + path("bad"));
