@@ -341,16 +341,24 @@ Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool fram
   std::vector<T> ref_dir(frames ? n : 0, T(0));
   auto index_of = [&](Vertex v, Vertex w) { return g.find_dart(v, w) - g.first_dart(v); };
   // Direction of neighbour i in interior v's frame: the reference direction plus the triangle angles
-  // at v counter-clockwise from the reference neighbour.
+  // at v counter-clockwise from the reference neighbour; the whole flower once per vertex, per dart.
+  std::vector<T> dart_dir(frames ? g.num_darts() : 0);
+  std::vector<std::uint8_t> flower_done(frames ? n : 0, 0);
   auto direction_in_frame = [&](Vertex v, std::uint32_t i) {
-    const auto nb = g.neighbours(v);
-    const std::uint32_t deg = g.degree(v);
-    T dir = ref_dir[v];
-    for (std::uint32_t j = ref_index[v]; j != i; j = j + 1 == deg ? 0 : j + 1) {
-      const Vertex x = nb[j], y = nb[j + 1 == deg ? 0 : j + 1];
-      dir += triangle_angle(T(h[v]), T(h[x]), T(h[y]), cos_of(v, x), cos_of(v, y), cos_of(x, y), overlap);
+    const Dart first = g.first_dart(v);
+    if (!flower_done[v]) {
+      flower_done[v] = 1;
+      const auto nb = g.neighbours(v);
+      const std::uint32_t deg = g.degree(v);
+      T dir = ref_dir[v];
+      for (std::uint32_t j = ref_index[v], count = 0; count < deg; ++count, j = j + 1 == deg ? 0 : j + 1) {
+        dart_dir[first + j] = dir;
+        if (count + 1 == deg) break;  // the last wedge closes the flower: not needed
+        const Vertex x = nb[j], y = nb[j + 1 == deg ? 0 : j + 1];
+        dir += triangle_angle(T(h[v]), T(h[x]), T(h[y]), cos_of(v, x), cos_of(v, y), cos_of(x, y), overlap);
+      }
     }
-    return dir;
+    return dart_dir[first + i];
   };
   // Places w from its interior parent p through p's frame (frames only).
   auto place_from_frame = [&](Vertex w, Vertex p) {
