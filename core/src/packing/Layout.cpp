@@ -137,10 +137,15 @@ Cx<T> tangency_point(const CircleT<T>& a, const CircleT<T>& b) {
 
 // Angle at x of the triangle (x, y, z) with edge cosines c_xy, c_xz, c_yz.
 template <class T>
+T triangle_angle(const detail::LiftT<T>& x, const detail::LiftT<T>& y, const detail::LiftT<T>& z, double cxy,
+                 double cxz, double cyz, bool overlap) {
+  if (!overlap) return detail::tangent_angle_t(x, y, z);
+  return detail::overlap_angle_t(x, y, z, cxy, cxz, cyz);
+}
+template <class T>
 T triangle_angle(const T& hx, const T& hy, const T& hz, double cxy, double cxz, double cyz, bool overlap) {
   using detail::lift_t;
-  if (!overlap) return detail::tangent_angle_t(lift_t(hx), lift_t(hy), lift_t(hz));
-  return detail::overlap_angle_t(lift_t(hx), lift_t(hy), lift_t(hz), cxy, cxz, cyz);
+  return triangle_angle(lift_t(hx), lift_t(hy), lift_t(hz), cxy, cxz, cyz, overlap);
 }
 
 // Place w in the frame where interior u (value xu, centre zu) is at the origin, at direction `dir`.
@@ -342,6 +347,8 @@ Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool fram
   auto index_of = [&](Vertex v, Vertex w) { return g.find_dart(v, w) - g.first_dart(v); };
   // Direction of neighbour i in interior v's frame: the reference direction plus the triangle angles
   // at v counter-clockwise from the reference neighbour; the whole flower once per vertex, per dart.
+  std::vector<detail::LiftT<T>> lifts(frames ? n : 0);  // each radius lifted once, not once per angle
+  for (Vertex v = 0; v < lifts.size(); ++v) lifts[v] = detail::lift_t(T(h[v]));
   std::vector<T> dart_dir(frames ? g.num_darts() : 0);
   std::vector<std::uint8_t> flower_done(frames ? n : 0, 0);
   auto direction_in_frame = [&](Vertex v, std::uint32_t i) {
@@ -355,7 +362,7 @@ Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool fram
         dart_dir[first + j] = dir;
         if (count + 1 == deg) break;  // the last wedge closes the flower: not needed
         const Vertex x = nb[j], y = nb[j + 1 == deg ? 0 : j + 1];
-        dir += triangle_angle(T(h[v]), T(h[x]), T(h[y]), cos_of(v, x), cos_of(v, y), cos_of(x, y), overlap);
+        dir += triangle_angle(lifts[v], lifts[x], lifts[y], cos_of(v, x), cos_of(v, y), cos_of(x, y), overlap);
       }
     }
     return dart_dir[first + i];
