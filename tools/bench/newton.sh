@@ -30,7 +30,7 @@ while [ $# -gt 0 ]; do
     --families) families=$2; shift 2 ;;
     --layouts) layouts=$2; shift 2 ;;
     --max-steps) max_steps=$2; shift 2 ;;
-    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
     *) sizes+=("$1"); shift ;;
   esac
 done
