@@ -5,11 +5,13 @@
 # (incomplete-Cholesky conjugate gradients), on random Delaunay triangulations and uniform random
 # triangulations, stopped at LPD.
 #   tools/bench/newton.sh [--huge] [--solvers "lu cholesky pcg"] [--families "delaunay uniform-triangulation"]
-#                         [--max-steps K] [SIZES…]
+#                         [--layouts "frames"] [--max-steps K] [SIZES…]
 # Defaults: sizes 10000 100000; --huge adds 1000000 (the lu solver is skipped there: ~40 s per step).
 # Per row: steps as iterations/improving Newton steps (an iteration whose Newton step cannot improve is
 # a plain sweep; capped at --max-steps, default 60), status (converged / iteration_cap / precision_loss, never hidden), vertices
-# with LPD, smallest Euclidean radius, wall and CPU seconds inside core::pack (CPU time is the figure
+# with LPD, smallest Euclidean radius, layout (`--layouts "wave frames"` runs both side by side;
+# docs/precision.md), its precision status and resolution (smallest r / ulp of the circle's
+# coordinates: the stored doubles are 8 bytes per coordinate), wall and CPU seconds inside core::pack (CPU time is the figure
 # that survives a loaded machine), wall seconds of the whole command
 # (reading and checking the graph, writing the JSON) and its peak RSS (/usr/bin/time). Then the growth
 # exponents of steps and pack time between successive sizes (t ∝ n^a).
@@ -20,14 +22,15 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
-solvers="lu cholesky pcg" families="delaunay uniform-triangulation" max_steps=60 huge=0 sizes=()
+solvers="lu cholesky pcg" families="delaunay uniform-triangulation" layouts=frames max_steps=60 huge=0 sizes=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --huge) huge=1; shift ;;
     --solvers) solvers=$2; shift 2 ;;
     --families) families=$2; shift 2 ;;
+    --layouts) layouts=$2; shift 2 ;;
     --max-steps) max_steps=$2; shift 2 ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
     *) sizes+=("$1"); shift ;;
   esac
 done
@@ -47,7 +50,7 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 
 echo "# $(date -u '+%Y-%m-%d %H:%M UTC'), $(getconf _NPROCESSORS_ONLN) cores, load:$(uptime | sed 's/.*load average://'), OPENBLAS_NUM_THREADS=$OPENBLAS_NUM_THREADS"
-printf '%-22s %8s %-9s %7s %-15s %9s %10s %9s %9s %9s %9s\n' family n solver steps status LPD min_radius pack_s pack_cpu_s wall_s peak_MiB
+printf '%-22s %8s %-9s %-7s %7s %-15s %9s %10s %-16s %9s %9s %9s %9s\n' family n solver layout steps status LPD min_radius precision pack_s pack_cpu_s wall_s peak_MiB
 rows=$dir/rows.tsv
 : > "$rows"
 for family in $families; do
@@ -58,25 +61,28 @@ for family in $families; do
     graph=$cache/$family-$n-seed42.$format
     [ -s "$graph" ] || "$laguerre" generate "$family" -n "$n" --seed 42 --format "$format" -o "$graph" --force >/dev/null 2>&1
     for solver in $solvers; do
+     for layout in $layouts; do
       if [ "$solver" = lu ] && [ "$n" -ge 1000000 ]; then continue; fi
       rc=0
       /usr/bin/time -f '%e %M' -o "$dir/time" "$laguerre" pack "$graph" --accelerate newton --newton-solver "$solver" \
-        --max-iterations "$max_steps" --no-picture -o "$dir/out" --force > "$dir/log" 2>&1 || rc=$?
+        --layout "$layout" --max-iterations "$max_steps" --no-picture -o "$dir/out" --force > "$dir/log" 2>&1 || rc=$?
       # Exit status 3: not converged (cap or precision loss), reported in the row; anything else fails.
       if [ "$rc" -ne 0 ] && [ "$rc" -ne 3 ]; then
         echo "newton.sh: laguerre pack failed on $graph with $solver (exit status $rc)" >&2
         cat "$dir/log" >&2
         exit "$rc"
       fi
-      python3 - "$dir/out.json" "$dir/time" "$family" "$n" "$solver" >> "$rows" <<'PY'
+      python3 - "$dir/out.json" "$dir/time" "$family" "$n" "$solver" "$layout" >> "$rows" <<'PY'
 import json, sys
 p = json.load(open(sys.argv[1]))["packing"]
 wall, peak_kib = open(sys.argv[2]).read().split()[-2:]
+pr = p["precision"]
 print("\t".join([sys.argv[3], sys.argv[4], sys.argv[5], f"{p['iterations']}/{p['accelerated_jumps']}", p["status"], str(p["local_ok"]),
                  f"{p['smallest_radius']:.3g}", f"{p['seconds']:.2f}", f"{p['cpu_seconds']:.2f}", wall,
-                 f"{int(peak_kib) / 1024:.0f}"]))
+                 f"{int(peak_kib) / 1024:.0f}", sys.argv[6], f"{pr['status']}:{pr['resolution']:.1e}"]))
 PY
-      tail -n 1 "$rows" | awk -F'\t' '{printf "%-22s %8s %-9s %7s %-15s %9s %10s %9s %9s %9s %9s\n", $1,$2,$3,$4,$5,$6,$7,$8,$9,$10,$11}'
+      tail -n 1 "$rows" | awk -F'\t' '{printf "%-22s %8s %-9s %-7s %7s %-15s %9s %10s %-16s %9s %9s %9s %9s\n", $1,$2,$3,$12,$4,$5,$6,$7,$13,$8,$9,$10,$11}'
+     done
     done
   done
 done
@@ -86,7 +92,7 @@ import math, sys
 rows = [l.rstrip("\n").split("\t") for l in open(sys.argv[1]) if l.strip()]
 by = {}
 for r in rows:
-    by.setdefault((r[0], r[2]), []).append((int(r[1]), int(r[3].split("/")[0]), float(r[8]), r[4]))
+    by.setdefault((r[0], r[2] + " " + r[11]), []).append((int(r[1]), int(r[3].split("/")[0]), float(r[8]), r[4]))
 print("\n# growth between successive sizes: steps and pack CPU time ~ n^a (converged rows only)")
 for (family, solver), pts in sorted(by.items()):
     pts.sort()
@@ -94,13 +100,13 @@ for (family, solver), pts in sorted(by.items()):
         if st1 != "converged" or st2 != "converged" or t1 <= 0:
             continue
         k = math.log(n2 / n1)
-        print(f"{family:<22} {solver:<9} {n1:>8} -> {n2:<8} steps {s1:>3} -> {s2:<3} (a = {math.log(s2 / s1) / k:5.2f})"
+        print(f"{family:<22} {solver:<16} {n1:>8} -> {n2:<8} steps {s1:>3} -> {s2:<3} (a = {math.log(s2 / s1) / k:5.2f})"
               f"   pack CPU time a = {math.log(t2 / t1) / k:5.2f}")
 sides = {}
 for r in rows:
-    sides.setdefault((r[0], r[1]), {})[r[2]] = float(r[8])
-print("\n# pack CPU-time ratios against lu, same family and size")
-for (family, n), t in sorted(sides.items(), key=lambda x: (x[0][0], int(x[0][1]))):
+    sides.setdefault((r[0], r[1], r[11]), {})[r[2]] = float(r[8])
+print("\n# pack CPU-time ratios against lu, same family, size and layout")
+for (family, n, layout), t in sorted(sides.items(), key=lambda x: (x[0][0], int(x[0][1]), x[0][2])):
     if "lu" in t:
-        print(f"{family:<22} {n:>8}  " + "  ".join(f"lu/{s} = {t['lu'] / v:5.2f}" for s, v in t.items() if s != "lu" and v > 0))
+        print(f"{family:<22} {n:>8} {layout:<7} " + "  ".join(f"lu/{s} = {t['lu'] / v:5.2f}" for s, v in t.items() if s != "lu" and v > 0))
 PY

@@ -1,5 +1,7 @@
 // `laguerre pack`: compute a greedy power embedding and write it as JSON plus a picture.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <cstdio>
@@ -34,6 +36,8 @@ struct PackArgs {
   bool no_picture = false;
   std::string accelerate = "plain";
   std::string newton_solver = "cholesky";
+  std::string layout_method = "frames";
+  std::string layout_arithmetic = "binary64";
 };
 
 class ProgressPrinter : public core::PackVisitor {
@@ -41,15 +45,16 @@ public:
   explicit ProgressPrinter(std::size_t n) : n_(n), start_(std::chrono::steady_clock::now()) {}
   void on_layout(int /*iteration*/, const core::Layout& layout) override {
     smallest_ = layout.smallest_radius;
-    degraded_ = layout.precision != core::Precision::ok;
+    precision_ = layout.precision;
   }
   void on_check(int iteration, double angle_error, std::size_t ok) override {
     if (!line_.due()) return;
     char text[256];
     std::snprintf(text, sizeof text,
-                  "  iteration %d, %.0f s: %zu/%zu vertices satisfy LPD, angle error %.3g, smallest radius %.3g%s",
+                  "  iteration %d, %.0f s: %zu/%zu vertices satisfy LPD, angle error %.3g, smallest radius %.3g%s%s",
                   iteration, std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(), ok, n_,
-                  angle_error, smallest_, degraded_ ? " (precision degraded)" : "");
+                  angle_error, smallest_, precision_ == core::Precision::ok ? "" : ", precision ",
+                  precision_ == core::Precision::ok ? "" : core::name_of(core::precision_names, precision_).data());
     line_.draw(text);
   }
 
@@ -58,7 +63,7 @@ private:
   std::chrono::steady_clock::time_point start_;
   TerminalLine line_;
   double smallest_ = 0;
-  bool degraded_ = false;
+  core::Precision precision_ = core::Precision::ok;
 };
 
 int run_pack(const PackArgs& a) {
@@ -73,6 +78,8 @@ int run_pack(const PackArgs& a) {
   opt.angle_epsilon = a.epsilon;
   opt.acceleration = core::parse_name(core::acceleration_names, a.accelerate, "--accelerate");
   opt.newton_solver = core::parse_name(core::newton_solver_names, a.newton_solver, "--newton-solver");
+  opt.layout_method = core::parse_name(core::layout_method_names, a.layout_method, "--layout");
+  opt.layout_arithmetic = core::parse_name(core::layout_arithmetic_names, a.layout_arithmetic, "--layout-arithmetic");
 
   const std::string stem = a.out.empty() ? file_stem(a.graph.path) + "-packing" : a.out;
   if (!a.json_stdout) check_writable(stem + ".json", a.force);
@@ -91,6 +98,15 @@ int run_pack(const PackArgs& a) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;  // all threads of the process
 
+  // Every LPD/GLPD decision is an exact predicate on the stored doubles; they are "exact decisions on
+  // representable coordinates" when those doubles carry every circle (docs/precision.md).
+  const bool exact_decisions = r.layout.precision == core::Precision::ok || r.layout.precision == core::Precision::degraded;
+  // The significand a node would need for every circle to span 2^20 ulps (Layout::degraded_resolution):
+  // p bits divide binary64's ulp by 2^(p − 53).
+  const int bits_needed =
+      r.layout.resolution > 0
+          ? std::max(53, static_cast<int>(std::ceil(53 + std::log2(core::Layout::degraded_resolution / r.layout.resolution))))
+          : 0;
   nlohmann::json doc = embedding_to_json(g, r.circles);
   doc["format"] = "laguerre-embedding";
   doc["version"] = 1;
@@ -114,6 +130,13 @@ int run_pack(const PackArgs& a) {
                     {"max_tangency_error", r.max_tangency_error},
                     {"local_ok", r.local_ok},
                     {"smallest_radius", r.layout.smallest_radius},
+                    {"precision", {{"status", std::string(core::name_of(core::precision_names, r.layout.precision))},
+                                   {"exact_decisions", exact_decisions},
+                                   {"resolution", r.layout.resolution},
+                                   {"layout", a.layout_method},
+                                   {"arithmetic", a.layout_arithmetic},
+                                   {"bytes_per_coordinate", 8},
+                                   {"significand_bits_needed", bits_needed}}},
                     {"root", r.layout.root == core::none ? nlohmann::json() : nlohmann::json(g.id(r.layout.root))},
                     {"seconds", seconds},
                     {"cpu_seconds", cpu_seconds}};
@@ -154,7 +177,11 @@ int run_pack(const PackArgs& a) {
   if (r.status == core::PackStatus::iteration_cap)
     os << "             --max-iterations " << a.max_iterations << " reached before the stop rule held\n";
   else if (r.status == core::PackStatus::precision_loss)
-    os << "             the layout is not representable in doubles (NaN, infinite or zero radius): nothing is claimed\n";
+    os << "             the layout is " << core::name_of(core::precision_names, r.layout.precision)
+       << " in doubles (" << (r.layout.precision == core::Precision::collapsed
+                                  ? "a circle spans fewer than 16 units in the last place of its coordinates"
+                                  : "NaN, infinite or non-positive radius")
+       << "): nothing is claimed\n";
   if (opt.acceleration == core::Acceleration::newton)
     os << "newton       linear solver " << a.newton_solver
        << (opt.newton_solver == core::NewtonSolver::cholesky ? " (" + std::string(core::cholesky_backend()) + ")" : "")
@@ -164,8 +191,14 @@ int run_pack(const PackArgs& a) {
      << g.num_vertices() << " vertices\n"
      << "angle error  " << r.angle_error << " rad\n"
      << "tangency     max error " << r.max_tangency_error << " of the smaller radius\n"
-     << "radii        smallest " << r.layout.smallest_radius
-     << (r.layout.precision == core::Precision::ok ? "" : " (precision degraded)") << '\n';
+     << "radii        smallest " << r.layout.smallest_radius << '\n'
+     << "precision    " << core::name_of(core::precision_names, r.layout.precision) << ": every circle spans ≥ "
+     << r.layout.resolution << " units in the last place of its coordinates (8-byte doubles; layout " << a.layout_method
+     << ", " << a.layout_arithmetic << "); decisions "
+     << (exact_decisions ? "exact on representable coordinates" : "exact on the stored numbers, which do not carry the packing")
+     << '\n';
+  if (bits_needed > 53)
+    os << "             coordinates with a " << bits_needed << "-bit significand would carry every circle to 2^-20 (binary128 has 113)\n";
   if (!a.json_stdout) os << "wrote        " << stem << ".json\n";
   for (const auto& p : pictures) os << "wrote        " << p << '\n';
   return r.status == core::PackStatus::converged ? 0 : 3;
@@ -190,6 +223,13 @@ Action add_pack_command(CLI::App& app) {
   add_choice(*c.cmd, "--newton-solver", c.args->newton_solver, core::newton_solver_names,
              "Linear solver of --accelerate newton: cholesky (sparse Cholesky, CHOLMOD when built with it), pcg "
              "(incomplete-Cholesky conjugate gradients) or lu (the original finite-difference Jacobian with sparse LU)");
+  add_choice(*c.cmd, "--layout", c.args->layout_method, core::layout_method_names,
+             "Placements of the layout: frames (through each parent's frame: rounding grows about linearly with "
+             "the depth) or wave (from two placed positions, what a network node computes; rounding grows "
+             "exponentially with the depth, docs/precision.md)");
+  add_choice(*c.cmd, "--layout-arithmetic", c.args->layout_arithmetic, core::layout_arithmetic_names,
+             "Arithmetic of the layout wave: binary64 (doubles, what a network node computes) or binary128 "
+             "(quadruple precision, the circles rounded once to doubles; docs/precision.md)");
   c.cmd->add_flag("--json", c.args->json_stdout, "Print the embedding JSON on standard output instead of writing STEM.json");
   c.cmd->add_flag("--no-picture", c.args->no_picture, "Do not draw the SVG/PNG picture");
   return [args = c.args] { return run_pack(*args); };

@@ -1,5 +1,7 @@
 #include "laguerre/core/packing/HyperbolicTriangle.hpp"
 
+#include "../detail/HyperbolicTriangle.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,62 +9,19 @@
 
 namespace laguerre::core {
 
-Lift lift(double h) {
-  if (std::isinf(h)) return {0.0, 1.0};
-  return {std::exp(-2 * h), -std::expm1(-2 * h)};
-}
-
-double tangent_angle(Lift x, Lift y, Lift z) {
-  // sin²(α/2) = X Ȳ Z̄ / D and cos²(α/2) = X̄ (X̄ + X (Ȳ + Y Z̄)) / D with D = (X̄ + X Ȳ)(X̄ + X Z̄):
-  // the complement expands to X̄² + X̄X(Ȳ + Z̄ − ȲZ̄) and Ȳ + Z̄ − ȲZ̄ = 1 − YZ = Ȳ + Y Z̄, so both
-  // are sums of positive terms; atan2 keeps α accurate near 0 (huge x) and near π (vanishing x).
-  const double s = std::sqrt(x.x * y.xbar * z.xbar);
-  const double c = std::sqrt(x.xbar * (x.xbar + x.x * (y.xbar + y.x * z.xbar)));
-  return 2 * std::atan2(s, c);
-}
-
 namespace {
-// Angle at x in the right triangle (x, T, o) of a G′ triangle, where o is the circle that is not
-// tangent to x in the pair (x tangent to its other neighbour, o orthogonal to x), or, at a face
-// circle x, either of its two tangent neighbours: atan(tanh h_o / sinh h_x) = atan2(2√X Ō, X̄(1+O)).
-double right_part(Lift x, Lift o) { return std::atan2(2 * std::sqrt(x.x) * o.xbar, x.xbar * (1 + o.x)); }
-
-// L_ab = (1+A)(1+B) + c(1−A)(1−B) = 4√(AB) cosh l_ab.
-double lifted_cosh(double A, double B, double c) { return (1 + c) * (1 + A * B) + (1 - c) * (A + B); }
-// L_ab² − 16AB = (L_ab − 4√(AB))(L_ab + 4√(AB)), with the first factor rewritten as
-// (1+c)(1−√(AB))² + (1−c)(√A−√B)².
-double lifted_sinh2(double A, double B, double c, double L) {
-  const double a = std::sqrt(A), b = std::sqrt(B);
-  const double p = 1 - a * b, m = a - b;
-  return ((1 + c) * p * p + (1 - c) * m * m) * (L + 4 * a * b);
-}
-
-// The general law of cosines in X (any cosines): cos α = N / √P with N = L_xz L_xy − 4X L_yz and
-// P = (L_xz² − 16XZ)(L_xy² − 16XY), P − N² = X·Q with
-// Q = 8 L_xz L_xy L_yz − 16 (Y L_xz² + Z L_xy² + X L_yz²) + 256 XYZ.
-double general_angle(double X, double Y, double Z, double cxy, double cxz, double cyz) {
-  const double lxy = lifted_cosh(X, Y, cxy), lxz = lifted_cosh(X, Z, cxz), lyz = lifted_cosh(Y, Z, cyz);
-  const double n = lxz * lxy - 4 * X * lyz;
-  const double sp = std::sqrt(lifted_sinh2(X, Z, cxz, lxz) * lifted_sinh2(X, Y, cxy, lxy));
-  const double q = 8 * lxz * lxy * lyz - 16 * (Y * lxz * lxz + Z * lxy * lxy + X * lyz * lyz) + 256 * X * Y * Z;
-  double s2, c2;  // sin²(α/2), cos²(α/2)
-  if (n >= 0) {
-    s2 = X * q / (2 * sp * (sp + n));
-    c2 = (sp + n) / (2 * sp);
-  } else {
-    s2 = (sp - n) / (2 * sp);
-    c2 = X * q / (2 * sp * (sp - n));
-  }
-  return 2 * std::atan2(std::sqrt(std::max(0.0, s2)), std::sqrt(std::max(0.0, c2)));
-}
+detail::LiftT<double> as_t(Lift l) { return {l.x, l.xbar}; }
 }  // namespace
 
+Lift lift(double h) {
+  const auto l = detail::lift_t(h);
+  return {l.x, l.xbar};
+}
+
+double tangent_angle(Lift x, Lift y, Lift z) { return detail::tangent_angle_t(as_t(x), as_t(y), as_t(z)); }
+
 double overlap_angle(Lift x, Lift y, Lift z, double cxy, double cxz, double cyz) {
-  if (cxy == 1 && cxz == 1 && cyz == 1) return tangent_angle(x, y, z);
-  if (cxy == 1 && cxz == 0 && cyz == 0) return right_part(x, z);  // z is the face circle
-  if (cxz == 1 && cxy == 0 && cyz == 0) return right_part(x, y);  // y is the face circle
-  if (cyz == 1 && cxy == 0 && cxz == 0) return right_part(x, y) + right_part(x, z);  // x is the face circle
-  return general_angle(x.x, y.x, z.x, cxy, cxz, cyz);
+  return detail::overlap_angle_t(as_t(x), as_t(y), as_t(z), cxy, cxz, cyz);
 }
 
 double uniform_neighbour_update(double h, double theta, int k) {

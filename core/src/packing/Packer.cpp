@@ -60,7 +60,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   auto lay_out_and_check = [&](int iteration) {
     // Returns whether the requested rule holds; records first occurrences of tracked rules.
     ++result.layouts;
-    result.layout = lay_out(k, result.radii, root);
+    result.layout = lay_out(k, result.radii, root, options.layout_method, options.layout_arithmetic);
     result.circles.assign(result.layout.circles.begin(), result.layout.circles.begin() + static_cast<long>(n));
     result.angle_error = angle_error(k, result.radii);
     // An unrepresentable layout (NaN or infinite circles) is no claim of anything: before convergence
@@ -194,8 +194,9 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   result.iterations = it;
   if (!newton && !krylov) result.jumps = local ? local_jumps : accelerator.jumps();
   result.status = done ? PackStatus::converged : PackStatus::iteration_cap;
-  // Never claim anything on circles the doubles cannot carry.
-  if (result.layout.precision == Precision::unrepresentable) result.status = PackStatus::precision_loss;
+  // Never claim anything on circles the doubles cannot carry (Layout.hpp, docs/precision.md).
+  if (result.layout.precision == Precision::unrepresentable || result.layout.precision == Precision::collapsed)
+    result.status = PackStatus::precision_loss;
   // Final statistics that the run may not have tracked.
   if (result.local.empty()) {
     result.local = check_all(g, result.circles);

@@ -41,3 +41,25 @@ TEST_F(PackNewtonCli, CapEndsWithAStatusAndBadSolverIsAnInputError) {
   EXPECT_EQ(bad.status, 2) << bad.out;
   EXPECT_NE(bad.out.find("--newton-solver"), std::string::npos) << bad.out;
 }
+
+TEST_F(PackNewtonCli, PrecisionStatusNamesTheLayoutAndBadLayoutIsAnInputError) {
+  // docs/precision.md: both layouts of the 60-vertex example carry every circle, and say so.
+  for (const char* layout : {"frames", "wave"}) {
+    const std::string stem = path(std::string("l-") + layout);
+    const Outcome r = run("pack " + example + " --accelerate newton --layout " + layout + " --no-picture -o " + stem);
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("decisions exact on representable coordinates"), std::string::npos) << r.out;
+    std::ifstream in(stem + ".json");
+    const nlohmann::json p = nlohmann::json::parse(in)["packing"]["precision"];
+    EXPECT_EQ(p["status"], "ok");
+    EXPECT_EQ(p["exact_decisions"], true);
+    EXPECT_EQ(p["layout"], layout);
+    EXPECT_EQ(p["arithmetic"], "binary64");
+    EXPECT_EQ(p["bytes_per_coordinate"], 8);
+    EXPECT_EQ(p["significand_bits_needed"], 53);
+    EXPECT_GE(p["resolution"].get<double>(), 1 << 20);
+  }
+  const Outcome bad = run("pack " + example + " --layout spiral --no-picture -o " + path("bad"));
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--layout"), std::string::npos) << bad.out;
+}

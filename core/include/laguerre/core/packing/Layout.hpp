@@ -11,12 +11,35 @@
 
 namespace laguerre::core {
 
-/// Whether a layout's doubles can carry the packing (DESIGN.md, "Numerical range").
+/// Whether a layout's stored doubles carry its circles (docs/precision.md). Measured by the
+/// resolution of a circle: its radius in units in the last place of its largest coordinate, r / ulp.
+/// Names: `precision_names` (PackingNames.hpp).
 enum class Precision {
-  ok,              ///< every radius is finite and at least `Layout::degraded_radius`
-  degraded,        ///< finite, but some circle is smaller than `degraded_radius`: decisions stay exact
-                   ///< for the stored doubles, tangencies are only meaningful to ~eps/σ_min
-  unrepresentable  ///< a NaN, an infinity or a non-positive radius: nothing may be claimed
+  ok,              ///< every circle spans at least `Layout::degraded_resolution` ulps
+  degraded,        ///< some circle spans fewer, but at least `Layout::collapsed_resolution`: the doubles
+                   ///< still separate it from its neighbours, tangencies hold only to ~1/resolution
+  collapsed,       ///< some circle spans fewer than `collapsed_resolution` ulps: rounding moves it by a
+                   ///< sizeable part of its radius, the doubles no longer carry the packing there
+  unrepresentable  ///< a NaN, an infinity or a non-positive radius
+};
+
+/// The arithmetic the layout wave computes in. The circles are stored as doubles either way.
+/// Names: `layout_arithmetic_names` (PackingNames.hpp).
+enum class LayoutArithmetic {
+  binary64,  ///< doubles: what a network node computes (Placement.hpp), bit for bit
+  binary128  ///< IEEE quadruple (113-bit significand, float128 in software, ~10x slower): the wave's
+             ///< rounding is 2^60 times smaller, then each circle is rounded once to doubles
+};
+
+/// How the layout wave computes each placement (docs/precision.md). Both place the same vertices in
+/// the same rounds from the same anchors (the same spanning tree).
+/// Names: `layout_method_names` (PackingNames.hpp).
+enum class LayoutMethod {
+  wave,   ///< from the positions of the two placed anchors (Placement.hpp): what a network node
+          ///< computes, bit for bit; its rounding grows exponentially with the depth of the tree
+          ///< (×10 every ~40 rounds on random Delaunay triangulations)
+  frames  ///< from the parent's frame (a disc automorphism carried down the tree) and the triangle
+          ///< angles at the parent: rounding grows about linearly with the depth
 };
 
 /// How the layout picks its root (the circle placed at the origin, with its first neighbour on the
@@ -29,7 +52,8 @@ enum class RootRule {
 
 /// Euclidean circles of every vertex of the complex in the unit disc.
 struct Layout {
-  static constexpr double degraded_radius = 1e-12;  ///< threshold for Precision::degraded
+  static constexpr double degraded_resolution = 1 << 20;  ///< below: Precision::degraded (~1e-6 relative rounding)
+  static constexpr double collapsed_resolution = 1 << 4;   ///< below: Precision::collapsed
 
   CircleEmbedding circles;                  ///< Euclidean circle per vertex of the complex
   std::vector<std::complex<double>> centre; ///< hyperbolic centre (interior) or ideal point (boundary)
@@ -38,6 +62,9 @@ struct Layout {
   Vertex root = none;                       ///< root vertex (none if the complex has no interior vertex)
   Precision precision = Precision::ok;      ///< see Precision
   double smallest_radius = 0;               ///< min Euclidean radius
+  double resolution = 0;                    ///< min over circles of circle_resolution (0: unrepresentable)
+  LayoutMethod method = LayoutMethod::wave;                  ///< how the wave placed the circles
+  LayoutArithmetic arithmetic = LayoutArithmetic::binary64;  ///< what the wave computed in
 };
 
 /// Chooses the layout root by `rule`; `none` if no vertex of G is interior.
@@ -54,7 +81,15 @@ Vertex choose_root(const PackingComplex& k, RootRule rule);
 /// `place_first_neighbour` or `place_in_face` (Placement.hpp), with the parent chosen by
 /// `parent_is_first_anchor`.
 /// Before convergence the sweep accumulates inconsistency; that is expected.
-Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root);
+/// `method` = frames computes each placement through the parent's frame instead (same rounds, same
+/// tree); `arithmetic` = binary128 runs the wave in quadruple precision and rounds only the result to
+/// doubles. The defaults are what the network computes.
+Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root, LayoutMethod method = LayoutMethod::wave,
+               LayoutArithmetic arithmetic = LayoutArithmetic::binary64);
+
+/// r / ulp(max(|x|, |y|, r)) of a stored circle: how many units in the last place of its coordinates
+/// its radius spans (0 if a coordinate is not finite or r ≤ 0).
+double circle_resolution(const Circle& c);
 
 /// Tangency error of edge u–v in a layout: | |p(u) − p(v)| − (σ(u) + σ(v)) | / min(σ(u), σ(v)).
 double tangency_error(const CircleEmbedding& c, Vertex u, Vertex v);

@@ -38,7 +38,8 @@ Termination parse_termination(std::string_view name);
 enum class PackStatus {
   converged,      ///< the stopping rule holds
   iteration_cap,  ///< `max_iterations` sweeps without the rule holding
-  precision_loss  ///< the layout became unrepresentable in doubles; nothing is claimed
+  precision_loss  ///< the final layout is collapsed or unrepresentable in doubles (Precision): nothing is
+                  ///< claimed, whatever the exact checks said on the stored numbers
 };
 
 /// Name of a status.
@@ -59,6 +60,8 @@ struct PackOptions {
   NewtonSolver newton_solver = NewtonSolver::cholesky;  ///< linear solver of Acceleration::newton
   Termination termination = Termination::layout;  ///< for StopRule::lpd: see Termination
   double radius_only_gap = 1e-2;                  ///< the radius-only gate's initial closing gap (radians)
+  LayoutMethod layout_method = LayoutMethod::wave;   ///< placements of the checks' layouts (wave: the network's)
+  LayoutArithmetic layout_arithmetic = LayoutArithmetic::binary64;  ///< arithmetic of the checks' layouts
 };
 
 /// Result of a packing run.

@@ -30,5 +30,16 @@ inline constexpr EnumNames<RootRule, 2> root_rule_names{
 /// NewtonSolver: lu, cholesky, pcg.
 inline constexpr EnumNames<NewtonSolver, 3> newton_solver_names{
     {{NewtonSolver::lu, "lu"}, {NewtonSolver::cholesky, "cholesky"}, {NewtonSolver::pcg, "pcg"}}};
+/// LayoutMethod: wave, frames.
+inline constexpr EnumNames<LayoutMethod, 2> layout_method_names{
+    {{LayoutMethod::wave, "wave"}, {LayoutMethod::frames, "frames"}}};
+/// LayoutArithmetic: binary64, binary128.
+inline constexpr EnumNames<LayoutArithmetic, 2> layout_arithmetic_names{
+    {{LayoutArithmetic::binary64, "binary64"}, {LayoutArithmetic::binary128, "binary128"}}};
+/// Precision: ok, degraded, collapsed, unrepresentable.
+inline constexpr EnumNames<Precision, 4> precision_names{{{Precision::ok, "ok"},
+                                                          {Precision::degraded, "degraded"},
+                                                          {Precision::collapsed, "collapsed"},
+                                                          {Precision::unrepresentable, "unrepresentable"}}};
 
 }  // namespace laguerre::core

@@ -1,0 +1,143 @@
+// The layout's methods and arithmetics (docs/precision.md): frames and binary128 agree with the
+// network's wave wherever doubles suffice, known answers on the wheel, and a packing whose circles
+// shrink below what doubles resolve is reported collapsed and never claimed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "laguerre/core/graph/Embedding.hpp"
+#include "laguerre/core/graph/RandomGraphs.hpp"
+#include "laguerre/core/packing/Layout.hpp"
+#include "laguerre/core/packing/Packer.hpp"
+#include "laguerre/core/packing/PackingComplex.hpp"
+
+using namespace laguerre::core;
+
+namespace {
+constexpr LayoutMethod methods[] = {LayoutMethod::wave, LayoutMethod::frames};
+constexpr LayoutArithmetic arithmetics[] = {LayoutArithmetic::binary64, LayoutArithmetic::binary128};
+
+// Radii of g packed by Newton to rounding level.
+Radii newton_radii(const PlanarGraph& g) {
+  PackOptions opt;
+  opt.acceleration = Acceleration::newton;
+  opt.stop = StopRule::angle;
+  opt.angle_epsilon = 1e-13;
+  opt.max_iterations = 40;
+  return pack(g, opt).radii;
+}
+
+// Wheel: hub 0, rim 1..k counter-clockwise; the outer face is the rim.
+PlanarGraph wheel(int k) {
+  std::vector<std::vector<Vertex>> rot(k + 1);
+  for (int i = 1; i <= k; ++i) rot[0].push_back(i);
+  for (int i = 1; i <= k; ++i) {
+    const Vertex prev = i == 1 ? k : i - 1, next = i == k ? 1 : i + 1;
+    rot[i] = {next, 0, prev};
+  }
+  PlanarGraph g = PlanarGraph::from_rotation(rot);
+  return g.with_outer_dart(g.find_dart(2, 1));
+}
+
+// Outer triangle 0, 1, 2, vertex 3 inside it, then vertex k inside the face (k−3, k−2, k−1): a chain
+// of circles each tangent to the three before it (Coxeter's loxodromic sequence), whose radii shrink
+// by ~2.89 per vertex.
+PlanarGraph nested_chain(int length) {
+  std::vector<std::uint64_t> ids;
+  std::vector<Point2> p = {{0, 0}, {1, 0}, {0.5, 0.9}};
+  std::vector<std::pair<Vertex, Vertex>> edges = {{0, 1}, {1, 2}, {2, 0}};
+  for (int k = 3; k < 3 + length; ++k) {
+    const Vertex a = k == 3 ? 0 : k - 3, b = k == 3 ? 1 : k - 2, c = k == 3 ? 2 : k - 1;
+    p.push_back({(p[a].x + p[b].x + p[c].x) / 3, (p[a].y + p[b].y + p[c].y) / 3});
+    for (Vertex w : {a, b, c}) edges.push_back({w, static_cast<Vertex>(k)});
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) ids.push_back(i);
+  return graph_from_drawing(ids, p, edges, "nested chain").graph;
+}
+}  // namespace
+
+TEST(LayoutPrecision, ResolutionCountsUnitsInTheLastPlace) {
+  EXPECT_EQ(circle_resolution({0, 0, 0.25}), std::ldexp(1.0, 52));          // ulp(0.25) = 2^-54
+  EXPECT_EQ(circle_resolution({0.5, 0, std::ldexp(1.0, -60)}), std::ldexp(1.0, -7));  // ulp(0.5) = 2^-53
+  EXPECT_EQ(circle_resolution({-0.75, 0.5, 0}), 0.0);
+  EXPECT_EQ(circle_resolution({NAN, 0, 0.1}), 0.0);
+}
+
+TEST(LayoutPrecision, WheelRimSitsAtTheRootsOfUnityInEveryMethod) {
+  for (int k : {3, 5, 8}) {
+    const PlanarGraph g = wheel(k);
+    const PackingComplex pc = PackingComplex::from_graph(g);
+    const Radii h = newton_radii(g);
+    for (LayoutMethod m : methods)
+      for (LayoutArithmetic a : arithmetics) {
+        const Layout lay = lay_out(pc, h, 0, m, a);
+        EXPECT_EQ(lay.method, m);
+        EXPECT_EQ(lay.arithmetic, a);
+        EXPECT_EQ(lay.precision, Precision::ok);
+        const double s = lay.circles[0].r;
+        for (int i = 1; i <= k; ++i) {
+          // Rim vertex i: ideal point at angle 2π(i−1)/k, horocycle of Euclidean radius (1 − s)/2.
+          const double t = 2 * std::numbers::pi * (i - 1) / k;
+          EXPECT_NEAR(lay.centre[i].real(), std::cos(t), 1e-14) << k << " " << i;
+          EXPECT_NEAR(lay.centre[i].imag(), std::sin(t), 1e-14) << k << " " << i;
+          EXPECT_NEAR(lay.circles[i].r, (1 - s) / 2, 1e-14) << k << " " << i;
+        }
+      }
+  }
+}
+
+TEST(LayoutPrecision, FramesAndQuadrupleAgreeWithTheWaveWhereDoublesSuffice) {
+  // A 400-vertex random Delaunay triangulation (depth ~15 rounds): every method and arithmetic gives
+  // the same circles to ~1e-10 of their radii, on the same spanning tree.
+  const PlanarGraph g = random_delaunay_triangulation(400, 11).graph;
+  const PackingComplex pc = PackingComplex::from_graph(g);
+  const Radii h = newton_radii(g);
+  const Vertex root = choose_root(pc, RootRule::deepest);
+  const Layout ref = lay_out(pc, h, root);
+  EXPECT_EQ(ref.precision, Precision::ok);
+  EXPECT_LT(max_tangency_error(g, ref.circles), 1e-10);
+  for (LayoutMethod m : methods)
+    for (LayoutArithmetic a : arithmetics) {
+      const Layout lay = lay_out(pc, h, root, m, a);
+      EXPECT_EQ(lay.parent, ref.parent);
+      EXPECT_EQ(lay.wave, ref.wave);
+      EXPECT_LT(max_tangency_error(g, lay.circles), 1e-10);
+      for (Vertex v = 0; v < g.num_vertices(); ++v) {
+        const Circle &c = lay.circles[v], &r = ref.circles[v];
+        EXPECT_LT(std::hypot(c.x - r.x, c.y - r.y) / r.r, 1e-10) << v;
+        EXPECT_LT(std::abs(c.r - r.r) / r.r, 1e-10) << v;
+      }
+    }
+}
+
+TEST(LayoutPrecision, CirclesBelowTheDoublesResolutionAreNeverClaimed) {
+  // 45 nested circles: the last ones are < 1e-18 of the disc, far below the ulp of their centres.
+  const PlanarGraph g = nested_chain(45);
+  for (LayoutMethod m : methods) {
+    PackOptions opt;
+    opt.acceleration = Acceleration::newton;
+    opt.stop = StopRule::angle;  // the packing itself, not the first LPD on the way
+    opt.angle_epsilon = 1e-12;
+    opt.max_iterations = 80;
+    opt.layout_method = m;
+    // The deepest root would be the chain's last vertex, and the smallest circles would sit at the
+    // origin, where doubles resolve them; rooted at the chain's first vertex they sit near 0.3.
+    opt.root = RootRule::smallest_id;
+    const PackResult r = pack(g, opt);
+    EXPECT_LT(r.angle_error, 1e-12);
+    EXPECT_LT(r.layout.smallest_radius, 1e-18);
+    EXPECT_LT(r.layout.resolution, Layout::collapsed_resolution);
+    EXPECT_EQ(r.layout.precision, Precision::collapsed);
+    EXPECT_EQ(r.status, PackStatus::precision_loss);
+  }
+  // The first 12 of them are well inside what doubles resolve: claimed as usual.
+  PackOptions opt;
+  opt.acceleration = Acceleration::newton;
+  opt.stop = StopRule::angle;
+  opt.angle_epsilon = 1e-12;
+  opt.layout_method = LayoutMethod::frames;
+  const PackResult r = pack(nested_chain(12), opt);
+  EXPECT_EQ(r.status, PackStatus::converged);
+  EXPECT_NE(r.layout.precision, Precision::collapsed);
+}
