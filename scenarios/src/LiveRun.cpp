@@ -169,7 +169,7 @@ LiveOutcome run_live(const core::PlanarGraph& g, const std::vector<core::Point2>
   sim::LiveCluster cluster(g, config, program, traffic_phase);
 
   merge_packing(cluster.run_phase({}, n), g, out);
-  if (out.failed_nodes == 0 && !pairs.empty()) {
+  if (forwarding_blocker(out).empty() && !pairs.empty()) {
     std::vector<std::byte> circles;
     for (const core::Circle& c : out.circles) append_bytes(circles, c);
     const auto hop_distance = hop_distances_from_sources(g, pairs);

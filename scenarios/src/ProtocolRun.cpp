@@ -429,6 +429,14 @@ void require_forwarding_schemes(const std::vector<core::Scheme>& schemes) {
                                  "`run` and `compare`");
 }
 
+std::string forwarding_blocker(const ProtocolOutcome& outcome) {
+  if (outcome.failed_nodes > 0) return "the packing run was abandoned";
+  for (const core::Circle& c : outcome.circles)
+    if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.r) && c.r >= 0))
+      return "some final circles are not finite (the run stopped before its layout was representable in doubles)";
+  return {};
+}
+
 std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
                                              const std::vector<core::Point2>& positions, const sim::LinkModel& link,
                                              std::uint64_t seed, const std::vector<core::Scheme>& schemes,

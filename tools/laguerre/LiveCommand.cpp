@@ -150,7 +150,8 @@ int run_live(const LiveArgs& a) {
                             {"datagram_bytes", c.datagram_bytes_sent},
                             {"workers", workers}}}};
   const int status = print_protocol_summary(
-      {loaded, setup, a.mode, a.graph.outer, out.packing, out.forwarding, schemes, a.verify ? &verify : nullptr, line, extra}, a.json);
+      {loaded, setup, a.mode, a.graph.outer, out.packing, out.forwarding, schemes, a.verify ? &verify : nullptr, line, extra,
+       scenarios::forwarding_blocker(out.packing)}, a.json);
   std::string ports;
   for (const sim::WorkerReport& w : out.workers) ports += (ports.empty() ? "" : ", ") + std::to_string(w.port);
   if (!a.json)

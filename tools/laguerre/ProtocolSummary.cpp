@@ -103,6 +103,7 @@ int print_protocol_summary(const ProtocolSummary& s, bool json) {
                           {"stretch_max", number(r.stretch_max)},
                           {"simulated_seconds", r.simulated_seconds}});
     doc["forwarding"] = fwd_json;
+    if (!s.forwarding_skipped.empty()) doc["forwarding_skipped"] = s.forwarding_skipped;
     if (s.verify) doc["verify"] = *s.verify;
     if (lossy) {
       doc["reliability"] = {{"frames", rel.frames},
@@ -184,8 +185,8 @@ int print_protocol_summary(const ProtocolSummary& s, bool json) {
                 static_cast<unsigned long long>(po.events), po.events_per_second,
                 static_cast<double>(po.peak_memory_bytes) / (1024.0 * 1024.0));
     if (s.verify) std::printf("verify       %s\n", s.verify->c_str());
-    if (failed > 0)
-      std::printf("forwarding   skipped: the packing run was abandoned\n");
+    if (!s.forwarding_skipped.empty())
+      std::printf("forwarding   skipped: %s\n", s.forwarding_skipped.c_str());
     else
       for (const scenarios::ForwardingResult& r : results)
         std::printf("forwarding   %-13s %zu/%zu packets delivered hop by hop%s, %.2f hops on average; %zu dead ends, "

@@ -26,6 +26,7 @@ struct ProtocolSummary {
   const std::string* verify = nullptr;                       ///< the --verify verdict, if asked
   std::string time_line;   ///< replaces the simulator's "time" line when not empty
   nlohmann::json extra;    ///< merged into the JSON document
+  std::string forwarding_skipped;  ///< why no packet was forwarded (scenarios::forwarding_blocker), or ""
 };
 
 /// A packing outcome's name in the summary.

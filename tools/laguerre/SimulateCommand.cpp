@@ -120,13 +120,14 @@ int run_simulate(const SimulateArgs& a) {
   // Forward packets hop by hop on the final embedding, one simulation per scheme. Greedy power uses
   // the circles; the geometric schemes use the graph's coordinates when the file has them, else the
   // packing's centres (as `laguerre route` does with one embedding).
-  const auto pairs = po.failed_nodes > 0 ? std::vector<std::pair<core::Vertex, core::Vertex>>{} : core::select_pairs(n, selection);
+  const std::string blocker = scenarios::forwarding_blocker(po);
+  const auto pairs = blocker.empty() ? core::select_pairs(n, selection) : std::vector<std::pair<core::Vertex, core::Vertex>>{};
   const std::vector<scenarios::ForwardingResult> results =
       scenarios::run_forwarding(g, po.circles, loaded.input.positions, setup.link, a.seed, schemes, pairs);
   nlohmann::json extra;  // the protocol ran on the parallel kernel
   if (mpi_ranks() > 1) extra["mpi_ranks"] = mpi_ranks();
   return print_protocol_summary(
-      {loaded, setup, a.mode, a.graph.outer, po, results, schemes, a.verify ? &verify : nullptr, {}, extra}, a.json);
+      {loaded, setup, a.mode, a.graph.outer, po, results, schemes, a.verify ? &verify : nullptr, {}, extra, blocker}, a.json);
 }
 }  // namespace
 

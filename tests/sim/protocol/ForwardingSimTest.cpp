@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -198,4 +199,28 @@ TEST(ForwardingSim, RunForwardingUnderLossDeliversWhatTheLosslessRunDelivers) {
   }
   EXPECT_EQ(clean[0].scheme, core::Scheme::greedy_power);
   EXPECT_EQ(clean[0].delivered, pairs.size()) << "greedy power on a packing delivers everything";
+}
+
+// scenarios::forwarding_blocker: forwarding runs on a packing outcome only if no node failed and
+// every final circle is finite (a run stopped by the cap before its layout was representable leaves
+// NaN or infinite circles, which forwarding nodes refuse); `simulate` and `live` then report why.
+TEST(ForwardingSim, ForwardingIsBlockedOnAbandonedRunsAndNonFiniteCircles) {
+  const core::PlanarGraph g = core::prepare_for_packing(core::random_delaunay_triangulation(30, 4));
+  scenarios::ProtocolOutcome po;
+  po.circles = core::pack(g).circles;
+  EXPECT_EQ(scenarios::forwarding_blocker(po), "");
+  scenarios::ProtocolOutcome failed = po;
+  failed.failed_nodes = 1;
+  EXPECT_NE(scenarios::forwarding_blocker(failed).find("abandoned"), std::string::npos);
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    scenarios::ProtocolOutcome collapsed = po;
+    collapsed.circles[7].x = bad;
+    EXPECT_NE(scenarios::forwarding_blocker(collapsed).find("not finite"), std::string::npos);
+    collapsed = po;
+    collapsed.circles[3].r = bad;
+    EXPECT_NE(scenarios::forwarding_blocker(collapsed).find("not finite"), std::string::npos);
+  }
+  scenarios::ProtocolOutcome negative = po;
+  negative.circles[0].r = -1e-3;
+  EXPECT_NE(scenarios::forwarding_blocker(negative), "");
 }

@@ -234,7 +234,8 @@ int run(const Args& a) {
     ok = ok && diff.empty();
   }
   const int status = lt::print_protocol_summary(
-      {loaded, setup, "sync", a.graph.outer, po, results, schemes, a.verify ? &verify : nullptr, "", {{"ns3", ns3}}}, a.json);
+      {loaded, setup, "sync", a.graph.outer, po, results, schemes, a.verify ? &verify : nullptr, "", {{"ns3", ns3}},
+       ls::forwarding_blocker(po)}, a.json);
   if (!a.json)
     for (const std::string& line : lines) std::printf("%s\n", line.c_str());
   if (status != 0) return status;

@@ -269,6 +269,11 @@ HyperbolicSetupOutcome run_hyperbolic_setup(const core::PlanarGraph& g, const st
 /// (Scheme::hyperbolic, evaluated by the central router only).
 void require_forwarding_schemes(const std::vector<core::Scheme>& schemes);
 
+/// Why packets cannot be forwarded on the outcome of a packing run, or "" if they can: the run was
+/// abandoned (a node failed), or some final circle is not finite (a run stopped, by the iteration
+/// cap, before its layout was representable in doubles). Forwarding nodes refuse such circles.
+std::string forwarding_blocker(const ProtocolOutcome& outcome);
+
 /// Forwards one packet per pair in `pairs` hop by hop, one simulation per scheme, over the links of
 /// `link` and the simulator seeded with `seed`; on lossy or duplicating links every forwarding node
 /// runs over the reliability layer (protocols::ReliableNode), so each hop arrives exactly once and
