@@ -163,7 +163,7 @@ TEST(RadiusFloodTermination, HeightConvergecastGivesCoresDepth) {
     for (std::uint64_t order : {std::uint64_t{0}, 7 * seed}) {
       SCOPED_TRACE("seed " + std::to_string(seed) + " order " + std::to_string(order));
       const core::PlanarGraph g = delaunay(120, seed + 40);
-      const core::PackResult r = core::pack(g, pack_options(flood(1, 0.3)));
+      const core::PackResult r = core::pack(g, reference_options(flood(1, 0.3)));
       ASSERT_EQ(r.status, core::PackStatus::converged);
       ASSERT_EQ(r.flood_depth, static_cast<int>(core::radius_flood_depth(r.layout)));
       DequeHost host(g, flood(1, 0.3));

@@ -128,7 +128,7 @@ TEST(SyncPacking, LayoutWaveCostsFewerMessagesThanThePulses) {
     const core::PlanarGraph g = delaunay(400, seed);
     PackingParams p;
     p.max_iterations = 0;
-    const core::PackResult r = core::pack(g, pack_options(p));
+    const core::PackResult r = core::pack(g, reference_options(p));
     const std::uint64_t n = g.num_vertices(), darts = 2 * g.num_edges();
     std::uint64_t pulses = 0;
     for (core::Vertex v = 0; v < n; ++v) pulses += std::uint64_t{g.degree(v)} * (r.layout.wave[v] + 2);
