@@ -213,6 +213,10 @@ RunRecord execute_run(const Scenario& scenario, const RunPlan& plan, RunArtifact
       // A coordinate per node and per neighbour: a circle (3 doubles) or a position (2).
       const double per_node = n ? static_cast<double>(n + 2 * g.num_edges()) / static_cast<double>(n) : 0.0;
       sr.state_bytes_per_node = (s == core::Scheme::greedy_power ? 24.0 : 16.0) * per_node;
+      if (on_physical) {  // no packing needed: each node tells its neighbours its position, once
+        sr.setup_messages_per_node = per_node - 1;
+        sr.setup_bytes_per_node = 16.0 * (per_node - 1);
+      }
       if (s == core::Scheme::hyperbolic) {
         sr.positions = "tree";
         const core::HyperbolicSetupCost cost =

@@ -55,6 +55,10 @@ TEST(HyperbolicBaseline, BundledScenarioDeliversEveryPairOnFieldsWithHoles) {
     EXPECT_GE(h.state_bytes_per_node * n, 12.0 * n + 4.0 * 2 * m);
     EXPECT_DOUBLE_EQ(r.routing[0].state_bytes_per_node, 24.0 * (n + 2 * m) / n);  // greedy power: circles
     EXPECT_DOUBLE_EQ(r.routing[3].state_bytes_per_node, 16.0 * (n + 2 * m) / n);  // GFG: positions
+    // GFG on the sensors' physical positions needs no packing: its set-up is one position exchange.
+    EXPECT_EQ(r.routing[3].positions, "physical");
+    EXPECT_DOUBLE_EQ(r.routing[3].setup_messages_per_node, 2 * m / n);
+    EXPECT_DOUBLE_EQ(r.routing[3].setup_bytes_per_node, 16.0 * 2 * m / n);
     EXPECT_GT(h.coordinate_bits_max, 0);
     EXPECT_LE(h.coordinate_bits_mean, h.coordinate_bits_max);
     EXPECT_TRUE(std::isnan(r.routing[0].setup_messages_per_node));  // greedy power: the protocol's

@@ -83,9 +83,11 @@ struct SchemeResult {
   double stretch_max = 0;                            ///< largest
   double hops_mean = 0;                              ///< mean hops of delivered pairs
   std::string positions;                             ///< "packing", "physical" or "tree" (hyperbolic)
-  /// Schemes with their own setup (hyperbolic): messages and bytes per node to set it up (its
-  /// protocol simulated, protocols/HyperbolicSetup.hpp), and the bits of a node's coordinate (mean,
-  /// max); NaN for the others, whose setup is the run's protocol.
+  /// Schemes with their own setup: messages and bytes per node to set it up — hyperbolic: its
+  /// protocol simulated (protocols/HyperbolicSetup.hpp); a geometric scheme on physical positions:
+  /// one position exchange (a message of 16 payload bytes per directed link) — and, for hyperbolic,
+  /// the bits of a node's coordinate (mean, max); NaN for the others, whose setup is the run's
+  /// packing protocol (greedy power, and the geometric schemes on the packing's centres).
   double setup_messages_per_node = std::numeric_limits<double>::quiet_NaN();
   double setup_bytes_per_node = std::numeric_limits<double>::quiet_NaN();
   /// Routing state a node holds once set up, mean bytes: its and its neighbours' coordinates (greedy
