@@ -12,9 +12,6 @@ namespace {
 
 using core::Point2;
 
-bool finite_circle(const core::Circle& c) {
-  return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.r) && c.r >= 0;
-}
 bool finite_point(Point2 p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 
 std::vector<Point2> centres(const std::vector<core::Circle>& circles) {
@@ -58,12 +55,16 @@ ForwardingNode::ForwardingNode(Runtime& runtime, PacketSink& sink, NodeId id, st
   if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
     throw core::InternalError(who + " lists a neighbour twice.");
   if (std::binary_search(sorted.begin(), sorted.end(), id_)) throw core::InternalError(who + " lists itself as a neighbour.");
-  if (!finite_circle(own_)) throw core::InternalError(who + " has a circle that is not finite.");
+  if (!forwardable(own_)) throw core::InternalError(who + " has a circle that is not finite.");
   for (const core::Circle& c : circles_)
-    if (!finite_circle(c)) throw core::InternalError(who + " knows a neighbour circle that is not finite.");
+    if (!forwardable(c)) throw core::InternalError(who + " knows a neighbour circle that is not finite.");
   if (!finite_point(position_)) throw core::InternalError(who + " has a position that is not finite.");
   for (const Point2& p : positions_)
     if (!finite_point(p)) throw core::InternalError(who + " knows a neighbour position that is not finite.");
+}
+
+bool forwardable(const core::Circle& c) {
+  return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.r) && c.r >= 0;
 }
 
 core::NeighbourView ForwardingNode::view() const { return {own_, position_, circles_, positions_, neighbours_}; }
@@ -81,7 +82,7 @@ std::size_t ForwardingNode::index_of(NodeId n) const {
 
 void ForwardingNode::originate(const DataPacket& p) {
   if (p.scheme == core::Scheme::greedy_power) {
-    if (!finite_circle(p.target_circle)) throw core::InternalError("The target circle of a packet must be finite.");
+    if (!forwardable(p.target_circle)) throw core::InternalError("The target circle of a packet must be finite.");
     handle(DataMsg{p.packet, id_, p.target, p.target_circle.x, p.target_circle.y, p.target_circle.r, p.ttl, 0});
     return;
   }

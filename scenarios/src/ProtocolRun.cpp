@@ -431,9 +431,8 @@ void require_forwarding_schemes(const std::vector<core::Scheme>& schemes) {
 
 std::string forwarding_blocker(const ProtocolOutcome& outcome) {
   if (outcome.failed_nodes > 0) return "the packing run was abandoned";
-  for (const core::Circle& c : outcome.circles)
-    if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.r) && c.r >= 0))
-      return "some final circles are not finite (the run stopped before its layout was representable in doubles)";
+  if (!std::all_of(outcome.circles.begin(), outcome.circles.end(), protocols::forwardable))
+    return "some final circles are not finite (the run stopped before its layout was representable in doubles)";
   return {};
 }
 
@@ -442,6 +441,7 @@ std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const c
                                              std::uint64_t seed, const std::vector<core::Scheme>& schemes,
                                              const std::vector<std::pair<core::Vertex, core::Vertex>>& pairs) {
   require_forwarding_schemes(schemes);
+  if (pairs.empty()) return {};  // nothing to forward: no node is built (a blocked run's circles may not be finite)
   const std::size_t n = g.num_vertices();
   const std::vector<core::Point2> pos = forwarding_positions(circles, positions);
   const std::vector<std::vector<std::uint32_t>> hop_distance = hop_distances_from_sources(g, pairs);

@@ -120,12 +120,10 @@ int run_simulate(const SimulateArgs& a) {
   // Forward packets hop by hop on the final embedding, one simulation per scheme. Greedy power uses
   // the circles; the geometric schemes use the graph's coordinates when the file has them, else the
   // packing's centres (as `laguerre route` does with one embedding).
-  // Not even built when blocked: every forwarding node is built, packets or not, and refuses the circles.
   const std::string blocker = scenarios::forwarding_blocker(po);
+  const auto pairs = blocker.empty() ? core::select_pairs(n, selection) : std::vector<std::pair<core::Vertex, core::Vertex>>{};
   const std::vector<scenarios::ForwardingResult> results =
-      blocker.empty() ? scenarios::run_forwarding(g, po.circles, loaded.input.positions, setup.link, a.seed, schemes,
-                                                  core::select_pairs(n, selection))
-                      : std::vector<scenarios::ForwardingResult>{};
+      scenarios::run_forwarding(g, po.circles, loaded.input.positions, setup.link, a.seed, schemes, pairs);
   nlohmann::json extra;  // the protocol ran on the parallel kernel
   if (mpi_ranks() > 1) extra["mpi_ranks"] = mpi_ranks();
   return print_protocol_summary(

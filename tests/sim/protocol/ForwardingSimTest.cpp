@@ -216,6 +216,9 @@ TEST(ForwardingSim, ForwardingIsBlockedOnAbandonedRunsAndNonFiniteCircles) {
     scenarios::ProtocolOutcome collapsed = po;
     collapsed.circles[7].x = bad;
     EXPECT_NE(scenarios::forwarding_blocker(collapsed).find("not finite"), std::string::npos);
+    // What simulate does when blocked: no pairs, so no forwarding node is built (each would refuse the
+    // circle with an internal error) and no result comes back.
+    EXPECT_TRUE(scenarios::run_forwarding(g, collapsed.circles, {}, {}, 1, {core::Scheme::greedy_power}, {}).empty());
     collapsed = po;
     collapsed.circles[3].r = bad;
     EXPECT_NE(scenarios::forwarding_blocker(collapsed).find("not finite"), std::string::npos);

@@ -116,6 +116,9 @@ struct ForwardingCounters {
   std::uint64_t duplicates = 0;  ///< a compass packet received again with the same hop count (ignored)
 };
 
+/// Whether a forwarding node accepts `c` as a circle: finite centre and radius, radius ≥ 0.
+bool forwardable(const core::Circle& c);
+
 /// One node of hop-by-hop forwarding (every scheme).
 class ForwardingNode final : public Node {
 public:

@@ -280,6 +280,7 @@ std::string forwarding_blocker(const ProtocolOutcome& outcome);
 /// the outcomes and hop counts are those of loss-free links (only the timing differs). Greedy power routes on `circles`; the other schemes on `positions` if not empty (they also
 /// place the network's nodes for distance latencies), else on the circles' centres. Each packet's
 /// hop limit is core::default_ttl, so the outcomes are core::route's. Checks require_forwarding_schemes.
+/// Without pairs nothing is simulated and no node is built: the result is empty.
 std::vector<ForwardingResult> run_forwarding(const core::PlanarGraph& g, const core::CircleEmbedding& circles,
                                              const std::vector<core::Point2>& positions, const sim::LinkModel& link,
                                              std::uint64_t seed, const std::vector<core::Scheme>& schemes,
