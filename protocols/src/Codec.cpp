@@ -49,10 +49,10 @@ bool finite(double a, double b) { return std::isfinite(a) && std::isfinite(b); }
 
 template <class Ar, Is<FaceCircle> M> void fields(Ar& ar, M& c) { ar(c.x, c.y, c.r); }
 template <class Ar, Is<DepthMsg> M> void fields(Ar& ar, M& m) {
-  ar(m.pulse, m.final, m.parent).require(m.final || m.parent == 0);
+  ar(m.ack, m.depth, m.parent).require(m.depth <= DepthMsg::max_depth);
 }
 template <class Ar, Is<ElectionMsg> M> void fields(Ar& ar, M& m) {
-  ar(code(m.stage, ElectionStage::report, ElectionStage::root), m.depth, m.id);
+  ar(code(m.stage, ElectionStage::report, ElectionStage::final), m.depth, m.id);
 }
 template <class Ar, Is<StartMsg> M> void fields(Ar& ar, M& m) { ar(m.root, m.first).require(m.root != m.first); }
 template <class Ar, Is<WaveMsg> M> void fields(Ar& ar, M& m) { ar(m.seq, m.wave, m.parent).require(m.seq >= 1); }

@@ -55,6 +55,7 @@ PackingAgent::PackingAgent(PackingNode& node, std::size_t index, AgentSpec spec)
       g_outer_gap_(spec.g_outer_gap), boundary_(spec.boundary), is_face_(spec.is_face),
       polygon_here_(spec.polygon_here), peers_(std::make_unique<Peer[]>(deg_)),
       radius_(std::make_unique<double[]>(2 * std::size_t{deg_})) {
+  told_ = deg_;
   for (std::size_t i = 0; i < deg_; ++i) {
     peers_[i].id = spec.neighbours[i];
     peers_[i].face = spec.face_nbr.empty() ? 0 : spec.face_nbr[i];
@@ -113,6 +114,7 @@ VertexState PackingAgent::state() const {
   VertexState s;
   s.id = id_;
   s.depth = depth_;
+  s.bfs_parent = bfs_parent_ < deg_ ? peers_[bfs_parent_].id : id_;
   s.is_root = is_root_;
   s.wave = wave_;
   s.parent = parent_;
@@ -154,13 +156,11 @@ bool PackingAgent::better(std::uint32_t d1, NodeId id1, std::uint32_t d2, NodeId
 void PackingAgent::start() {
   if (phase_ != PackingPhase::idle) return;
   phase_ = PackingPhase::depth;
-  if (boundary_) {
-    depth_ = 0;
-    bfs_parent_ = deg_;
-  }
-  broadcast(DepthMsg{0, boundary_, boundary_ ? id_ : 0});
-  advance_depth();
-  advance_key();
+  if (!boundary_) return;  // engaged by its first estimate
+  depth_ = 0;
+  bfs_parent_ = deg_;
+  depth_deficit_ = deg_;
+  broadcast(DepthMsg{false, 0, id_});
 }
 
 void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
@@ -175,55 +175,189 @@ void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
   std::visit([&](const auto& msg) { handle(i, msg); }, m);
 }
 
-// ---- Depth: pulse-synchronized BFS from the boundary (over K) -----------------------------------
+// ---- Depth: event-driven BFS from the boundary (over K), Dijkstra–Scholten termination --------------
+//
+// A boundary vertex has depth 0 and sends it to its neighbours; a vertex that hears an estimate e with
+// e + 1 below its own takes e + 1 and sends it on: estimates only decrease and never fall below the
+// distances, so they reach them whatever the delays (with equal link delays the first estimate a
+// vertex hears is its depth: one estimate per dart). Every estimate is acknowledged (DepthMsg ack), and
+// the vertex's BFS parent is the first neighbour (K order) whose estimate is one less than its own,
+// as the pulse BFS took it. The diffusion is a Dijkstra–Scholten computation with the boundary vertices
+// as initiators: a vertex holds the acknowledgement of every estimate it could take its depth from (a
+// "candidate", e + 1 = its depth) until all its own messages are acknowledged, and acknowledges any
+// other one at once. A held estimate's sender is strictly shallower than the holder, so holds never
+// form a cycle, and a vertex with unacknowledged messages holds one; hence once every boundary vertex
+// has all its acknowledgements, no message is in flight anywhere and every estimate is final.
+// The released acknowledgement of a candidate says whether its sender is the parent; the claim a
+// vertex last received from a neighbour decides whether it is that neighbour's child: a claim at a
+// smaller depth is newer, and at the same depth a "no" is newer than a "yes" (the parent, the first
+// candidate, only moves to lower K indices as candidates arrive, and once told "no" a candidate never
+// becomes the parent at that depth); a claim above the neighbour's final depth is void (its estimate
+// at the smaller depth replaced it). If a lower candidate arrives after the parent was told "yes", the
+// vertex sends that former parent a correction (an estimate naming the new parent), which it
+// acknowledges at once. None is needed in FIFO order with equal delays: a vertex's candidates all
+// arrive before its own estimates can be acknowledged. Then the boundary ring learns that the
+// diffusion has ended (`settled`, Chang–Roberts on the smallest id of a boundary vertex whose messages
+// are all acknowledged: it comes back to its sender only after every boundary vertex passed it on
+// with its messages acknowledged, which stays so), and its sender sends `final` both ways round the
+// ring and each boundary vertex down its BFS subtree; a vertex that gets it knows its depth, its
+// neighbours' depths and its BFS children for good.
 
 void PackingAgent::handle(std::size_t i, const DepthMsg& m) {
-  // Neighbour status at a pulse: `final` fixes its depth (once), otherwise it has passed the pulse.
-  Peer& p = peers_[i];
-  if (!m.final) {
-    p.depth_seen = std::max(p.depth_seen, m.pulse + 1);
-  } else if (p.depth != unknown) {
+  if (depth_final_) {  // every depth message is acknowledged before `final` is sent
     ++counters().unexpected;
     return;
-  } else {
-    p.depth = m.pulse;
-    ++nbr_depths_known_;
-    if (m.parent == id_) p.bfs |= 1;  // a child in the BFS forest
   }
-  advance_depth();
-  advance_key();
-  if (nbr_depths_known_ == deg_) {
-    advance_wave();
-    release_wave();
+  Peer& p = peers_[i];
+  if (m.ack) {
+    if (depth_deficit_ == 0) {
+      ++counters().unexpected;
+      return;
+    }
+    --depth_deficit_;
+    if (m.parent != p.id) hear_claim(p, m.depth, m.parent == id_);
+    if (depth_deficit_ == 0) depth_quiet();
+    return;
   }
+  if (m.parent != p.id) {  // a correction: its sender's parent is now another neighbour of it
+    hear_claim(p, m.depth, m.parent == id_);
+    send(i, DepthMsg{true, depth_, id_});
+    return;
+  }
+  p.depth = std::min(p.depth, m.depth);
+  if (m.depth + 1 < depth_) {  // a smaller depth: i is the only candidate
+    depth_ = m.depth + 1;
+    told_ = deg_;  // the estimate voids the claim the former parent holds
+    for (std::size_t j = 0; j < deg_; ++j)
+      if (peers_[j].bfs & held_bit) {  // candidates no more
+        peers_[j].bfs &= ~held_bit;
+        send(j, DepthMsg{true, depth_, id_});
+      }
+    bfs_parent_ = static_cast<std::uint32_t>(i);
+    p.bfs |= held_bit;
+    depth_deficit_ += deg_;
+    broadcast(DepthMsg{false, depth_, id_});
+    return;
+  }
+  if (m.depth + 1 != depth_ || (p.bfs & held_bit)) {  // not a candidate (an older estimate, overtaken)
+    if (m.depth + 1 == depth_) ++counters().unexpected;  // the same estimate twice
+    send(i, DepthMsg{true, depth_, id_});
+    return;
+  }
+  if (i < bfs_parent_) {  // a new parent at the same depth
+    if (told_ != deg_) {
+      ++depth_deficit_;
+      send(told_, DepthMsg{false, depth_, p.id});
+      told_ = deg_;
+    }
+    bfs_parent_ = static_cast<std::uint32_t>(i);
+  }
+  if (depth_deficit_ != 0) {
+    p.bfs |= held_bit;
+    return;
+  }
+  send(i, DepthMsg{true, depth_, peers_[bfs_parent_].id});  // "no": the parent has been told
 }
 
-void PackingAgent::advance_depth() {
-  // Status of neighbour i at pulse p is known if its final depth is known or it said "unknown" at
-  // some pulse ≥ p. In a synchronous BFS the first pulse at which a neighbour's depth is known is that
-  // depth, so v's depth is 1 + the first pulse p at which some neighbour has depth ≤ p; the first
-  // such neighbour is its BFS parent.
-  while (depth_ == unknown) {
-    const std::uint32_t p = depth_pulse_;
-    std::size_t parent = deg_;
-    for (std::size_t i = 0; i < deg_; ++i) {
-      if (peers_[i].depth == unknown && peers_[i].depth_seen <= p) return;
-      if (parent == deg_ && peers_[i].depth <= p) parent = i;
-    }
-    ++depth_pulse_;
-    if (parent != deg_) {
-      depth_ = depth_pulse_;
-      bfs_parent_ = static_cast<std::uint32_t>(parent);
-    }
-    broadcast(DepthMsg{depth_pulse_, parent != deg_, parent != deg_ ? peers_[parent].id : 0});
+void PackingAgent::hear_claim(Peer& p, std::uint32_t depth, bool yes) {
+  if (p.claim_depth != unknown && depth > p.claim_depth) return;  // older
+  if (depth == p.claim_depth && !(p.bfs & claim_bit)) return;     // "no" is newer than "yes"
+  p.claim_depth = depth;
+  p.bfs = yes ? p.bfs | claim_bit : p.bfs & ~claim_bit;
+}
+
+void PackingAgent::depth_quiet() {
+  // Every message this vertex sent is acknowledged: release the candidates, or offer `settled`.
+  if (boundary_) {
+    quiet_ = true;
+    offer_settled(std::min(held_settled_, id_));
+    return;
   }
+  const NodeId parent = peers_[bfs_parent_].id;
+  for (std::size_t j = 0; j < deg_; ++j)
+    if (peers_[j].bfs & held_bit) {
+      peers_[j].bfs &= ~held_bit;
+      if (j == bfs_parent_) told_ = static_cast<std::uint32_t>(j);
+      send(j, DepthMsg{true, depth_, parent});
+    }
+}
+
+void PackingAgent::offer_settled(NodeId id) {
+  if (id >= settled_sent_) return;
+  settled_sent_ = id;
+  send(outer_gap_, ElectionMsg{ElectionStage::settled, 0, id});
+}
+
+void PackingAgent::handle_settled(std::size_t i, const ElectionMsg& m) {
+  if (!boundary_ || i != (outer_gap_ + 1) % deg_ || m.depth != 0) {
+    ++counters().unexpected;
+    return;
+  }
+  if (depth_final_) return;  // a beaten token, late
+  if (m.id == id_) {  // back: every boundary vertex has passed it on quiet, so the BFS has ended
+    if (!quiet_ || settled_sent_ != id_) {
+      ++counters().unexpected;
+      return;
+    }
+    learn_final(deg_);
+    return;
+  }
+  if (!quiet_) {
+    held_settled_ = std::min(held_settled_, m.id);
+    return;
+  }
+  offer_settled(m.id);
+}
+
+void PackingAgent::handle_final(std::size_t i, const ElectionMsg& m) {
+  const std::size_t out = outer_gap_, in = boundary_ ? (outer_gap_ + 1) % deg_ : deg_;
+  const bool ring = boundary_ && (i == out || i == in);
+  if (m.depth != 0 || !(ring || (!boundary_ && i == bfs_parent_))) {
+    ++counters().unexpected;
+    return;
+  }
+  if (depth_final_) {
+    if (!boundary_) ++counters().unexpected;  // on the ring the two ways meet
+    return;
+  }
+  final_id_ = m.id;
+  learn_final(i);
+}
+
+void PackingAgent::learn_final(std::size_t from) {
+  // Every estimate is final and delivered: the BFS parent (the first neighbour one shallower) and the
+  // children (the neighbours whose last valid claim names this vertex) are known for good.
+  depth_final_ = true;
+  if (from == deg_) final_id_ = id_;
+  if (!boundary_) {
+    std::size_t parent = 0;
+    while (parent < deg_ && peers_[parent].depth + 1 != depth_) ++parent;
+    if (parent != bfs_parent_ || told_ != bfs_parent_ || depth_deficit_ != 0) ++counters().unexpected;
+  }
+  const ElectionMsg token{ElectionStage::final, 0, final_id_};
+  encode(token, buffer());
+  if (boundary_) {  // on round the ring, the way it came (both ways from its sender)
+    const std::size_t out = outer_gap_, in = (outer_gap_ + 1) % deg_;
+    if (from != in) send_encoded(in);
+    if (from != out && out != in) send_encoded(out);
+  }
+  for (std::size_t j = 0; j < deg_; ++j) {
+    Peer& q = peers_[j];
+    if ((q.bfs & claim_bit) && q.claim_depth == q.depth) {
+      q.bfs |= child_bit;
+      send_encoded(j);
+    }
+  }
+  advance_key();
+  advance_wave();
+  release_wave();
 }
 
 // ---- Election: the best key up the BFS forest, round the boundary ring, down to the root --------------
 //
 // core::choose_root takes the interior vertex of G with the best key (depth, id) (RootRule). Once a
-// vertex knows every neighbour's depth (hence its BFS children: the neighbours whose final DepthMsg
-// named it) and has every child's report, it reports the best key of its subtree (its own included
+// vertex has `final` (its depth, its neighbours' and its BFS children known for good) and every
+// child's report, it reports the best key of its subtree (its own included
 // if it is an interior vertex of G) to its BFS parent. A boundary vertex, a BFS root, then offers its
 // subtree's best key round the boundary ring (to the neighbour that opens its outer wedge, so every key
 // travels the outer face's way round): a key goes on only while it beats every key the vertex has
@@ -235,11 +369,11 @@ void PackingAgent::advance_depth() {
 // (at most b² for b boundary vertices, O(b log b) for random keys) and one path of the root's depth.
 
 void PackingAgent::advance_key() {
-  if (key_reported_ || depth_ == unknown || nbr_depths_known_ < deg_) return;
+  if (key_reported_ || !depth_final_) return;
   std::uint32_t children = 0, reports = 0;
   for (std::size_t i = 0; i < deg_; ++i) {
-    children += peers_[i].bfs & 1;
-    reports += peers_[i].bfs >> 1;
+    children += (peers_[i].bfs & child_bit) != 0;
+    reports += (peers_[i].bfs & report_bit) != 0;
   }
   if (reports < children) return;
   if (reports != children) ++counters().unexpected;  // a report from a vertex that is no child
@@ -270,11 +404,16 @@ void PackingAgent::offer_ring(std::uint32_t depth, NodeId id) {
 }
 
 void PackingAgent::handle(std::size_t i, const ElectionMsg& m) {
+  if (m.stage == ElectionStage::settled) return handle_settled(i, m);
+  if (m.stage == ElectionStage::final) return handle_final(i, m);
   if (wave_started_) return;  // a late ring key, beaten by the root's
   switch (m.stage) {
+    case ElectionStage::settled:
+    case ElectionStage::final:
+      break;
     case ElectionStage::report:
-      if (key_reported_ || (peers_[i].bfs >> 1) != 0) break;
-      peers_[i].bfs |= 2;
+      if (key_reported_ || (peers_[i].bfs & report_bit) != 0) break;
+      peers_[i].bfs |= report_bit;
       if (better_key(m.depth, m.id)) {
         best_depth_ = m.depth;
         best_id_ = m.id;
@@ -386,7 +525,7 @@ void PackingAgent::handle(std::size_t i, const WaveMsg& m) {
 void PackingAgent::advance_wave() {
   // Needs which neighbours are interior (the wedge rule), hence every neighbour's depth. Face vertices
   // take part exactly as lay_out treats them: as vertices of K, placed and anchoring by the same rule.
-  if (!wave_started_ || is_root_ || is_first_ || nbr_depths_known_ < deg_) return;
+  if (!wave_started_ || is_root_ || is_first_ || !depth_final_) return;
   const auto d = static_cast<std::uint32_t>(deg_);
   std::uint32_t p = unknown;  // the earliest wave by which some inner wedge has both ends placed
   for (std::uint32_t j = 0; j < d; ++j) {
@@ -417,7 +556,7 @@ void PackingAgent::end_wave_message(std::size_t from, bool engaged_now) {
 }
 
 void PackingAgent::release_wave() {
-  if (ds_parent_ == unknown || ds_deficit_ != 0 || nbr_depths_known_ < deg_) return;
+  if (ds_parent_ == unknown || ds_deficit_ != 0 || !depth_final_) return;
   const std::uint32_t to = ds_parent_;
   ds_parent_ = unknown;
   if (to == deg_) {  // the root: the wave has ended everywhere

@@ -77,11 +77,11 @@ public:
 private:
   static constexpr std::uint32_t unknown = 0xffffffffu;
 
-  // Per K-neighbour state, one record each (set-up pulses, tree, the latest radius and circle tags).
+  // Per K-neighbour state, one record each (set-up BFS and election, tree, the latest radius and circle tags).
   struct Peer {
     NodeId id = 0;
-    std::uint32_t depth = unknown;    // its final depth
-    std::uint32_t depth_seen = 0;     // depth pulses it has passed
+    std::uint32_t depth = unknown;    // its smallest depth estimate heard (final once `final` is in)
+    std::uint32_t claim_depth = unknown;  // the depth of its newest parent claim (bfs & claim_bit: "you")
     std::uint32_t wave = unknown;     // its placement estimate in the layout wave (final once it has ended)
     std::uint32_t wave_seq = 0;       // seq of its newest WaveMsg (StartMsg: 1)
     std::uint32_t radius_tag[2] = {unknown, unknown};  // step of the radius in radius_[parity][i]
@@ -91,7 +91,7 @@ private:
     std::uint8_t face = 0;            // 1 if it is a face vertex
     std::uint8_t child = 0;           // 1 if it is a child in the layout tree
     std::uint8_t height_up = 0;       // 1 once its height report is in (radius-flood set-up)
-    std::uint8_t bfs = 0;             // BFS forest: bit 0 it is a child, bit 1 its key report is in
+    std::uint8_t bfs = 0;             // BFS forest: child_bit, report_bit, claim_bit, held_bit
   };
   // What placing needs of an anchor (the first neighbour's parent, or anchor a / b) in a round.
   struct AnchorSlot {
@@ -141,7 +141,17 @@ private:
   void handle(std::size_t i, const GateRadiusMsg& m);
   void handle(std::size_t i, const HeightMsg& m);
 
-  void advance_depth();
+  // Depth (PackingAgent.cpp, "Depth"): the event-driven BFS and the ring tokens that end it.
+  static constexpr std::uint8_t child_bit = 1;   // Peer::bfs: a child in the BFS forest (known at `final`)
+  static constexpr std::uint8_t report_bit = 2;  // its election report is in
+  static constexpr std::uint8_t claim_bit = 4;   // its newest claim says this vertex is its parent
+  static constexpr std::uint8_t held_bit = 8;    // an estimate of it whose acknowledgement is held
+  void hear_claim(Peer& p, std::uint32_t depth, bool yes);
+  void depth_quiet();  // all own depth messages acknowledged
+  void offer_settled(NodeId id);
+  void handle_settled(std::size_t i, const ElectionMsg& m);
+  void handle_final(std::size_t i, const ElectionMsg& m);
+  void learn_final(std::size_t from);  // from: the K index it came from (deg: this vertex's own token)
   // Election (PackingAgent.cpp, "Election"): the subtree's best key up the BFS forest, the boundary's
   // round the ring, the winner's down the forest.
   void advance_key();
@@ -202,15 +212,20 @@ private:
   std::unique_ptr<Polygon> poly_;
   std::unique_ptr<core::LocalAccelerator> accelerator_;  // a local acceleration only
 
-  // Depth phase.
+  // Depth phase: the estimate, the depth messages not yet acknowledged, the neighbour told it is the
+  // parent at depth_ (deg: none), and on the boundary the `settled` ring (quiet: every own message
+  // acknowledged; the smallest id sent and the smallest held until quiet), then `final`.
   std::uint32_t depth_ = unknown;
-  std::uint32_t depth_pulse_ = 0;
-  std::size_t nbr_depths_known_ = 0;
+  std::uint32_t depth_deficit_ = 0;
+  std::uint32_t told_ = 0;  // deg until a parent is told
+  bool depth_final_ = false;
+  bool quiet_ = false;
 
   // Election. The best key of the BFS subtree (own and reported; no_key until one is heard) and the
   // child it came from (deg: this vertex); on the boundary, the best ring key forwarded (or sent) so
   // far and the best one held until the subtree's key is known.
   static constexpr NodeId no_key = ~NodeId{0};
+  NodeId settled_sent_ = no_key, held_settled_ = no_key, final_id_ = no_key;
   std::uint32_t bfs_parent_ = unknown;  // K index (deg for a boundary vertex)
   bool key_reported_ = false;
   std::uint32_t best_depth_ = 0;

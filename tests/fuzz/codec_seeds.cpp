@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
   }
   const std::vector<std::byte> placed = p::encode(p::PlacedMsg{3, 0.5, 0.25, -0.125, 1.5, -2.0, 0.75});
   const std::vector<p::Message> messages = {
-      p::DepthMsg{7, true, 3},
+      p::DepthMsg{true, 7, 3},
       p::ElectionMsg{p::ElectionStage::ring, 2, 42},
       p::StartMsg{1, 9},
       p::WaveMsg{4, 2, 17},

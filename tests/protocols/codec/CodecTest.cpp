@@ -13,8 +13,10 @@ using namespace laguerre::protocols;
 namespace {
 std::vector<Message> samples() {
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  return {DepthMsg{0, false},
-          DepthMsg{0xfffffffe, true, 0xffffffffffffffffull},
+  return {DepthMsg{false, 0, 0},
+          DepthMsg{true, DepthMsg::max_depth, 0xffffffffffffffffull},
+          ElectionMsg{ElectionStage::settled, 0, 12},
+          ElectionMsg{ElectionStage::final, 0, 0xffffffffffffffffull},
           ElectionMsg{ElectionStage::report, 7, 0xfedcba9876543210ull},
           ElectionMsg{ElectionStage::root, 0xffffffff, 0},
           StartMsg{3, 0xffffffffffffffffull},
@@ -101,7 +103,7 @@ TEST(Codec, IsLittleEndian) {
 }
 
 TEST(Codec, RejectsHeadersItDoesNotKnow) {
-  Message out = DepthMsg{42, true};
+  Message out = DepthMsg{true, 42, 7};
   std::vector<std::byte> b = encode(ReportMsg{1, true});
   EXPECT_EQ(decode(std::span<const std::byte>{}, out), DecodeStatus::truncated);
   EXPECT_EQ(decode(std::span(b).first(1), out), DecodeStatus::truncated);
@@ -114,7 +116,7 @@ TEST(Codec, RejectsHeadersItDoesNotKnow) {
     b[1] = static_cast<std::byte>(t);
     EXPECT_EQ(decode(b, out), DecodeStatus::unknown_type);
   }
-  EXPECT_TRUE(same(out, DepthMsg{42, true})) << "a rejected decode must leave the output alone";
+  EXPECT_TRUE(same(out, DepthMsg{true, 42, 7})) << "a rejected decode must leave the output alone";
   EXPECT_EQ(encoded_size(static_cast<MessageType>(0)), 0u);
   EXPECT_EQ(to_string(static_cast<MessageType>(77)), "?");
 }
@@ -126,9 +128,9 @@ TEST(Codec, RejectsOutOfRangeFields) {
     b[at] = std::byte{v};
     return b;
   };
-  EXPECT_EQ(decode(with(DepthMsg{1, true}, 6, 2), out), DecodeStatus::out_of_range);
-  EXPECT_EQ(decode(encode(DepthMsg{1, false, 3}), out), DecodeStatus::out_of_range);  // parent without a depth
-  EXPECT_EQ(decode(with(ElectionMsg{ElectionStage::ring, 1, 3}, 2, 3), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(with(DepthMsg{true, 1, 3}, 2, 2), out), DecodeStatus::out_of_range);  // ack is a bool
+  EXPECT_EQ(decode(encode(DepthMsg{false, DepthMsg::max_depth + 1, 3}), out), DecodeStatus::out_of_range);
+  EXPECT_EQ(decode(with(ElectionMsg{ElectionStage::ring, 1, 3}, 2, 5), out), DecodeStatus::out_of_range);
   EXPECT_EQ(decode(encode(WaveMsg{0, 1, 3}), out), DecodeStatus::out_of_range);  // seq counts from 1
   EXPECT_EQ(decode(with(ReportMsg{1, true}, 6, 0xff), out), DecodeStatus::out_of_range);
   EXPECT_EQ(decode(with(DecisionMsg{1, Verdict::cap}, 6, 4), out), DecodeStatus::out_of_range);

@@ -12,7 +12,7 @@ namespace {
 
 // One message of every type, in type-code order.
 std::vector<Message> one_of_each() {
-  return {DepthMsg{3, true},
+  return {DepthMsg{false, 3, 4},
           ElectionMsg{ElectionStage::ring, 2, 9},
           StartMsg{1, 2},
           WaveMsg{4, 2, 7},
@@ -100,8 +100,8 @@ TEST(MessageSets, NestedSetsHoldTheMessageWhereItsTypeBelongs) {
   FramePayload payload;
   ASSERT_EQ(decode(encode(FailureMsg{99}), payload), DecodeStatus::ok);
   EXPECT_EQ(std::get<FailureMsg>(payload), FailureMsg{99});
-  ASSERT_EQ(decode(encode(DepthMsg{2, false}), payload), DecodeStatus::ok);
-  EXPECT_EQ(std::get<DepthMsg>(std::get<PackingMessage>(std::get<PackingHop>(payload))), (DepthMsg{2, false}));
+  ASSERT_EQ(decode(encode(DepthMsg{true, 2, 5}), payload), DecodeStatus::ok);
+  EXPECT_EQ(std::get<DepthMsg>(std::get<PackingMessage>(std::get<PackingHop>(payload))), (DepthMsg{true, 2, 5}));
   EXPECT_EQ(decode(encode(FrameMsg{0, {}, {}}), payload), DecodeStatus::foreign_type);  // frames never nest
 }
 

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "laguerre/core/Error.hpp"
 #include "../NullRuntime.hpp"
 #include "../SyncCompare.hpp"
@@ -55,7 +57,7 @@ TEST(PackingNode, MalformedAndForeignMessagesAreCountedNotTrusted) {
   const std::byte junk[3] = {std::byte{wire_version}, std::byte{5}, std::byte{0}};
   n.on_message(g.id(g.neighbours(0)[0]), junk);
   EXPECT_EQ(n.counters().decode[static_cast<std::size_t>(DecodeStatus::truncated)], 1u);
-  const std::vector<std::byte> ok = encode(DepthMsg{0, false});
+  const std::vector<std::byte> ok = encode(DepthMsg{false, 0, 987654321});
   n.on_message(987654321, ok);
   EXPECT_EQ(n.counters().not_a_neighbour, 1u);
   n.on_timer(7);
@@ -154,6 +156,69 @@ TEST(SyncPacking, LayoutWaveCostsFewerMessagesThanThePulses) {
   }
 }
 
+// The depth BFS (docs/protocol.md, "Set-up"): estimates that only decrease, each acknowledged
+// (Dijkstra–Scholten), so with equal delays (FIFO) every vertex's first estimate is its depth and it
+// sends it once: exactly one estimate and one acknowledgement per dart, 2·darts DepthMsg, where the
+// pulse BFS it replaces sent Σ deg(v)·(d(v) + 1). In shuffled order a vertex may take several
+// estimates (and send corrections to a former parent); the depths and the BFS parents (the first
+// neighbour in K order one shallower) are the same in every order, on triangulations and on K.
+TEST(SyncPacking, DepthBfsCostsAnEstimateAndAnAckPerDartInFifoOrder) {
+  auto expect_bfs = [](const core::PlanarGraph& g, DequeHost& host) {
+    const core::PackingComplex k = core::PackingComplex::from_graph(g);
+    const auto depth = boundary_depths(k.graph);
+    const auto ids = protocol_ids(g, k);
+    for (core::Vertex v = 0; v < k.graph.num_vertices(); ++v) {
+      SCOPED_TRACE("vertex " + std::to_string(v));
+      NodeId parent = ids[v];  // the boundary's
+      for (core::Vertex w : k.graph.neighbours(v))
+        if (depth[v] > 0 && depth[w] + 1 == depth[v]) {
+          parent = ids[w];
+          break;
+        }
+      const std::optional<VertexState> st = v < g.num_vertices() ? host.node(v).state() : hosted_state(host, ids[v]);
+      ASSERT_TRUE(st.has_value());
+      EXPECT_EQ(st->depth, depth[v]);
+      EXPECT_EQ(st->bfs_parent, parent);
+    }
+    for (core::Vertex v = 0; v < g.num_vertices(); ++v) EXPECT_EQ(host.node(v).counters().unexpected, 0u);
+  };
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const core::PlanarGraph g = delaunay(100 * seed + 100, seed);
+    PackingParams p;
+    p.max_iterations = 0;
+    const std::uint64_t n = g.num_vertices(), darts = 2 * g.num_edges();
+    const auto depth = boundary_depths(g);
+    std::uint64_t pulses = 0;
+    for (core::Vertex v = 0; v < n; ++v) pulses += std::uint64_t{g.degree(v)} * (depth[v] + 1);
+    for (std::uint64_t order : {std::uint64_t{0}, seed, seed + 10}) {
+      SCOPED_TRACE("seed " + std::to_string(seed) + " order " + std::to_string(order));
+      DequeHost host(g, p);
+      host.run(order);
+      const std::uint64_t sent = host.delivered(MessageType::depth);
+      // Measured shuffled: 4.0–5.2 DepthMsg per dart (pulses: 3.5–4.3 per dart here, growing with the depth).
+      if (order == 0) {
+        EXPECT_EQ(sent, 2 * darts);
+        EXPECT_LT(sent, pulses);
+      } else {
+        EXPECT_LE(sent, 8 * darts);
+      }
+      EXPECT_GE(sent, 2 * darts);
+      expect_bfs(g, host);
+    }
+  }
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {  // K: face vertices take part as vertices
+    const core::PlanarGraph g = three_connected(60 + 20 * seed, seed);
+    PackingParams p;
+    p.max_iterations = 0;
+    for (std::uint64_t order : {std::uint64_t{0}, seed}) {
+      SCOPED_TRACE("3-connected seed " + std::to_string(seed) + " order " + std::to_string(order));
+      DequeHost host(g, p);
+      host.run(order);
+      expect_bfs(g, host);
+    }
+  }
+}
+
 // The election (docs/protocol.md, "Set-up"): one report per vertex up the BFS forest, the boundary
 // ring (each key forwarded only while it is the best its vertex has seen: at most b keys per ring
 // link, b the boundary's size) and one path down of the root's depth; the echo with extinction it
@@ -174,8 +239,12 @@ TEST(SyncPacking, ElectionCostsAReportPerVertexAndTheRing) {
         DequeHost host(g, p);
         host.run(order);
         const std::uint64_t reports = g.num_vertices() - b;
-        EXPECT_GE(host.delivered(MessageType::election), reports + b + depth[root]);
-        EXPECT_LE(host.delivered(MessageType::election), reports + b * b + depth[root]);
+        // Before it, the depth BFS's tokens: `settled` round the ring (from once round to b·(b+1)/2
+        // in all, Chang–Roberts) and `final`, n + 1 in every order (both ways round the ring, then
+        // once to every interior vertex).
+        const std::uint64_t final_tokens = g.num_vertices() + 1;
+        EXPECT_GE(host.delivered(MessageType::election), reports + b + depth[root] + b + final_tokens);
+        EXPECT_LE(host.delivered(MessageType::election), reports + b * b + depth[root] + b * (b + 1) / 2 + final_tokens);
         for (core::Vertex v = 0; v < g.num_vertices(); ++v) EXPECT_EQ(host.node(v).is_root(), v == root);
       }
     }

@@ -45,11 +45,11 @@
 namespace laguerre::protocols {
 
 /// Version of the wire format written into byte 0.
-inline constexpr std::uint8_t wire_version = 3;
+inline constexpr std::uint8_t wire_version = 4;
 
 /// Message types (byte 1 of every message).
 enum class MessageType : std::uint8_t {
-  depth = 1,     ///< DepthMsg: a pulse of the breadth-first search from the boundary
+  depth = 1,     ///< DepthMsg: a depth estimate of the breadth-first search from the boundary, or its acknowledgement
   election = 2,  ///< ElectionMsg: the root election's best key (BFS forest, boundary ring, path down)
   start = 3,     ///< StartMsg: the elected root starts the layout wave (to its neighbours)
   wave = 4,      ///< WaveMsg: a placement estimate of the combinatorial layout wave (set-up)
@@ -82,26 +82,37 @@ inline constexpr std::uint8_t max_message_type = 25;
 /// Name of a message type ("depth", "election", …), "?" for values outside the enum.
 std::string_view to_string(MessageType t);
 
-/// Depth pulse p of the BFS from the boundary: `final` = 1 says "my depth is p, my parent in the BFS
-/// forest is `parent`" (a boundary vertex names itself; it covers every later pulse); 0 says "my depth
-/// is greater than p" (`parent` then 0). Fields: u32 pulse, u8 final ∈ {0, 1}, u64 parent.
+/// The event-driven BFS from the boundary (docs/protocol.md, "Set-up"), diffusing depth estimates
+/// that only decrease, with Dijkstra–Scholten acknowledgements. Fields: u8 ack ∈ {0, 1}, u32 depth
+/// (≤ max_depth), u64 parent.
+///  - ack = 0, an estimate: "my depth is at most `depth`"; `parent` is the sender's own id, or, in a
+///    correction sent only to a former BFS parent, the sender's new parent (same depth, another one).
+///  - ack = 1, the acknowledgement of one estimate, with the sender's current depth; `parent` is the
+///    sender's BFS parent at that depth ("you are my parent" iff it is the receiver) when the
+///    acknowledged estimate was one it could take its depth from, else the sender's own id (no claim).
 struct DepthMsg {
-  std::uint32_t pulse = 0;   ///< pulse number
-  bool final = false;        ///< whether the sender's depth equals `pulse`
-  std::uint64_t parent = 0;  ///< the sender's BFS parent (when final)
+  static constexpr std::uint32_t max_depth = 0x7fffffff;  ///< largest depth (depth + 1 never overflows)
+  bool ack = false;          ///< an acknowledgement (else an estimate)
+  std::uint32_t depth = 0;   ///< the sender's depth estimate
+  std::uint64_t parent = 0;  ///< see above
   friend bool operator==(const DepthMsg&, const DepthMsg&) = default;
 };
 
-/// The three legs of the root election (docs/protocol.md, "Set-up").
+/// The three legs of the root election and the two ring tokens that end the depth BFS before it
+/// (docs/protocol.md, "Set-up").
 enum class ElectionStage : std::uint8_t {
   report = 0,  ///< up the BFS forest: the best key of the sender's subtree
   ring = 1,    ///< round the boundary ring: a boundary vertex's best key, forwarded while it is the best seen
   root = 2,    ///< down the BFS forest, towards the vertex whose key it is (the root)
+  settled = 3, ///< round the boundary ring, before the election: a boundary vertex whose depth messages
+               ///< are all acknowledged (the best id goes on; back at its sender, the BFS has ended)
+  final = 4,   ///< both ways round the ring and down the BFS forest: every depth is final
 };
 
 /// A key (depth, id) of the root election: larger depth wins, then smaller id (RootRule::deepest;
 /// depth 0 for every key under RootRule::smallest_id); (0, 2^64 − 1) is "no key" (a subtree without
-/// an interior vertex of G). Fields: u8 stage ∈ {0, 1, 2}, u32 depth, u64 id.
+/// an interior vertex of G). Fields: u8 stage ∈ {0, …, 4}, u32 depth, u64 id. The `settled` and `final`
+/// tokens carry depth 0 and the id of the boundary vertex whose `settled` token it is.
 struct ElectionMsg {
   ElectionStage stage = ElectionStage::report;  ///< which leg it travels
   std::uint32_t depth = 0;  ///< the key's depth from the boundary (0 under RootRule::smallest_id)

@@ -120,6 +120,8 @@ struct PackingCounters : ReliableCounters {
 struct VertexState {
   NodeId id = 0;                    ///< protocol id (node id, or face_vertex_id for a face vertex)
   std::uint32_t depth = 0;          ///< depth from the boundary in K
+  NodeId bfs_parent = 0;            ///< parent in the depth BFS forest: the first neighbour (K order) one
+                                    ///< shallower; its own id on the boundary
   bool is_root = false;             ///< whether it is the elected root
   std::uint32_t wave = 0;           ///< layout wave in which it is placed
   NodeId parent = 0;                ///< parent in the layout tree (its own id for the root)
