@@ -91,6 +91,7 @@ void PlanarGraph::build_faces() {
   face_offset_.assign(1, 0);
   face_dart_.clear();
   face_dart_.reserve(nd);
+  non_triangles_ = 0;
   for (Dart start = 0; start < nd; ++start) {
     if (face_of_[start] != none) continue;
     const Face f = static_cast<Face>(face_offset_.size() - 1);
@@ -101,6 +102,7 @@ void PlanarGraph::build_faces() {
       d = next_in_face(d);
     } while (d != start);
     face_offset_.push_back(static_cast<std::uint32_t>(face_dart_.size()));
+    if (face_size(f) != 3) ++non_triangles_;
   }
 }
 
@@ -147,9 +149,8 @@ std::optional<Vertex> PlanarGraph::vertex_of_id(std::uint64_t id) const {
 }
 
 bool PlanarGraph::inner_faces_are_triangles() const {
-  for (Face f = 0; f < num_faces(); ++f)
-    if (f != outer_ && face_size(f) != 3) return false;
-  return true;
+  const bool outer_is_polygon = outer_ != none && face_size(outer_) != 3;
+  return non_triangles_ == (outer_is_polygon ? 1u : 0u);
 }
 
 bool PlanarGraph::is_valid(bool verbose) const {
@@ -167,6 +168,9 @@ bool PlanarGraph::is_valid(bool verbose) const {
   if (n > 1 && static_cast<long long>(n) - static_cast<long long>(num_edges()) +
                        static_cast<long long>(num_faces()) != 2)
     return bad("Euler's formula fails");
+  std::uint32_t non_triangles = 0;
+  for (Face f = 0; f < num_faces(); ++f) non_triangles += face_size(f) != 3 ? 1 : 0;
+  if (non_triangles != non_triangles_) return bad("the count of non-triangular faces is stale");
   std::vector<std::uint64_t> sorted = ids_;
   std::sort(sorted.begin(), sorted.end());
   if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return bad("duplicate user ids");

@@ -104,7 +104,8 @@ public:
   /// Vertex with user id `id`, if any. Linear in the number of vertices (for tools and tests).
   std::optional<Vertex> vertex_of_id(std::uint64_t id) const;
 
-  /// Whether every face other than the outer one is a triangle.
+  /// Whether every face other than the outer one is a triangle. Constant time (the graph counts its
+  /// non-triangular faces once), so per-vertex code may ask it freely.
   bool inner_faces_are_triangles() const;
   /// Checks all internal invariants; with `verbose`, writes the first violation to std::cerr.
   bool is_valid(bool verbose = false) const;
@@ -121,6 +122,7 @@ private:
   std::vector<Dart> face_dart_;
   std::vector<std::uint64_t> ids_;
   std::vector<std::uint8_t> boundary_;
+  std::uint32_t non_triangles_ = 0;  // faces (outer included) whose size is not 3
   Face outer_ = none;
 };
 
