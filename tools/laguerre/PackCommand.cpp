@@ -58,6 +58,15 @@ public:
     line_.draw(text);
   }
 
+  void on_unchecked(int iteration, double angle_error, core::Precision precision) override {
+    if (!line_.due()) return;
+    char text[256];
+    std::snprintf(text, sizeof text, "  iteration %d, %.0f s: layout %s, LPD not checked, angle error %.3g, smallest radius %.3g",
+                  iteration, std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(),
+                  core::name_of(core::precision_names, precision).data(), angle_error, smallest_);
+    line_.draw(text);
+  }
+
 private:
   std::size_t n_;
   std::chrono::steady_clock::time_point start_;
@@ -129,6 +138,7 @@ int run_pack(const PackArgs& a) {
                     {"angle_error", r.angle_error},
                     {"max_tangency_error", r.max_tangency_error},
                     {"local_ok", r.local_ok},
+                    {"unchecked_layouts", r.skipped_checks},
                     {"smallest_radius", r.layout.smallest_radius},
                     {"precision", {{"status", std::string(core::name_of(core::precision_names, r.layout.precision))},
                                    {"exact_decisions", exact_decisions},
@@ -182,6 +192,8 @@ int run_pack(const PackArgs& a) {
                                   ? "a circle spans fewer than 16 units in the last place of its coordinates"
                                   : "NaN, infinite or non-positive radius")
        << "): nothing is claimed\n";
+  if (r.skipped_checks > 0)
+    os << "             " << r.skipped_checks << " collapsed or unrepresentable layouts mid-run were not checked (the final one is)\n";
   if (opt.acceleration == core::Acceleration::newton)
     os << "newton       linear solver " << a.newton_solver
        << (opt.newton_solver == core::NewtonSolver::cholesky ? " (" + std::string(core::cholesky_backend()) + ")" : "")

@@ -16,6 +16,7 @@
 #include <limits>
 #include <optional>
 
+#include "laguerre/core/geometry/Circle.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
 
 namespace laguerre::core::detail {
@@ -98,6 +99,54 @@ inline std::optional<Sign> certified_difference(double l, double r) {
   if (det < -err) return Sign::negative;
   if (err == 0) return Sign::zero;  // both products exactly zero
   return std::nullopt;
+}
+
+/// The double stage of radical_centre_power_side (Predicates.cpp): the sign of
+///     E = d · (pow(c, t) − pow(c, u)),   d = orient(p(u), p(a), p(b)),  c the radical centre of (u, a, b),
+/// and the sign of d, when doubles decide both; the predicate is sign(E)·sign(d).
+///
+/// E is invariant under translation, so it is evaluated on the differences A = p(a) − p(u),
+/// B = p(b) − p(u), T = p(t) − p(u) (u at the origin, lifted height −r(u)²):
+///     E = d·β_t − T_x n_x − T_y n_y,  β_s = |S|² − r_s² + r_u²,  n_x = B_y β_a − A_y β_b,  n_y = A_x β_b − B_x β_a.
+/// This is what decides the tiny circles of uniform random maps (radii 1e-25 at distance ~0.3 from the
+/// origin): in absolute coordinates their lifted heights |p|² − r² lose every bit of r² to |p|², in
+/// differences they keep them. E is also homogeneous of degree 4 in (A, B, T, radii), so the leaves are
+/// first scaled by a power of two (exact) to a largest magnitude in [1/2, 1): no overflow, and no
+/// underflow that the bound does not absorb.
+///
+/// Bound. Every monomial of E is computed with at most 13 roundings (one per leaf difference, one per
+/// operation on its path), so |fl(E) − E| ≤ γ₁₃·M with M the same program on absolute values and sums
+/// (γ₁₃ ≈ 13u = 1.44e-15; we use 2e-15, which also covers the rounding of M itself). An underflowed
+/// product adds at most 2^-1075 times the largest later factor (≤ 2^9 on the scaled leaves): the
+/// 1e-300 term. For d, Shewchuk's orient2d bound (certified_difference), accepted only when the products
+/// are far from underflow. Returns nullopt when either sign is not certified (the exact stages decide).
+inline std::optional<Sign> certified_power_side(const Circle& u, const Circle& a, const Circle& b, const Circle& t) {
+  double ax = a.x - u.x, ay = a.y - u.y, bx = b.x - u.x, by = b.y - u.y, tx = t.x - u.x, ty = t.y - u.y;
+  double ru = u.r, ra = a.r, rb = b.r, rt = t.r;
+  double m = 0;
+  for (double v : {ax, ay, bx, by, tx, ty, ru, ra, rb, rt}) m = std::fmax(m, std::fabs(v));
+  if (!(m > 0) || !std::isfinite(m)) return std::nullopt;  // NaN, infinite or all zero: let the exact stages decide
+  int e = 0;
+  std::frexp(m, &e);
+  for (double* v : {&ax, &ay, &bx, &by, &tx, &ty, &ru, &ra, &rb, &rt}) *v = std::ldexp(*v, -e);
+  const double l = ax * by, r = ay * bx, md = std::fabs(l) + std::fabs(r);
+  if (md < 1e-280) return std::nullopt;
+  const auto sd = certified_difference(l, r);
+  if (!sd || *sd == Sign::zero) return std::nullopt;
+  const double d = l - r;
+  const double ru2 = ru * ru;
+  const double ba = (ax * ax + ay * ay - ra * ra) + ru2, mba = ax * ax + ay * ay + ra * ra + ru2;
+  const double bb = (bx * bx + by * by - rb * rb) + ru2, mbb = bx * bx + by * by + rb * rb + ru2;
+  const double bt = (tx * tx + ty * ty - rt * rt) + ru2, mbt = tx * tx + ty * ty + rt * rt + ru2;
+  const double nx = by * ba - ay * bb, mnx = std::fabs(by) * mba + std::fabs(ay) * mbb;
+  const double ny = ax * bb - bx * ba, mny = std::fabs(ax) * mbb + std::fabs(bx) * mba;
+  const double big_e = d * bt - tx * nx - ty * ny;
+  const double bound = 2e-15 * (md * mbt + std::fabs(tx) * mnx + std::fabs(ty) * mny) + 1e-300;
+  Sign se;
+  if (big_e > bound) se = Sign::positive;
+  else if (big_e < -bound) se = Sign::negative;
+  else return std::nullopt;
+  return static_cast<Sign>(static_cast<int>(se) * static_cast<int>(*sd));
 }
 
 }  // namespace laguerre::core::detail

@@ -13,6 +13,7 @@
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace laguerre::core::detail {
 
@@ -27,10 +28,14 @@ inline void require_finite(const char* predicate, std::initializer_list<double> 
 }
 
 /// Evaluates `f.template operator()<NT>()` first with NT = interval arithmetic; if any comparison
-/// inside is uncertain (CGAL throws Uncertain_conversion_exception), evaluates again with NT = exact
-/// rationals. The doubles fed to NT(...) convert exactly in both, so the result is the exact answer.
-template <class F>
-auto filtered(F&& f) {
+/// inside is uncertain (CGAL throws Uncertain_conversion_exception), evaluates again with NT = `Exact`.
+/// The doubles fed to NT(...) convert exactly in both, so the result is the exact answer provided
+/// `Exact` is exact for the operations f uses: CGAL::Exact_rational for anything (division
+/// included); CGAL::Mpzf (a binary floating-point number with an unbounded integer significand: no
+/// gcd, no allocation below a few hundred bits) for polynomial expressions — + − × and comparisons
+/// only — which it evaluates exactly and several times faster than rationals.
+template <class Exact, class F>
+auto filtered_with(F&& f) {
   {
     CGAL::Protect_FPU_rounding<true> guard;
     try {
@@ -38,7 +43,13 @@ auto filtered(F&& f) {
     } catch (CGAL::Uncertain_conversion_exception&) {
     }
   }
-  return f.template operator()<CGAL::Exact_rational>();
+  return f.template operator()<Exact>();
+}
+
+/// filtered_with with exact rationals: for any expression of + − × / and comparisons.
+template <class F>
+auto filtered(F&& f) {
+  return filtered_with<CGAL::Exact_rational>(std::forward<F>(f));
 }
 
 /// Sign of an NT value as a laguerre Sign; throws Uncertain_conversion_exception for an interval

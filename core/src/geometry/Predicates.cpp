@@ -2,16 +2,20 @@
 
 #include <algorithm>
 
+#include <CGAL/Mpzf.h>
+
 #include "../detail/FastFilter.hpp"
 #include "../detail/Filtered.hpp"
 
 namespace laguerre::core {
 
 using detail::filtered;
+using detail::filtered_with;
 using detail::sign_of;
 
 // Each predicate first tries the double-precision filter of detail/FastFilter.hpp (no rounding-mode
-// switch), then the interval filter, then exact rationals.
+// switch), then the interval filter, then an exact number type: rationals, or CGAL::Mpzf for the
+// radical-centre predicates, which are polynomials (no division) of degree 4 and 6.
 
 Sign orientation(Point2 a, Point2 b, Point2 c) {
   const double ux = b.x - a.x, uy = b.y - a.y, wx = c.x - a.x, wy = c.y - a.y;
@@ -74,22 +78,30 @@ RadicalCentre<NT> radical_centre(const Circle& u, const Circle& a, const Circle&
 }  // namespace
 
 Sign radical_centre_power_side(const Circle& u, const Circle& a, const Circle& b, const Circle& t) {
+  // Double stage (translated and rescaled, detail::certified_power_side), then intervals, then Mpzf:
+  // the expression is a polynomial in the inputs, so Mpzf evaluates it exactly without rationals.
+  if (const auto s = detail::certified_power_side(u, a, b, t)) return *s;
   detail::require_finite("radical_centre_power_side", {u.x, u.y, u.r, a.x, a.y, a.r, b.x, b.y, b.r, t.x, t.y, t.r});
-  return filtered([&]<class NT>() {
-    const auto c = radical_centre<NT>(u, a, b);
-    const Sign sd = sign_of<NT>(c.d);
+  return filtered_with<CGAL::Mpzf>([&]<class NT>() {
+    // The translated form of certified_power_side, E = d·(pow(c, t) − pow(c, u)): the same exact value
+    // as in absolute coordinates (E is translation-invariant), and tighter intervals.
+    const NT ru2 = NT(u.r) * NT(u.r);
+    auto beta = [&](const NT& sx, const NT& sy, const Circle& s) { return sx * sx + sy * sy - NT(s.r) * NT(s.r) + ru2; };
+    const NT ax = NT(a.x) - NT(u.x), ay = NT(a.y) - NT(u.y), bx = NT(b.x) - NT(u.x), by = NT(b.y) - NT(u.y);
+    const NT d = ax * by - ay * bx;
+    const Sign sd = sign_of<NT>(d);
     if (sd == Sign::zero) return Sign::zero;
-    // pow(c, t) − pow(c, u) = −2 c·A_t + B_t = (−(A_t · n) + d B_t) / d.
-    const NT atx = NT(t.x) - NT(u.x), aty = NT(t.y) - NT(u.y);
-    const NT bt = lifted<NT>(t) - lifted<NT>(u);
-    const Sign sn = sign_of<NT>(c.d * bt - atx * c.nx - aty * c.ny);
+    const NT ba = beta(ax, ay, a), bb = beta(bx, by, b);
+    const NT nx = by * ba - ay * bb, ny = ax * bb - bx * ba;
+    const NT tx = NT(t.x) - NT(u.x), ty = NT(t.y) - NT(u.y);
+    const Sign sn = sign_of<NT>(d * beta(tx, ty, t) - tx * nx - ty * ny);
     return static_cast<Sign>(static_cast<int>(sn) * static_cast<int>(sd));
   });
 }
 
 Sign radical_centre_outside_unit_disc(const Circle& u, const Circle& a, const Circle& b) {
   detail::require_finite("radical_centre_outside_unit_disc", {u.x, u.y, u.r, a.x, a.y, a.r, b.x, b.y, b.r});
-  return filtered([&]<class NT>() {
+  return filtered_with<CGAL::Mpzf>([&]<class NT>() {  // a polynomial: exact in Mpzf
     const auto c = radical_centre<NT>(u, a, b);
     if (sign_of<NT>(c.d) == Sign::zero) return Sign::zero;
     return sign_of<NT>(c.nx * c.nx + c.ny * c.ny - 4 * c.d * c.d);

@@ -57,20 +57,26 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   // check on the layout still decides. PackingAgent does the same, round by round.
   const bool radius_only = options.termination != Termination::layout && options.stop == StopRule::lpd;
   double gap = options.radius_only_gap;
-  auto lay_out_and_check = [&](int iteration) {
+  auto lay_out_and_check = [&](int iteration, bool final) {
     // Returns whether the requested rule holds; records first occurrences of tracked rules.
     ++result.layouts;
     result.layout = lay_out(k, result.radii, root, options.layout_method, options.layout_arithmetic);
     result.circles.assign(result.layout.circles.begin(), result.layout.circles.begin() + static_cast<long>(n));
     result.angle_error = angle_error(k, result.radii);
-    // An unrepresentable layout (NaN or infinite circles) is no claim of anything: before convergence
-    // the wave can accumulate that much inconsistency, so it only means "not yet"; check_all reports
-    // such vertices as LocalCondition::unrepresentable and the tangency error is NaN (never ≤ tol).
-    const bool want_lpd = options.stop == StopRule::lpd || options.track_all;
-    const bool want_exact = options.stop == StopRule::exact || options.track_all;
+    // A collapsed or unrepresentable layout (Precision) carries no claim: mid-run (Newton's first
+    // steps, an early wave) it only means "not yet", so its coordinates are not checked at all — no
+    // LPD/GLPD and no exact-packing decision is taken on them, and the run goes on. The final layout
+    // (the cap) is always checked; if it is collapsed the run ends precision_loss below. The angle
+    // rule reads the radii only and is decided either way.
+    const bool representable =
+        result.layout.precision != Precision::collapsed && result.layout.precision != Precision::unrepresentable;
+    const bool skip = !representable && !final;
+    result.skipped_checks += skip;
+    const bool want_lpd = !skip && (options.stop == StopRule::lpd || options.track_all);
+    const bool want_exact = !skip && (options.stop == StopRule::exact || options.track_all);
     const bool want_angle = options.stop == StopRule::angle || options.track_all;
     bool lpd = false, exact = false, angle = false;
-    if (want_lpd || options.stop == StopRule::cap) {
+    if (want_lpd || (!skip && options.stop == StopRule::cap)) {
       result.local = check_all(g, result.circles);
       result.local_ok = 0;
       for (LocalCondition c : result.local) result.local_ok += c == LocalCondition::holds;
@@ -87,7 +93,8 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
       if (angle && result.first_angle < 0) result.first_angle = iteration;
     }
     if (visitor) visitor->on_layout(iteration, result.layout);
-    if (visitor) visitor->on_check(iteration, result.angle_error, result.local_ok);
+    if (visitor && skip) visitor->on_unchecked(iteration, result.angle_error, result.layout.precision);
+    if (visitor && !skip) visitor->on_check(iteration, result.angle_error, result.local_ok);
     if (radius_only && !lpd) gap /= 2;
     switch (options.stop) {
       case StopRule::lpd: return lpd;
@@ -99,9 +106,9 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   };
   auto check = [&](int iteration) {
     // At the cap the layout is made whatever the test says: the run ends with coordinates.
-    if (radius_only && iteration < options.max_iterations && !radius_only_everywhere(k, result.radii, gap))
-      return false;
-    return lay_out_and_check(iteration);
+    const bool final = iteration >= options.max_iterations;
+    if (radius_only && !final && !radius_only_everywhere(k, result.radii, gap)) return false;
+    return lay_out_and_check(iteration, final);
   };
 
   int it = 0;
@@ -160,13 +167,13 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     int t = 0;
     while (true) {
       if (t >= options.max_iterations) {  // the cap: the current radii are laid out
-        done = lay_out_and_check(t);
+        done = lay_out_and_check(t, true);
         it = t;
         break;
       }
       if (!pending.empty() && pending.front().step + depth == t) {
         std::swap(result.radii, pending.front().radii);
-        if (lay_out_and_check(pending.front().step)) {
+        if (lay_out_and_check(pending.front().step, false)) {
           done = true;
           it = pending.front().step;
           break;

@@ -141,3 +141,62 @@ TEST(LayoutPrecision, CirclesBelowTheDoublesResolutionAreNeverClaimed) {
   EXPECT_EQ(r.status, PackStatus::converged);
   EXPECT_NE(r.layout.precision, Precision::collapsed);
 }
+
+namespace {
+// Records, per check, the layout's precision and whether the coordinates were checked.
+struct CheckLog : PackVisitor {
+  std::vector<Precision> precision;
+  std::vector<bool> checked;
+  std::vector<std::size_t> lpd;
+  void on_layout(int, const Layout& layout) override { precision.push_back(layout.precision); }
+  void on_check(int, double, std::size_t ok) override {
+    checked.push_back(true);
+    lpd.push_back(ok);
+  }
+  void on_unchecked(int, double, Precision p) override {
+    EXPECT_TRUE(p == Precision::collapsed || p == Precision::unrepresentable);
+    checked.push_back(false);
+    lpd.push_back(0);
+  }
+};
+}  // namespace
+
+TEST(LayoutPrecision, CollapsedLayoutsMidRunAreNotCheckedAndTheFinalOneIs) {
+  // The nested chain rooted at its first vertex: Newton's layouts collapse once the chain's radii
+  // shrink below the doubles' resolution, and stay collapsed. Stopped by LPD with a cap, the run
+  // checks only the representable layouts, goes on to the cap instead of ending on a collapsed one,
+  // checks the final layout anyway, and ends precision_loss.
+  const PlanarGraph g = nested_chain(45);
+  for (const StopRule stop : {StopRule::lpd, StopRule::exact, StopRule::cap}) {
+    PackOptions opt;
+    opt.acceleration = Acceleration::newton;
+    opt.stop = stop;
+    opt.max_iterations = 30;
+    opt.root = RootRule::smallest_id;
+    opt.layout_method = LayoutMethod::frames;
+    CheckLog log;
+    const PackResult r = pack(g, opt, &log);
+    ASSERT_EQ(log.precision.size(), log.checked.size());
+    ASSERT_EQ(static_cast<int>(log.checked.size()), r.layouts);
+    int skipped = 0;
+    for (std::size_t i = 0; i < log.checked.size(); ++i) {
+      const bool collapsed = log.precision[i] == Precision::collapsed || log.precision[i] == Precision::unrepresentable;
+      const bool last = i + 1 == log.checked.size();
+      EXPECT_EQ(log.checked[i], !collapsed || last) << to_string(stop) << " check " << i;
+      skipped += !log.checked[i];
+    }
+    EXPECT_EQ(skipped, r.skipped_checks);
+    EXPECT_GT(r.skipped_checks, 0) << to_string(stop);
+    EXPECT_EQ(r.iterations, opt.max_iterations) << to_string(stop);  // the collapsed layouts did not end it
+    EXPECT_EQ(r.layout.precision, Precision::collapsed);
+    EXPECT_EQ(r.status, PackStatus::precision_loss);
+    EXPECT_EQ(r.local.size(), g.num_vertices());  // the final layout was checked
+    if (stop != StopRule::exact) {  // (exact: LPD is counted after the run)
+      EXPECT_EQ(r.local_ok, log.lpd.back());
+    }
+    if (r.first_lpd >= 0) {  // only ever recorded on a checked, representable layout (one check per step)
+      EXPECT_TRUE(log.checked[static_cast<std::size_t>(r.first_lpd)]);
+      EXPECT_NE(log.precision[static_cast<std::size_t>(r.first_lpd)], Precision::collapsed);
+    }
+  }
+}

@@ -4,7 +4,9 @@
 ///
 /// Every predicate treats its double arguments as exact rationals and returns the exact sign of the
 /// stated polynomial expression: it is first evaluated in interval arithmetic (CGAL::Interval_nt) and,
-/// only when the interval contains 0, again in exact rational arithmetic (CGAL::Exact_rational).
+/// only when the interval contains 0, again in exact arithmetic: rationals (CGAL::Exact_rational), or
+/// for the polynomial radical-centre predicates CGAL::Mpzf (exact + − × on dyadic numbers, no gcd).
+/// Most predicates first try plain doubles with a proven error bound (no rounding-mode switch).
 /// Circle radii enter squared *exactly*, so a power comparison is exact for the stored (x, y, r).
 /// Results are enum results, never errors; degenerate inputs give Sign::zero and each predicate says
 /// what that means.
@@ -41,6 +43,8 @@ Sign compare_distance(Point2 q, Point2 a, Point2 b);
 /// H_t = {x : pow(x, u) < pow(x, t)}, zero that c is on the radical axis of u and t.
 /// Precondition: centres of u, a, b not collinear (otherwise the radical centre does not exist);
 /// returns Sign::zero in that case. Degree 4 (the lifted-point determinant times orientation).
+/// Cost: doubles on the translated circles (u at the origin) decide all but near-ties, including tiny
+/// circles far from the origin (radii 1e-25 at |p| ~ 0.3); near-ties go to intervals, then Mpzf.
 Sign radical_centre_power_side(const Circle& u, const Circle& a, const Circle& b, const Circle& t);
 
 /// Whether the radical centre of (u, a, b) lies strictly outside the closed unit disc: positive if

@@ -39,7 +39,8 @@ enum class PackStatus {
   converged,      ///< the stopping rule holds
   iteration_cap,  ///< `max_iterations` sweeps without the rule holding
   precision_loss  ///< the final layout is collapsed or unrepresentable in doubles (Precision): nothing is
-                  ///< claimed, whatever the exact checks said on the stored numbers
+                  ///< claimed, whatever the exact checks said on the stored numbers. Such layouts met
+                  ///< mid-run are not checked and do not end the run (PackResult::skipped_checks)
 };
 
 /// Name of a status.
@@ -83,6 +84,9 @@ struct PackResult {
   std::vector<LocalCondition> local;  ///< LPD/GLPD outcome per vertex of G at the end
   std::size_t local_ok = 0;           ///< number of vertices where it holds
   int layouts = 0;                    ///< layouts computed by the checks (one per check unless radius-only)
+  int skipped_checks = 0;  ///< mid-run layouts left unchecked because they were collapsed or unrepresentable
+                           ///< (Precision): no LPD/GLPD or exact-packing decision on them; the final layout is
+                           ///< always checked
   int decision_step = 0;  ///< sweeps computed when the run stopped (iterations + D with Termination::radius_flood)
   int flood_depth = 0;    ///< Termination::radius_flood: D, the steps from a test to its decision (0 otherwise)
   Layout layout;                      ///< the final layout of the whole complex
@@ -95,8 +99,11 @@ public:
   virtual ~PackVisitor() = default;
   /// After each checked iteration: iteration count, angle error, vertices satisfying LPD/GLPD.
   virtual void on_check(int /*iteration*/, double /*angle_error*/, std::size_t /*local_ok*/) {}
-  /// After each checked iteration's layout, before `on_check`.
+  /// After each checked iteration's layout, before `on_check` or `on_unchecked`.
   virtual void on_layout(int /*iteration*/, const Layout& /*layout*/) {}
+  /// Instead of `on_check` when a mid-run layout is collapsed or unrepresentable (`precision`): its
+  /// coordinates are not checked (PackResult::skipped_checks).
+  virtual void on_unchecked(int /*iteration*/, double /*angle_error*/, Precision /*precision*/) {}
 };
 
 /// Computes a greedy power embedding of G (a triangulated disc or a 3-connected planar graph whose
