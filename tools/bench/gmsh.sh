@@ -28,7 +28,9 @@
 # radius-edge ratio, edge lengths in the metric (min/max), and the status (converged/valid).
 #
 # 3D rows (tetrahedra): the domains and fields of tools/bench/mesh3.sh (cube.off and box-with-hole.off
-# under uniform, plane shock, sphere shock with --distortion 2.5, muparser expression), laguerre's
+# under uniform, plane shock, the curved sphere shock sphere:0.2:0.4:0.5:2:0.5:0.5:-1.5 (the former
+# sphere:0.15:0.4:0.5:0.3 with --distortion 2.5 rotates by ~1 rad per element and cascades, see
+# docs/star-mesher3.md; `mesh3.sh --known` runs it), muparser expression), laguerre's
 # stars capped at MESH3_MAX_VERTICES (2000) vertices, then gmsh 3D. Debian's gmsh 4.8.4 has no
 # anisotropic 3D algorithm (BAMG is 2D; it is built without Mmg), so gmsh meshes isotropic tetrahedra
 # (`Mesh.Algorithm3D = 1`, Delaunay) under a background scalar view: on the stars mesh of the row, the
@@ -198,7 +200,7 @@ done
 # --- 3D rows -------------------------------------------------------------------------------------
 if ((three)); then
   max3=${MESH3_MAX_VERTICES:-2000}
-  fields3=("uniform:0.15:0.15:0.3" "shock:0.2:0.4:0.5:0.5" "sphere:0.15:0.4:0.5:0.3:0.5:0.5:0.5|--distortion 2.5"
+  fields3=("uniform:0.15:0.15:0.3" "shock:0.2:0.4:0.5:0.5" "sphere:0.2:0.4:0.5:2:0.5:0.5:-1.5"
            "expr:xx=25;xy=0;xz=0;yy=25;yz=0;zz=25/(1+2*z)^2")
   printf '\n%-24s %-6s %8s %9s %8s %8s %8s %8s %8s %7s %8s %8s  %s\n' row tool vertices tetrahedra wall_s cpu_s \
     min_dih p5_dih max_rho slivers min_len max_len status

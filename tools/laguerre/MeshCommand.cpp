@@ -329,7 +329,8 @@ int run_mesh3(MeshArgs& a) {
       {"rules",
        {{"edge_splits", s.edge_splits}, {"facet_splits", s.facet_splits}, {"distortion", s.distortion}, {"size", s.size},
         {"shape", s.shape}, {"sliver", s.sliver}, {"inconsistency", s.inconsistency}, {"snapped", s.snapped},
-        {"rejected_picks", s.rejected_picks}, {"star_updates", s.star_updates}, {"consistency_sweeps", s.consistency_sweeps}}},
+        {"rejected_picks", s.rejected_picks}, {"star_updates", s.star_updates}, {"consistency_sweeps", s.consistency_sweeps},
+        {"last_sweep_inconsistent", s.last_sweep_inconsistent}}},
       {"quality", quality3_json(q)},
   };
   std::ofstream(stem + ".json") << j.dump(2) << '\n';
@@ -348,9 +349,9 @@ int run_mesh3(MeshArgs& a) {
     std::printf("size         %zu vertices, %zu tetrahedra, %zu boundary triangles in %.2f s\n", r.mesh.points.size(),
                 r.mesh.tetrahedra.size(), r.mesh.triangles.size(), seconds);
     std::printf("rules        edges %zu, facets %zu, distortion %zu, size %zu, shape %zu, sliver %zu, inconsistency %zu "
-                "(snapped %zu, picks rejected %zu)\n",
+                "(snapped %zu, picks rejected %zu; %zu sweeps, the last found %zu inconsistent)\n",
                 s.edge_splits, s.facet_splits, s.distortion, s.size, s.shape, s.sliver, s.inconsistency, s.snapped,
-                s.rejected_picks);
+                s.rejected_picks, s.consistency_sweeps, s.last_sweep_inconsistent);
     print_quality(q, true);
     std::printf("wrote        %s.{mesh,sol,vtk,json%s}\n", stem.c_str(), a.picture ? ",svg,png" : "");
   }

@@ -62,6 +62,7 @@ P3 ball_extent(const Metric3& m, double r) {
 /// A tetrahedron (v, a, b, c) of S_v, positively oriented, with its M_v measures.
 struct StarTet {
   Index a, b, c;
+  Key key;           ///< sorted_key(v, a, b, c): what the other stars are searched for
   P3 centre;         ///< M_v-circumcentre (plane coordinates)
   double radius;     ///< M_v-circumradius
   double shortest;   ///< shortest M_v-edge
@@ -84,6 +85,14 @@ struct Star {
   bool open = false;  ///< the link of v in the kept tetrahedra is not closed
   std::size_t open_tet = 0;  ///< then: a kept tetrahedron on an unmatched facet
   P3 lo{1, 1, 1}, hi{0, 0, 0};  ///< registered zone box (empty if lo > hi)
+  std::uint32_t zone = 0;       ///< generation of the zone's registrations (older ones are dead)
+  std::vector<std::pair<Index, double>> gamma;  ///< γ(M_v, M_w) per neighbour w of the last evaluation, by w
+};
+
+/// A registration of S_v's zone box in a cell of the zones grid, alive while `generation` is S_v's.
+struct ZoneEntry {
+  Index v;
+  std::uint32_t generation;
 };
 
 struct Crease {
@@ -165,7 +174,7 @@ class StarMesher3 : detail::StarRefinement<StarMesher3, Request, Index> {
 public:
   StarMesher3(const PolyhedralDomain& domain, const MetricField3& field, const StarMesh3Options& options)
       : domain_(domain), field_(field), options_(options), rng_{options.seed}, box_(expanded_box(domain)),
-        planes_(face_planes(domain)), sites_grid_(box_, 48), zones_grid_(box_, 24), creases_grid_(box_, 24) {}
+        planes_(face_planes(domain)), sites_grid_(box_, 48), creases_grid_(box_, 24), zones_grid_(box_, 24) {}
 
   StarMesh3Result run() {
     for (const Point3& p : domain_.vertices()) add_site(p, INFINITY);
@@ -238,7 +247,7 @@ private:
     if (options_.progress && v % 1000 == 0 && v > 0) options_.progress(v);
     sites_grid_.add_box(p, p, v);
     mark_dirty(v);
-    zones_grid_.for_box(p, p, [&](Index w) {
+    for_zones_at(p, [&](Index w) {
       if (!is_dirty_[w] && in_conflict_zone(w, p)) mark_dirty(w);
     });
     creases_grid_.for_box(p, p, [&](Index s) {
@@ -378,7 +387,8 @@ private:
           needed = std::max(needed, 2 * radius);
           const double shortest = std::min({norm(sa), norm(sb), norm(sc), norm(sub(sa, sb)), norm(sub(sb, sc)), norm(sub(sa, sc))});
           const double volume = dot(sa, cross(sb, sc)) / 6;
-          kept.push_back({a, b, c, add(p, solve(f, u)), radius, shortest, volume / (shortest * shortest * shortest)});
+          kept.push_back({a, b, c, sorted_key(v, a, b, c), add(p, solve(f, u)), radius, shortest,
+                          volume / (shortest * shortest * shortest)});
           for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
             ++count[edge_key(x, y)];
             const int plane = facet_plane.at(edge_key(x, y));
@@ -457,9 +467,19 @@ private:
     return side;
   }
 
+  /// Calls f(w) for every star w whose registered zone box holds the point p, in registration order.
+  template <class F>
+  void for_zones_at(const P3& p, F&& f) const {
+    for (const ZoneEntry& e : zones_grid_.cell_of(p))
+      if (e.generation == stars_[e.v].zone) f(e.v);
+  }
+
+  /// (Re)registers the zone box of S_v. The former registrations are not searched for and erased
+  /// (that was a linear search per cell of the box): they die by the generation, are skipped by
+  /// for_zones_at and compacted away, order kept, when a cell's size reaches a power of two.
   void register_zone(Index v) {
     Star& star = stars_[v];
-    if (star.lo[0] <= star.hi[0]) zones_grid_.remove_box(star.lo, star.hi, v);
+    ++star.zone;
     star.lo = {1, 1, 1};
     star.hi = {0, 0, 0};
     if (star.tets.empty()) return;
@@ -471,7 +491,8 @@ private:
     }
     star.lo = lo;
     star.hi = hi;
-    zones_grid_.add_box(lo, hi, v);
+    zones_grid_.add_box_compacting(lo, hi, ZoneEntry{v, star.zone},
+                                   [&](const ZoneEntry& e) { return e.generation != stars_[e.v].zone; });
   }
 
   /// q strictly inside the M_v-equatorial ball of boundary facet b of S_v.
@@ -481,19 +502,31 @@ private:
 
   void evaluate(Index v, const std::vector<Index>& local) {
     const Metric3& m = metrics_[v];
-    const Star& star = stars_[v];
+    Star& star = stars_[v];
+    // γ(M_v, M_w) once per neighbour w (a neighbour is in several tetrahedra of the star), and kept
+    // for the next evaluation of S_v: the same values distortion() gives, fewer eigen-decompositions.
+    std::vector<std::pair<Index, double>> gamma;
+    const auto gamma_to = [&](Index w) {
+      const auto less = [](const std::pair<Index, double>& e, Index x) { return e.first < x; };
+      if (const auto it = std::lower_bound(gamma.begin(), gamma.end(), w, less); it != gamma.end() && it->first == w)
+        return it->second;
+      const auto old = std::lower_bound(star.gamma.begin(), star.gamma.end(), w, less);
+      const double g = old != star.gamma.end() && old->first == w ? old->second : distortion(m, metrics_[w]);
+      gamma.insert(std::lower_bound(gamma.begin(), gamma.end(), w, less), {w, g});
+      return g;
+    };
     // Rule 1 on the boundary facets of the star: encroached in M_v by a site of the query (the
     // equatorial ball lies in it, see update_star), too large, or too distorted.
     for (const BoundaryFacet& b : star.boundary) {
-      bool bad = b.radius > options_.size_bound || distortion(m, metrics_[b.a]) >= options_.distortion_bound ||
-                 distortion(m, metrics_[b.b]) >= options_.distortion_bound;
+      bool bad = b.radius > options_.size_bound || gamma_to(b.a) >= options_.distortion_bound ||
+                 gamma_to(b.b) >= options_.distortion_bound;
       for (std::size_t i = 0; !bad && i < local.size(); ++i)
         if (local[i] != v && local[i] != b.a && local[i] != b.b) bad = facet_encroached(v, b, points_[local[i]]);
       if (bad) requests_.push({1, b.radius, v, b.a, b.b, kFacet, star.version});
     }
     for (const StarTet& t : star.tets) {
       if (!std::isfinite(t.radius)) continue;
-      double g = std::max({distortion(m, metrics_[t.a]), distortion(m, metrics_[t.b]), distortion(m, metrics_[t.c])});
+      double g = std::max({gamma_to(t.a), gamma_to(t.b), gamma_to(t.c)});
       try {
         g = std::max(g, distortion(m, field_.at(t.centre[0], t.centre[1], t.centre[2])));
       } catch (const FieldError&) {
@@ -506,12 +539,13 @@ private:
       else if (t.sliverity < options_.sliver_bound) rule = 5;
       if (rule) requests_.push({rule, t.radius, v, t.a, t.b, t.c, star.version});
     }
+    star.gamma = std::move(gamma);
   }
 
   /// The tetrahedron `key` in S_w, or null.
   const StarTet* find_tet(Index w, const Key& key) const {
     for (const StarTet& t : stars_[w].tets)
-      if (sorted_key(w, t.a, t.b, t.c) == key) return &t;
+      if (t.key == key) return &t;
     return nullptr;
   }
 
@@ -524,21 +558,22 @@ private:
 
   bool consistency_sweep() {
     ++stats_.consistency_sweeps;
-    bool found = false;
+    std::size_t found = 0;
     for (Index v = 0; v < stars_.size(); ++v)
       for (const StarTet& t : stars_[v].tets)
         if (!consistent(v, t)) {
           requests_.push({6, t.radius, v, t.a, t.b, t.c, stars_[v].version});
-          found = true;
+          ++found;
         }
     // An open star (its link does not close up) misses a tetrahedron: refine the one at the gap.
     for (Index v = 0; v < stars_.size(); ++v)
       if (stars_[v].open && !stars_[v].tets.empty()) {
         const StarTet& t = stars_[v].tets[std::min(stars_[v].open_tet, stars_[v].tets.size() - 1)];
         requests_.push({6, t.radius, v, t.a, t.b, t.c, stars_[v].version});
-        found = true;
+        ++found;
       }
-    return found;
+    stats_.last_sweep_inconsistent = found;
+    return found > 0;
   }
 
   /// What inserting p would do (Pick_valid, thesis §3.4): `conflicts` counts the inconsistencies it
@@ -615,7 +650,7 @@ private:
       }
     // The current stars whose conflict zone may hold p.
     std::vector<Index> near;
-    zones_grid_.for_box(p, p, [&](Index w) { near.push_back(w); });
+    for_zones_at(p, [&](Index w) { near.push_back(w); });
     std::sort(near.begin(), near.end());
     near.erase(std::unique(near.begin(), near.end()), near.end());
     for (Index w : near)
@@ -741,7 +776,7 @@ private:
     }
     // Boundary facets of the stars whose conflict zones may hold q.
     std::vector<Index> near;
-    zones_grid_.for_box(q, q, [&](Index w) {
+    for_zones_at(q, [&](Index w) {
       if (!stars_[w].boundary.empty()) near.push_back(w);
     });
     std::sort(near.begin(), near.end());
@@ -798,7 +833,8 @@ private:
   SplitMix64 rng_;
   std::array<double, 6> box_;
   std::vector<Plane> planes_;
-  detail::BucketGrid3<Index> sites_grid_, zones_grid_, creases_grid_;
+  detail::BucketGrid3<Index> sites_grid_, creases_grid_;
+  detail::BucketGrid3<ZoneEntry> zones_grid_;
   std::vector<P3> points_;
   std::vector<Metric3> metrics_;
   std::vector<Matrix3> roots_;

@@ -45,6 +45,8 @@ TEST_P(StarMesher3Sweep, ConvergesToACheckedLocallyUniformMesh) {
 INSTANTIATE_TEST_SUITE_P(BundledDomainsAndFields, StarMesher3Sweep,
                          testing::Combine(testing::Values("cube", "box-with-hole"),
                                           testing::Values("uniform:0.15:0.15:0.3", "shock:0.2:0.4:0.5:0.5",
+                                                          // the bench's curved sphere layer (docs/star-mesher3.md)
+                                                          "sphere:0.2:0.4:0.5:2:0.5:0.5:-1.5",
                                                           // graded along z: cascaded before Pick_valid
                                                           "expr:xx=25;xy=0;xz=0;yy=25;yz=0;zz=25/(1+2*z)^2")),
                          [](const testing::TestParamInfo<StarMesher3Sweep::ParamType>& param_info) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace laguerre::core::detail {
@@ -59,7 +60,8 @@ private:
 template <class Index>
 class BucketGrid3 {
 public:
-  BucketGrid3(std::array<double, 6> box, std::size_t n) : box_(box), n_(std::max<std::size_t>(n, 1)), cells_(n_ * n_ * n_) {
+  BucketGrid3(std::array<double, 6> box, std::size_t n)
+      : box_(box), n_(std::max<std::size_t>(n, 1)), cells_(n_ * n_ * n_), used_((cells_.size() + 63) / 64) {
     for (std::size_t k = 0; k < 3; ++k) w_[k] = std::max(box_[k + 3] - box_[k], 1e-300) / static_cast<double>(n_);
   }
   /// Index along axis k of coordinate v.
@@ -72,6 +74,15 @@ public:
   void add_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi, Index item) {
     visit(lo, hi, [&](std::vector<Index>& cell) { cell.push_back(item); });
   }
+  /// add_box, and first, in each cell whose size is a power of two (≥ 64), erases the entries for which
+  /// dead(entry) holds, keeping the others' order (for lazily removed items).
+  template <class Dead>
+  void add_box_compacting(const std::array<double, 3>& lo, const std::array<double, 3>& hi, const Index& item, Dead&& dead) {
+    visit(lo, hi, [&](std::vector<Index>& cell) {
+      if (cell.size() >= 64 && (cell.size() & (cell.size() - 1)) == 0) std::erase_if(cell, dead);
+      cell.push_back(item);
+    });
+  }
   /// Removes one registration of `item` from every cell the box [lo, hi] meets.
   void remove_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi, Index item) {
     visit(lo, hi, [&](std::vector<Index>& cell) {
@@ -82,18 +93,29 @@ public:
   /// Calls f on every entry of every cell the box [lo, hi] meets (possibly several times per item).
   template <class F>
   void for_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi, F&& f) const {
-    for (std::size_t z = index(2, lo[2]); z <= index(2, hi[2]); ++z)
-      for (std::size_t y = index(1, lo[1]); y <= index(1, hi[1]); ++y)
-        for (std::size_t x = index(0, lo[0]); x <= index(0, hi[0]); ++x)
-          for (Index item : cells_[(z * n_ + y) * n_ + x]) f(item);
+    const std::size_t x0 = index(0, lo[0]), x1 = index(0, hi[0]), y0 = index(1, lo[1]), y1 = index(1, hi[1]);
+    const std::size_t z0 = index(2, lo[2]), z1 = index(2, hi[2]);
+    for (std::size_t z = z0; z <= z1; ++z)
+      for (std::size_t y = y0; y <= y1; ++y) {
+        const std::size_t row = (z * n_ + y) * n_;
+        for (std::size_t x = x0; x <= x1; ++x)
+          if (used_[(row + x) >> 6] >> ((row + x) & 63) & 1)
+            for (const Index& item : cells_[row + x]) f(item);
+      }
   }
 
 private:
   template <class F>
   void visit(const std::array<double, 3>& lo, const std::array<double, 3>& hi, F&& f) {
-    for (std::size_t z = index(2, lo[2]); z <= index(2, hi[2]); ++z)
-      for (std::size_t y = index(1, lo[1]); y <= index(1, hi[1]); ++y)
-        for (std::size_t x = index(0, lo[0]); x <= index(0, hi[0]); ++x) f(cells_[(z * n_ + y) * n_ + x]);
+    const std::size_t x0 = index(0, lo[0]), x1 = index(0, hi[0]), y0 = index(1, lo[1]), y1 = index(1, hi[1]);
+    const std::size_t z0 = index(2, lo[2]), z1 = index(2, hi[2]);
+    for (std::size_t z = z0; z <= z1; ++z)
+      for (std::size_t y = y0; y <= y1; ++y)
+        for (std::size_t x = x0; x <= x1; ++x) {
+          const std::size_t c = (z * n_ + y) * n_ + x;
+          f(cells_[c]);
+          if (!cells_[c].empty()) used_[c >> 6] |= std::uint64_t{1} << (c & 63);
+        }
   }
   std::size_t clamp(double t) const {
     if (!(t > 0)) return 0;
@@ -104,6 +126,9 @@ private:
   std::size_t n_;
   std::array<double, 3> w_{1, 1, 1};
   std::vector<std::vector<Index>> cells_;
+  /// One bit per cell: it has held an item (for_box skips the others without touching their vector,
+  /// most cells of a fine grid being empty and the vectors' headers not fitting in cache).
+  std::vector<std::uint64_t> used_;
 };
 
 }  // namespace laguerre::core::detail

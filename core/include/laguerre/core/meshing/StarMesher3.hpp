@@ -63,9 +63,11 @@
 /// rare near-cospherical configurations but 10–40% of all star tetrahedra, between vertices whose
 /// metrics differ by γ = 1.2–1.5, and the old picks (a sliver test only) created as many as they
 /// removed; with the validity test the smoothly graded `expr` field converges (cube: 2 506 vertices at
-/// γ₀ = 1.5, where it had not at 10 000). Sphere shock layers whose anisotropy reaches the cube's
-/// faces still cascade, on the faces (edges of 10⁻³ in the metric between face points), at every γ₀
-/// tried; a layer inside the cube converges (tests/core/meshing/star_mesher3_test.cpp).
+/// γ₀ = 1.5, where it had not at 10 000). A sphere shock layer around a sphere smaller than one
+/// element (sphere:0.15:0.4:0.5:0.3, the former bench field) cascades at every γ₀ tried: its strong
+/// direction turns by ~1 rad per element, outside the thesis's hypothesis (docs/star-mesher3.md, with
+/// the distortion measured by tools/bench/field_distortion); a curved layer that turns by ~0.2 rad per
+/// element (sphere:0.2:0.4:0.5:2:0.5:0.5:-1.5, the bench field now) converges on both bundled domains.
 
 #include "laguerre/core/meshing/Domain3.hpp"
 #include "laguerre/core/meshing/Medit.hpp"
@@ -106,6 +108,9 @@ struct StarMesh3Stats {
   std::size_t rejected_picks = 0;   ///< picks discarded because their star had a sliver
   std::size_t star_updates = 0;     ///< star recomputations
   std::size_t consistency_sweeps = 0;  ///< full passes looking for inconsistent tetrahedra
+  /// Inconsistent tetrahedra (and open stars) the most recent sweep queued: 0 once converged; for a
+  /// run stopped at the cap, how far from consistent it still was at its last sweep.
+  std::size_t last_sweep_inconsistent = 0;
 };
 
 /// The result: the merged mesh (tetrahedra and boundary subfacets), one metric per vertex.
