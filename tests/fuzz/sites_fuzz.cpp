@@ -2,7 +2,7 @@
 // 2 numbers `x y` give a Voronoi diagram, 3 `x y w` a power diagram, 4 `x y lambda mu` a Möbius
 // diagram, clipped to the sites' bounding box grown by 15% (the command's default). Inputs that are
 // not such a file are skipped; on the others the diagram must build (or refuse with
-// std::invalid_argument) and pass its is_valid() check.
+// std::invalid_argument or core::InputError) and pass its is_valid() check.
 #include <charconv>
 #include <algorithm>
 #include <cmath>
@@ -49,15 +49,12 @@ std::vector<std::vector<double>> numbers(std::string_view text) {
   return rows;
 }
 
-// `validity_open`: is_valid() runs but its verdict is not a finding. For Möbius diagrams, near-collinear,
-// repeated and wide-range sites fail it with "boundary of cell i is not closed" (open finding sites-2
-// in tests/fuzz/open/README.md).
 template <class Diagram, class Site>
-void check(std::vector<Site> sites, const std::vector<core::Point2>& points, bool validity_open = false) {
+void check(std::vector<Site> sites, const std::vector<core::Point2>& points) {
   const core::Box box = core::bounding_box(points, 0.15);
   std::optional<Diagram> d;
-  if (!laguerre::fuzz::parses<std::invalid_argument>([&] { d.emplace(std::move(sites), box); })) return;
-  if (!d->is_valid() && !validity_open && !d->is_valid(true))  // verbose: the broken invariant on stderr
+  if (!laguerre::fuzz::parses<std::invalid_argument, core::InputError>([&] { d.emplace(std::move(sites), box); })) return;
+  if (!d->is_valid() && !d->is_valid(true))  // verbose: the broken invariant on stderr
     laguerre::fuzz::fail("the diagram is not valid (see the line above)");
 }
 
@@ -79,7 +76,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     case 4: {
       std::vector<core::MobiusSite> sites;
       for (const auto& r : rows) sites.push_back({r[0], r[1], r[2], r[3]});
-      check<core::MobiusDiagram>(std::move(sites), points, true);
+      check<core::MobiusDiagram>(std::move(sites), points);
       break;
     }
     default: break;

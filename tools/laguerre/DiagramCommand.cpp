@@ -364,6 +364,7 @@ void build_mobius(const DiagramKind& kind, Build& b) {
                              "found the weight w = " + json(r[2]).dump() + "; expected w > 0 (" + std::string(kind.title) + " sites).");
     b.points.push_back({r[0], r[1]});
     ms.push_back(mw ? core::multiplicative_site(r[0], r[1], r[2]) : core::MobiusSite{r[0], r[1], r[2], r[3]});
+    core::require_liftable(ms.back(), b.args.sites, row.line, "the site");
     json site{{"x", r[0]}, {"y", r[1]}, {"lambda", ms.back().lambda}, {"mu", ms.back().mu}};
     if (mw) site["w"] = r[2];
     sites.push_back(site);

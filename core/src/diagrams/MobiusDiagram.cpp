@@ -1,22 +1,34 @@
 #include "laguerre/core/diagrams/MobiusDiagram.hpp"
 
+#include "../detail/Filtered.hpp"
 #include "detail/Validity.hpp"
 #include "laguerre/core/Error.hpp"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+// GCC 12 reports a false -Wmaybe-uninitialized inside the copies of CGAL's lazy weighted points (the
+// static filter's Epick Weighted_point_3), at instantiations in this file.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Regular_triangulation_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
+#include <tuple>
 #include <stdexcept>
 #include <unordered_map>
 
 namespace laguerre::core {
 
 namespace {
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+// The lifted spheres are built exactly (lazy exact numbers: interval filter, then exact rationals), so
+// the triangulation, the hidden sites and point location are those of the true sites, not of their
+// double-rounded liftings.
+using K = CGAL::Exact_predicates_exact_constructions_kernel;
+using FT = K::FT;
 using Vb = CGAL::Regular_triangulation_vertex_base_3<K>;
 using Vbi = CGAL::Triangulation_vertex_base_with_info_3<SiteIndex, K, Vb>;
 using Cb = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell_base_3<K>, CGAL::Discard_hidden_points>;
@@ -24,15 +36,416 @@ using Tds = CGAL::Triangulation_data_structure_3<Vbi, Cb>;
 using RT3 = CGAL::Regular_triangulation_3<K, Tds>;
 using WP3 = RT3::Weighted_point;
 
-constexpr double two_pi = 2 * std::numbers::pi;
-constexpr double relative_tolerance = 1e-10;
+using detail::filtered;
+using detail::sign_of;
 
-/// Whether site l is strictly closer than site i at x beyond the relative tolerance.
-bool closer(const MobiusSite& l, const MobiusSite& i, Point2 x) {
-  const double di = mobius_distance(x, i), dl = mobius_distance(x, l);
-  const double scale = std::fabs(i.lambda) * squared_distance(x, {i.x, i.y}) + std::fabs(i.mu) +
-                       std::fabs(l.lambda) * squared_distance(x, {l.x, l.y}) + std::fabs(l.mu);
-  return dl < di - relative_tolerance * scale;
+constexpr double two_pi = 2 * std::numbers::pi;
+
+// ---------------------------------------------------------------------------------------------------
+// Exact arithmetic on the vertices. A vertex is a point of L ∩ Q, L the power line of three lifted
+// spheres: its coordinates are a + b√D with a, b, D rational in the input doubles. Every predicate
+// below is a polynomial sign in such numbers, evaluated by detail::filtered (intervals, then exact
+// rationals) on the input doubles, in coordinates centred on one site (a translation: exact).
+
+/// a + b√D, for the D of the computation (D ≥ 0).
+template <class NT>
+struct Surd {
+  NT a, b;
+};
+
+template <class NT>
+struct SurdPoint {
+  Surd<NT> x, y;
+};
+
+/// Arithmetic in Q(√D).
+template <class NT>
+struct Field {
+  NT D;
+  static Surd<NT> add(const Surd<NT>& u, const Surd<NT>& v) { return {u.a + v.a, u.b + v.b}; }
+  static Surd<NT> sub(const Surd<NT>& u, const Surd<NT>& v) { return {u.a - v.a, u.b - v.b}; }
+  static Surd<NT> scale(const Surd<NT>& u, const NT& k) { return {u.a * k, u.b * k}; }
+  Surd<NT> mul(const Surd<NT>& u, const Surd<NT>& v) const { return {u.a * v.a + u.b * v.b * D, u.a * v.b + u.b * v.a}; }
+  /// Exact sign of a + b√D (throws Uncertain_conversion_exception on an uncertain interval).
+  Sign sign(const Surd<NT>& u) const {
+    const Sign sa = sign_of<NT>(u.a);
+    const Sign sb = sign_of<NT>(D) == Sign::zero ? Sign::zero : sign_of<NT>(u.b);
+    if (sb == Sign::zero) return sa;
+    if (sa == Sign::zero || sa == sb) return sb;
+    const Sign c = sign_of<NT>(u.a * u.a - u.b * u.b * D);  // |a| against |b|√D
+    return c == Sign::positive ? sa : c == Sign::negative ? sb : Sign::zero;
+  }
+};
+
+/// A site's Möbius distance in coordinates centred on `o`: δ(x) = λ|x − q|² − μ, q = p − o.
+template <class NT>
+struct LocalSite {
+  NT qx, qy, lambda, mu;
+  LocalSite(const MobiusSite& s, const MobiusSite& o)
+      : qx(NT(s.x) - NT(o.x)), qy(NT(s.y) - NT(o.y)), lambda(NT(s.lambda)), mu(NT(s.mu)) {}
+  /// δ at a point of Q(√D).
+  Surd<NT> delta(const Field<NT>& f, const SurdPoint<NT>& v) const {
+    const Surd<NT> dx{v.x.a - qx, v.x.b}, dy{v.y.a - qy, v.y.b};
+    Surd<NT> s = Field<NT>::scale(Field<NT>::add(f.mul(dx, dx), f.mul(dy, dy)), lambda);
+    s.a = s.a - mu;
+    return s;
+  }
+  /// ∇δ at v: 2λ(v − q).
+  std::array<Surd<NT>, 2> gradient(const SurdPoint<NT>& v) const {
+    const NT two_l = NT(2) * lambda;
+    return {Surd<NT>{(v.x.a - qx) * two_l, v.x.b * two_l}, Surd<NT>{(v.y.a - qy) * two_l, v.y.b * two_l}};
+  }
+};
+
+/// The points of L ∩ Q for the sites `tri` (L: the common power line of their lifted spheres), in
+/// coordinates centred on sites[tri[0]]: x = x0 + d (t0 + s t1 √D) for the roots s = ±1.
+template <class NT>
+struct FacetRoots {
+  int count = 0;  ///< 0, 1 or 2 distinct points
+  Field<NT> field{NT(0)};
+  NT x0[2] = {NT(0), NT(0)}, d[2] = {NT(0), NT(0)}, t0 = NT(0), t1 = NT(0);
+  SurdPoint<NT> point(int s) const {
+    const NT b = s > 0 ? t1 : -t1;
+    return {{x0[0] + d[0] * t0, d[0] * b}, {x0[1] + d[1] * t0, d[1] * b}};
+  }
+};
+
+template <class NT>
+FacetRoots<NT> facet_roots(const std::vector<MobiusSite>& sites, const std::array<SiteIndex, 3>& tri) {
+  // δ_s(X) = λ_s z − 2 b_s·x + c_s on z = |x|² (b_s = λ_s q_s, c_s = λ_s|q_s|² − μ_s); the bisector
+  // planes n·X = h with n = (−2(b_i − b_s), λ_i − λ_s), h = c_s − c_i.
+  const MobiusSite& o = sites[tri[0]];
+  struct Lin {
+    NT b0, b1, c, l;
+  };
+  auto lin = [&](const MobiusSite& s) {
+    const LocalSite<NT> ls(s, o);
+    return Lin{ls.lambda * ls.qx, ls.lambda * ls.qy, ls.lambda * (ls.qx * ls.qx + ls.qy * ls.qy) - ls.mu, ls.lambda};
+  };
+  const Lin ci = lin(o), cj = lin(sites[tri[1]]), ck = lin(sites[tri[2]]);
+  const NT n1[3] = {NT(-2) * (ci.b0 - cj.b0), NT(-2) * (ci.b1 - cj.b1), ci.l - cj.l};
+  const NT n2[3] = {NT(-2) * (ci.b0 - ck.b0), NT(-2) * (ci.b1 - ck.b1), ci.l - ck.l};
+  const NT h1 = cj.c - ci.c, h2 = ck.c - ci.c;
+  const NT d[3] = {n1[1] * n2[2] - n1[2] * n2[1], n1[2] * n2[0] - n1[0] * n2[2], n1[0] * n2[1] - n1[1] * n2[0]};
+  const NT dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  FacetRoots<NT> r;
+  if (sign_of<NT>(dd) == Sign::zero) return r;  // parallel bisector planes (not for a facet)
+  // X0 = (h1 (n2 × d) + h2 (d × n1)) / |d|².
+  const NT a[3] = {n2[1] * d[2] - n2[2] * d[1], n2[2] * d[0] - n2[0] * d[2], n2[0] * d[1] - n2[1] * d[0]};
+  const NT b[3] = {d[1] * n1[2] - d[2] * n1[1], d[2] * n1[0] - d[0] * n1[2], d[0] * n1[1] - d[1] * n1[0]};
+  NT x0[3] = {NT(0), NT(0), NT(0)};
+  for (int c = 0; c < 3; ++c) x0[c] = (h1 * a[c] + h2 * b[c]) / dd;
+  // (x0 + t dx)² + (y0 + t dy)² = z0 + t dz.
+  const NT qa = d[0] * d[0] + d[1] * d[1];
+  const NT qb = NT(2) * (x0[0] * d[0] + x0[1] * d[1]) - d[2];
+  const NT qc = x0[0] * x0[0] + x0[1] * x0[1] - x0[2];
+  r.x0[0] = x0[0], r.x0[1] = x0[1], r.d[0] = d[0], r.d[1] = d[1];
+  if (sign_of<NT>(qa) == Sign::zero) {  // L vertical: one point (power diagram case)
+    if (sign_of<NT>(qb) == Sign::zero) return r;
+    r.count = 1, r.t0 = -qc / qb;
+    return r;
+  }
+  const NT disc = qb * qb - NT(4) * qa * qc;
+  const Sign sd = sign_of<NT>(disc);
+  if (sd == Sign::negative) return r;
+  r.t0 = -qb / (NT(2) * qa);
+  if (sd == Sign::zero) {  // L tangent to Q: the bisector circles touch, one vertex
+    r.count = 1;
+    return r;
+  }
+  r.count = 2, r.t1 = NT(1) / (NT(2) * qa), r.field = Field<NT>{disc};
+  return r;
+}
+
+/// Double approximation of a + b√D, without cancellation: (a² − b²D)/(a − b√D) when the signs differ.
+template <class NT>
+double approximate(const Surd<NT>& u, const NT& D) {
+  const double a = CGAL::to_double(u.a), b = CGAL::to_double(u.b), r = std::sqrt(std::max(0.0, CGAL::to_double(D)));
+  if (b == 0 || r == 0 || (a >= 0) == (b >= 0)) return a + b * r;
+  return CGAL::to_double(u.a * u.a - u.b * u.b * D) / (a - b * r);
+}
+
+/// What the apex test of a facet decides for one root: whether it is a vertex, and which apexes tie.
+struct RootVerdict {
+  int s = 1;
+  bool kept = false;
+  std::array<bool, 3> tie{};
+};
+
+/// The vertices of the facet `tri` whose power edge is cut by the apexes (no_site: none): for each
+/// point of L ∩ Q, kept when no apex is strictly closer. Exact.
+std::vector<RootVerdict> facet_vertices(const std::vector<MobiusSite>& sites, const std::array<SiteIndex, 3>& tri,
+                                        const std::array<SiteIndex, 3>& apex) {
+  return filtered([&]<class NT>() {
+    const FacetRoots<NT> r = facet_roots<NT>(sites, tri);
+    std::vector<RootVerdict> out;
+    const MobiusSite& o = sites[tri[0]];
+    const LocalSite<NT> li(o, o);
+    for (int k = 0; k < r.count; ++k) {
+      RootVerdict v;
+      v.s = k == 0 ? 1 : -1;
+      const SurdPoint<NT> x = r.point(v.s);
+      const Surd<NT> di = li.delta(r.field, x);
+      v.kept = true;
+      for (std::size_t a = 0; a < 3 && v.kept; ++a) {
+        if (apex[a] == no_site) continue;
+        const Sign s = r.field.sign(Field<NT>::sub(LocalSite<NT>(sites[apex[a]], o).delta(r.field, x), di));
+        v.kept = s != Sign::negative;
+        v.tie[a] = s == Sign::zero;
+      }
+      out.push_back(v);
+    }
+    return out;
+  });
+}
+
+/// Double coordinates of the root s of facet `tri` (intervals when they are tight, else exact inputs).
+Point2 vertex_point(const std::vector<MobiusSite>& sites, const std::array<SiteIndex, 3>& tri, int s) {
+  const MobiusSite& o = sites[tri[0]];
+  // In global coordinates: a vertex near (0, 0) of sites far from it keeps its precision.
+  auto global = [&]<class NT>(const FacetRoots<NT>& r) {
+    SurdPoint<NT> x = r.point(s);
+    x.x.a = x.x.a + NT(o.x), x.y.a = x.y.a + NT(o.y);
+    return x;
+  };
+  auto compute = [&]<class NT>() {
+    const FacetRoots<NT> r = facet_roots<NT>(sites, tri);
+    const SurdPoint<NT> x = global(r);
+    return Point2{approximate(x.x, r.field.D), approximate(x.y, r.field.D)};
+  };
+  {
+    CGAL::Protect_FPU_rounding<true> guard;
+    try {
+      using I = CGAL::Interval_nt<false>;
+      const FacetRoots<I> r = facet_roots<I>(sites, tri);
+      const SurdPoint<I> x = global(r);
+      auto tight = [](const I& v) { return std::isfinite(v.inf()) && std::isfinite(v.sup()) && v.sup() - v.inf() <= 1e-12 * std::fabs(v.sup() + v.inf()); };
+      const I nx = x.x.a * x.x.a - x.x.b * x.x.b * r.field.D, ny = x.y.a * x.y.a - x.y.b * x.y.b * r.field.D;
+      if (tight(x.x.a) && tight(x.x.b) && tight(x.y.a) && tight(x.y.b) && tight(r.field.D) && tight(nx) && tight(ny)) {
+        const Point2 p = compute.template operator()<I>();
+        if (std::isfinite(p.x) && std::isfinite(p.y)) return p;
+      }
+    } catch (CGAL::Uncertain_conversion_exception&) {
+    }
+  }
+  return compute.template operator()<CGAL::Exact_rational>();
+}
+
+/// The bisector of sites i and j in doubles, rounded once from exact values (intervals when they are
+/// tight, else exact rationals): a circle (centre, radius; λ_i ≠ λ_j; radius 0 when empty) or a line
+/// (a point and the unit direction (−g_y, g_x)/|g|, g = λ_i p_i − λ_j p_j).
+struct Bisector {
+  bool circle = false;
+  Point2 c, x0, dir;
+  double r = 0;
+};
+
+Bisector bisector(const std::vector<MobiusSite>& sites, SiteIndex i, SiteIndex j) {
+  auto parts = [&]<class NT>() {
+    const NT li(sites[i].lambda), lj(sites[j].lambda), xi(sites[i].x), yi(sites[i].y), xj(sites[j].x), yj(sites[j].y);
+    const NT gx = li * xi - lj * xj, gy = li * yi - lj * yj;
+    const NT dc = li * (xi * xi + yi * yi) - NT(sites[i].mu) - (lj * (xj * xj + yj * yj) - NT(sites[j].mu));
+    const NT dl = li - lj;
+    // δ_i − δ_j = dl |x|² − 2 g·x + dc.
+    if (sites[i].lambda != sites[j].lambda) {
+      const NT cx = gx / dl, cy = gy / dl;
+      return std::array<NT, 4>{cx, cy, cx * cx + cy * cy - dc / dl, NT(0)};
+    }
+    const NT k = dc / (NT(2) * (gx * gx + gy * gy));
+    return std::array<NT, 4>{gx * k, gy * k, gx, gy};
+  };
+  auto finish = [&](const std::array<double, 4>& v) {
+    Bisector b;
+    b.circle = sites[i].lambda != sites[j].lambda;
+    if (b.circle) {
+      b.c = {v[0], v[1]}, b.r = std::sqrt(std::max(0.0, v[2]));
+    } else {
+      const double gn = std::hypot(v[2], v[3]);
+      b.x0 = {v[0], v[1]}, b.dir = {-v[3] / gn, v[2] / gn};
+    }
+    return b;
+  };
+  if (sites[i].lambda == sites[j].lambda && (sites[i].lambda == 0 || (sites[i].x == sites[j].x && sites[i].y == sites[j].y)))
+    return Bisector{};  // g = 0: no line
+  {
+    CGAL::Protect_FPU_rounding<true> guard;
+    using I = CGAL::Interval_nt<false>;
+    const std::array<I, 4> v = parts.template operator()<I>();
+    bool tight = true;
+    for (const I& x : v)
+      tight = tight && std::isfinite(x.inf()) && std::isfinite(x.sup()) && x.sup() - x.inf() <= 1e-12 * std::fabs(x.sup() + x.inf());
+    if (tight) {
+      std::array<double, 4> m{};
+      for (int k = 0; k < 4; ++k) m[static_cast<std::size_t>(k)] = CGAL::to_double(v[static_cast<std::size_t>(k)]);
+      return finish(m);
+    }
+  }
+  const std::array<CGAL::Exact_rational, 4> v = parts.template operator()<CGAL::Exact_rational>();
+  return finish({CGAL::to_double(v[0]), CGAL::to_double(v[1]), CGAL::to_double(v[2]), CGAL::to_double(v[3])});
+}
+
+/// Along the bisector of i and j, at the vertex (tri, s) (which is on it): whether the bisector just
+/// after (forward) and just before (backward) the vertex is at least as close to i as to every site of
+/// `others`. Forward is counter-clockwise around the circle's centre when λ_i ≠ λ_j, the direction
+/// (−g_y, g_x) of the line when λ_i = λ_j (g = λ_i p_i − λ_j p_j). Exact, tangencies included (then the
+/// sign of δ_k − δ_i is the same on both sides and is read at another point of the bisector).
+std::pair<bool, bool> departures(const std::vector<MobiusSite>& sites, const std::array<SiteIndex, 3>& tri, int s,
+                                 SiteIndex i, SiteIndex j, const std::vector<SiteIndex>& others) {
+  return filtered([&]<class NT>() {
+    const FacetRoots<NT> r = facet_roots<NT>(sites, tri);
+    const Field<NT>& f = r.field;
+    const SurdPoint<NT> v = r.point(s);
+    const MobiusSite& o = sites[tri[0]];
+    const LocalSite<NT> li(sites[i], o), lj(sites[j], o);
+    const auto gi = li.gradient(v), gj = lj.gradient(v);
+    const std::array<Surd<NT>, 2> G{Field<NT>::sub(gi[0], gj[0]), Field<NT>::sub(gi[1], gj[1])};
+    const NT dl = li.lambda - lj.lambda;
+    const bool circle = sign_of<NT>(dl) != Sign::zero;
+    const bool flip = circle ? sign_of<NT>(dl) == Sign::negative : true;  // forward = ±rot90(G)
+    bool fwd = true, bwd = true;
+    for (SiteIndex k : others) {
+      const LocalSite<NT> lk(sites[k], o);
+      const auto gk = lk.gradient(v);
+      const std::array<Surd<NT>, 2> H{Field<NT>::sub(gk[0], gi[0]), Field<NT>::sub(gk[1], gi[1])};
+      // H · rot90(G) = H_y G_x − H_x G_y
+      Sign d = f.sign(Field<NT>::sub(f.mul(H[1], G[0]), f.mul(H[0], G[1])));
+      if (flip) d = d == Sign::positive ? Sign::negative : d == Sign::negative ? Sign::positive : d;
+      if (d == Sign::positive) bwd = false;
+      else if (d == Sign::negative) fwd = false;
+      else {
+        // Tangent: δ_k − δ_i has a double zero at v on the bisector; its sign elsewhere is constant.
+        SurdPoint<NT> w;
+        if (circle) {  // the antipode 2c − v, c = (λ_i q_i − λ_j q_j)/(λ_i − λ_j)
+          const NT cx = (li.lambda * li.qx - lj.lambda * lj.qx) / dl, cy = (li.lambda * li.qy - lj.lambda * lj.qy) / dl;
+          w = {{NT(2) * cx - v.x.a, -v.x.b}, {NT(2) * cy - v.y.a, -v.y.b}};
+        } else {  // v + rot90(G)
+          w = {Field<NT>::sub(v.x, G[1]), Field<NT>::add(v.y, G[0])};
+        }
+        if (f.sign(Field<NT>::sub(lk.delta(f, w), li.delta(f, w))) == Sign::negative) fwd = bwd = false;
+      }
+    }
+    return std::pair{fwd, bwd};
+  });
+}
+
+/// For a bisector of i and j with no vertex on it: whether the whole curve (circle or line) is an edge,
+/// i.e. one of its points is at least as close to i as to every site of `others`. False when the
+/// bisector is empty or a point. Exact.
+bool whole_bisector_is_edge(const std::vector<MobiusSite>& sites, SiteIndex i, SiteIndex j, const std::vector<SiteIndex>& others) {
+  return filtered([&]<class NT>() {
+    const MobiusSite& o = sites[i];
+    const LocalSite<NT> li(o, o), lj(sites[j], o);
+    const NT dl = li.lambda - lj.lambda;
+    const NT gx = -lj.lambda * lj.qx, gy = -lj.lambda * lj.qy;  // b_i − b_j
+    const NT dc = -li.mu - (lj.lambda * (lj.qx * lj.qx + lj.qy * lj.qy) - lj.mu);
+    Field<NT> f{NT(0)};
+    SurdPoint<NT> w;
+    if (sign_of<NT>(dl) != Sign::zero) {
+      const NT cx = gx / dl, cy = gy / dl, r2 = cx * cx + cy * cy - dc / dl;
+      if (sign_of<NT>(r2) != Sign::positive) return false;
+      f = Field<NT>{r2};
+      w = {{cx, NT(1)}, {cy, NT(0)}};  // (c_x + √r², c_y)
+    } else {
+      const NT g2 = gx * gx + gy * gy;
+      if (sign_of<NT>(g2) == Sign::zero) return false;
+      w = {{gx * dc / (NT(2) * g2), NT(0)}, {gy * dc / (NT(2) * g2), NT(0)}};
+    }
+    const Surd<NT> di = li.delta(f, w);
+    for (SiteIndex k : others)
+      if (f.sign(Field<NT>::sub(LocalSite<NT>(sites[k], o).delta(f, w), di)) == Sign::negative) return false;
+    return true;
+  });
+}
+
+/// Counter-clockwise order at infinity of two ends of unbounded bisector lines: the ends go in the
+/// directions u_a, u_b (u = ±rot90(g), g = λ_i p_i − λ_j p_j) along lines through the points of the
+/// sites. Negative when a comes first (for directions less than π apart), zero for the same end.
+struct LineEnd {
+  SiteIndex i, j;
+  bool forward;  ///< the end in direction +rot90(g) (else −rot90(g))
+};
+
+Sign compare_ends(const std::vector<MobiusSite>& sites, const LineEnd& a, const LineEnd& b) {
+  return filtered([&]<class NT>() {
+    const MobiusSite& o = sites[a.i];
+    struct Line {
+      NT ux, uy, px, py;
+    };
+    auto line = [&](const LineEnd& e) {
+      const LocalSite<NT> li(sites[e.i], o), lj(sites[e.j], o);
+      const NT gx = li.lambda * li.qx - lj.lambda * lj.qx, gy = li.lambda * li.qy - lj.lambda * lj.qy;
+      // δ_i − δ_j = −2 g·x + (c_i − c_j) (equal λ): the point g (c_i − c_j)/(2|g|²) is on the line.
+      const NT ci = li.lambda * (li.qx * li.qx + li.qy * li.qy) - li.mu, cj = lj.lambda * (lj.qx * lj.qx + lj.qy * lj.qy) - lj.mu;
+      const NT k = (ci - cj) / (NT(2) * (gx * gx + gy * gy));
+      const NT sgn(e.forward ? 1 : -1);
+      return Line{-gy * sgn, gx * sgn, gx * k, gy * k};
+    };
+    const Line la = line(a), lb = line(b);
+    const Sign cross = sign_of<NT>(la.ux * lb.uy - la.uy * lb.ux);
+    if (cross != Sign::zero) return cross == Sign::positive ? Sign::negative : Sign::positive;
+    // Parallel, same direction: the later one counter-clockwise lies further along rot90(u).
+    return sign_of<NT>((la.px - lb.px) * -la.uy + (la.py - lb.py) * la.ux);
+  });
+}
+
+/// Sign of U + V√D2 with U, V in Q(√D1) (two vertices of different facets compared), exactly.
+template <class NT>
+Sign tower_sign(const Field<NT>& f1, const Surd<NT>& U, const Surd<NT>& V, const NT& D2) {
+  const Sign su = f1.sign(U);
+  const Sign sv = sign_of<NT>(D2) == Sign::zero ? Sign::zero : f1.sign(V);
+  if (sv == Sign::zero) return su;
+  if (su == Sign::zero || su == sv) return sv;
+  const Surd<NT> uu = f1.mul(U, U), vv = Field<NT>::scale(f1.mul(V, V), D2);
+  const Sign c = f1.sign(Field<NT>::sub(uu, vv));
+  return c == Sign::positive ? su : c == Sign::negative ? sv : Sign::zero;
+}
+
+/// Whether the roots (tri_a, s_a) and (tri_b, s_b) are the same point. Exact.
+bool same_point(const std::vector<MobiusSite>& sites, const std::array<SiteIndex, 3>& tri_a, int s_a,
+                const std::array<SiteIndex, 3>& tri_b, int s_b) {
+  return filtered([&]<class NT>() {
+    const FacetRoots<NT> ra = facet_roots<NT>(sites, tri_a), rb = facet_roots<NT>(sites, tri_b);
+    const SurdPoint<NT> va = ra.point(s_a), vb = rb.point(s_b);
+    const MobiusSite &oa = sites[tri_a[0]], &ob = sites[tri_b[0]];
+    const Surd<NT> ux{va.x.a + NT(oa.x) - vb.x.a - NT(ob.x), va.x.b}, vx{-vb.x.b, NT(0)};
+    if (tower_sign(ra.field, ux, vx, rb.field.D) != Sign::zero) return false;
+    const Surd<NT> uy{va.y.a + NT(oa.y) - vb.y.a - NT(ob.y), va.y.b}, vy{-vb.y.b, NT(0)};
+    return tower_sign(ra.field, uy, vy, rb.field.D) == Sign::zero;
+  });
+}
+
+/// Order along the bisector of i and j of two distinct vertices on it, given by (tri, s) each: negative
+/// when a comes first going forward (the direction of `departures`; around a circle, for two vertices
+/// less than π apart). Exact.
+Sign compare_along(const std::vector<MobiusSite>& sites, const std::array<SiteIndex, 3>& tri_a, int s_a,
+                   const std::array<SiteIndex, 3>& tri_b, int s_b, SiteIndex i, SiteIndex j) {
+  return filtered([&]<class NT>() {
+    const FacetRoots<NT> ra = facet_roots<NT>(sites, tri_a), rb = facet_roots<NT>(sites, tri_b);
+    const SurdPoint<NT> va = ra.point(s_a), vb = rb.point(s_b);
+    // Global coordinates: local ones plus the frame's origin (rational).
+    const MobiusSite &oa = sites[tri_a[0]], &ob = sites[tri_b[0]];
+    const Surd<NT> xa{va.x.a + NT(oa.x), va.x.b}, ya{va.y.a + NT(oa.y), va.y.b};
+    const NT xb = vb.x.a + NT(ob.x), yb = vb.y.a + NT(ob.y), xbr = vb.x.b, ybr = vb.y.b;  // b = xb + xbr √D_b
+    const NT li(sites[i].lambda), lj(sites[j].lambda);
+    const NT gx = li * NT(sites[i].x) - lj * NT(sites[j].x), gy = li * NT(sites[i].y) - lj * NT(sites[j].y);
+    const NT dl = li - lj;
+    if (sign_of<NT>(dl) == Sign::zero) {
+      // (a − b)·u, u = rot90(g) = (−g_y, g_x).
+      const NT ux = -gy, uy = gx;
+      const Surd<NT> U{(xa.a - xb) * ux + (ya.a - yb) * uy, xa.b * ux + ya.b * uy};
+      const Surd<NT> V{-(xbr * ux + ybr * uy), NT(0)};
+      return tower_sign(ra.field, U, V, rb.field.D);
+    }
+    // −cross(a − c, b − c), c = g/(λ_i − λ_j).
+    const NT cx = gx / dl, cy = gy / dl;
+    const Surd<NT> X{xa.a - cx, xa.b}, Y{ya.a - cy, ya.b};
+    const NT p = xb - cx, q = xbr, pp = yb - cy, qq = ybr;
+    // cross = X (pp + qq r_b) − Y (p + q r_b)
+    const Surd<NT> U = Field<NT>::sub(Field<NT>::scale(X, pp), Field<NT>::scale(Y, p));
+    const Surd<NT> V = Field<NT>::sub(Field<NT>::scale(X, qq), Field<NT>::scale(Y, q));
+    const Sign c = tower_sign(ra.field, U, V, rb.field.D);
+    return c == Sign::positive ? Sign::negative : c == Sign::negative ? Sign::positive : Sign::zero;
+  });
 }
 
 /// Point-in-polygon by crossing number (polygon as a closed polyline, last point may repeat the first).
@@ -47,6 +460,10 @@ bool inside_polyline(const std::vector<Point2>& poly, Point2 q) {
   }
   return in;
 }
+
+/// Signed area of a loop summed relative to its first point: the rounding is then relative to the
+/// loop's size, not to its distance from the origin (a small cell far away).
+double own_area(const BoundaryLoop& l) { return l.area(l.pieces.empty() ? Point2{} : l.pieces.front().curve.from); }
 
 double angle_of(Point2 c, Point2 p) { return std::atan2(p.y - c.y, p.x - c.x); }
 
@@ -65,6 +482,24 @@ CurvePiece segment(Point2 a, Point2 b) {
   return p;
 }
 }  // namespace
+
+double lifted_magnitude(const MobiusSite& s) {
+  const double l = s.lambda, pp = s.x * s.x + s.y * s.y, h = (1 - l) / 2;
+  const double w = l * (l - 1) * pp + h * h + s.mu;
+  const double m = std::max({std::fabs(l * s.x), std::fabs(l * s.y), std::fabs(h), std::fabs(w)});
+  return std::isnan(m) ? std::numeric_limits<double>::infinity() : m;
+}
+
+void require_liftable(const MobiusSite& s, const std::string& source, std::size_t line, const std::string& what) {
+  const double m = lifted_magnitude(s);
+  if (m <= max_lifted_magnitude) return;
+  std::ostringstream msg;
+  msg.precision(3);
+  msg << what << " (x, y, lambda, mu) = (" << s.x << ", " << s.y << ", " << s.lambda << ", " << s.mu
+      << ") lifts to a sphere of magnitude " << m << "; expected at most 1e75 (centre coordinates λx, λy, (1 − λ)/2 and"
+      << " weight λ(λ − 1)|p|² + ((1 − λ)/2)² + μ), so that the exact predicates stay within double range.";
+  throw InputError(source, line, msg.str());
+}
 
 // ---------------------------------------------------------------------------------------------------
 // Curve pieces and loops
@@ -92,12 +527,12 @@ CurvePiece CurvePiece::reversed() const {
   return r;
 }
 
-double CurvePiece::area_term() const {
-  if (!is_arc) return 0.5 * (from.x * to.y - from.y * to.x);
+double CurvePiece::area_term(Point2 origin) const {
+  if (!is_arc) return 0.5 * ((from.x - origin.x) * (to.y - origin.y) - (from.y - origin.y) * (to.x - origin.x));
   // ∫ (x dy − y dx) over x = c + r(cos t, sin t) = r²Δ + c_x r (sin t1 − sin t0) − c_y r (cos t1 − cos t0).
   const double t0 = start, t1 = start + sweep;
-  return 0.5 * (radius * radius * sweep + centre.x * radius * (std::sin(t1) - std::sin(t0)) -
-                centre.y * radius * (std::cos(t1) - std::cos(t0)));
+  const double cx = centre.x - origin.x, cy = centre.y - origin.y;
+  return 0.5 * (radius * radius * sweep + cx * radius * (std::sin(t1) - std::sin(t0)) - cy * radius * (std::cos(t1) - std::cos(t0)));
 }
 
 Point2 CurvePiece::midpoint() const {
@@ -106,9 +541,9 @@ Point2 CurvePiece::midpoint() const {
   return {centre.x + radius * std::cos(t), centre.y + radius * std::sin(t)};
 }
 
-double BoundaryLoop::area() const {
+double BoundaryLoop::area(Point2 origin) const {
   double a = 0;
-  for (const BoundaryPiece& p : pieces) a += p.curve.area_term();
+  for (const BoundaryPiece& p : pieces) a += p.curve.area_term(origin);
   return a;
 }
 
@@ -121,9 +556,9 @@ std::vector<Point2> BoundaryLoop::polyline(double max_step, double max_error) co
   return out;
 }
 
-double CellComponent::area() const {
-  double a = outer.area();
-  for (const BoundaryLoop& h : holes) a += h.area();
+double CellComponent::area(Point2 origin) const {
+  double a = outer.area(origin);
+  for (const BoundaryLoop& h : holes) a += h.area(origin);
   return a;
 }
 
@@ -138,8 +573,18 @@ struct MobiusDiagram::Impl {
   std::vector<std::vector<SiteIndex>> adjacency;
   std::vector<std::pair<SiteIndex, SiteIndex>> lifted;
   std::vector<MobiusVertex> vertices;
+  /// Per vertex: a facet and root that give it exactly, and every site at equal distance there.
+  struct Exact {
+    std::array<SiteIndex, 3> tri;
+    int s;
+    std::vector<SiteIndex> sites;
+  };
+  std::vector<Exact> exact;
   std::vector<MobiusEdge> edges;
   std::vector<std::vector<CellComponent>> cells;
+  /// Pieces between two vertices consecutive on a bisector whose two ends disagree on whether the piece
+  /// is an edge: the double ordering of two distinct, nearly coincident vertices went wrong.
+  std::size_t order_conflicts = 0;
   // Lazily built polylines for locate_in_cells: per (site, component) the outer and hole polylines.
   struct ComponentShape {
     SiteIndex site;
@@ -153,13 +598,8 @@ struct MobiusDiagram::Impl {
 
   SiteIndex locate(Point2 q) const {
     if (rt.number_of_vertices() == 0) return no_site;
-    return rt.nearest_power_vertex(K::Point_3(q.x, q.y, q.x * q.x + q.y * q.y))->info();
-  }
-  /// Whether x (on the bisector of i and another site) has no neighbour of i strictly closer.
-  bool minimal(SiteIndex i, Point2 x, SiteIndex skip1, SiteIndex skip2 = no_site) const {
-    for (SiteIndex l : adjacency[i])
-      if (l != skip1 && l != skip2 && closer(sites[l], sites[i], x)) return false;
-    return true;
+    const FT x(q.x), y(q.y);
+    return rt.nearest_power_vertex(K::Point_3(x, y, x * x + y * y))->info();
   }
   void build();
   void build_vertices(std::unordered_map<std::uint64_t, std::vector<std::size_t>>& on_pair);
@@ -170,17 +610,24 @@ struct MobiusDiagram::Impl {
     if (a > b) std::swap(a, b);
     return static_cast<std::uint64_t>(a) * sites.size() + b;
   }
+  /// The sites of vertex v other than i and j.
+  std::vector<SiteIndex> others(std::size_t v, SiteIndex i, SiteIndex j) const {
+    std::vector<SiteIndex> out;
+    for (SiteIndex k : exact[v].sites)
+      if (k != i && k != j) out.push_back(k);
+    return out;
+  }
 };
 
 void MobiusDiagram::Impl::build() {
   const std::size_t n = sites.size();
-  // Lifted spheres Σ_i: centre (λp, (1 − λ)/2), weight λ²|p|² + ((1 − λ)/2)² − λ|p|² + μ.
+  // Lifted spheres Σ_i: centre (λp, (1 − λ)/2), weight λ²|p|² + ((1 − λ)/2)² − λ|p|² + μ, exactly.
   std::vector<std::pair<WP3, SiteIndex>> input;
   input.reserve(n);
   for (SiteIndex i = 0; i < n; ++i) {
     const MobiusSite& s = sites[i];
-    const double l = s.lambda, pp = s.x * s.x + s.y * s.y, h = (1 - l) / 2;
-    input.emplace_back(WP3(K::Point_3(l * s.x, l * s.y, h), l * (l - 1) * pp + h * h + s.mu), i);
+    const FT l(s.lambda), x(s.x), y(s.y), h = (FT(1) - l) / 2;
+    input.emplace_back(WP3(K::Point_3(l * x, l * y, h), l * (l - 1) * (x * x + y * y) + h * h + FT(s.mu)), i);
   }
   rt.insert(input.begin(), input.end());
   hidden.assign(n, true);
@@ -201,82 +648,113 @@ void MobiusDiagram::Impl::build() {
 }
 
 void MobiusDiagram::Impl::build_vertices(std::unordered_map<std::uint64_t, std::vector<std::size_t>>& on_pair) {
-  if (rt.dimension() < 2) return;
-  std::vector<MobiusVertex> raw;
+  const int dim = rt.dimension();
+  if (dim < 2) return;
+  // A point X of L_F ∩ Q (F a facet ijk, L_F its power line) is a vertex when it lies on the power edge
+  // dual to F, i.e. when neither apex of the two cells on F is strictly closer (dimension 2: the apexes
+  // of the three neighbouring faces). Raw vertices at the same point (four or more sites meeting there)
+  // are merged (union–find), decided exactly: through the tetrahedron whose apex ties, and by comparing
+  // the points exactly where the doubles say they are close.
+  struct Raw {
+    std::array<SiteIndex, 3> tri;
+    int s;
+  };
+  std::vector<Raw> raw;
+  std::vector<std::size_t> parent;
+  std::unordered_map<const void*, std::size_t> cell_node;
+  auto find = [&](std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  auto node_of = [&](const void* cell) {
+    const auto [it, fresh] = cell_node.emplace(cell, parent.size());
+    if (fresh) parent.push_back(parent.size());
+    return it->second;
+  };
+  auto unite = [&](std::size_t a, std::size_t b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  };
+  std::vector<std::size_t> raw_node;
   for (auto f = rt.finite_facets_begin(); f != rt.finite_facets_end(); ++f) {
+    const auto c = f->first;
+    const int idx = f->second;
     std::array<SiteIndex, 3> tri{};
     int m = 0;
     for (int k = 0; k < 4 && m < 3; ++k)
-      if (k != f->second && (rt.dimension() == 3 || k < 3)) tri[static_cast<std::size_t>(m++)] = f->first->vertex(k)->info();
+      if (k != idx && (dim == 3 || k < 3)) tri[static_cast<std::size_t>(m++)] = c->vertex(k)->info();
     std::sort(tri.begin(), tri.end());
-    const MobiusSite &si = sites[tri[0]], &sj = sites[tri[1]], &sk = sites[tri[2]];
-    // Local coordinates centred on site i. δ_s(x) = λ_s z − 2 b_s·x + c_s on z = |x|², with b_s = λ_s p_s,
-    // c_s = λ_s|p_s|² − μ_s; the bisector planes n·X = h with n = (−2(b_i − b_s), λ_i − λ_s), h = c_s − c_i.
-    const Point2 o{si.x, si.y};
-    auto coeffs = [&](const MobiusSite& s) {
-      const double px = s.x - o.x, py = s.y - o.y;
-      return std::array<double, 4>{s.lambda * px, s.lambda * py, s.lambda * (px * px + py * py) - s.mu, s.lambda};
-    };
-    const auto ci = coeffs(si), cj = coeffs(sj), ck = coeffs(sk);
-    const std::array<double, 3> n1{-2 * (ci[0] - cj[0]), -2 * (ci[1] - cj[1]), ci[3] - cj[3]};
-    const std::array<double, 3> n2{-2 * (ci[0] - ck[0]), -2 * (ci[1] - ck[1]), ci[3] - ck[3]};
-    const double h1 = cj[2] - ci[2], h2 = ck[2] - ci[2];
-    const std::array<double, 3> d{n1[1] * n2[2] - n1[2] * n2[1], n1[2] * n2[0] - n1[0] * n2[2],
-                                  n1[0] * n2[1] - n1[1] * n2[0]};
-    const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    if (!(dd > 0)) continue;  // parallel bisector planes: no common point
-    // X0 = (h1 (n2 × d) + h2 (d × n1)) / |d|².
-    const std::array<double, 3> a{n2[1] * d[2] - n2[2] * d[1], n2[2] * d[0] - n2[0] * d[2], n2[0] * d[1] - n2[1] * d[0]};
-    const std::array<double, 3> b{d[1] * n1[2] - d[2] * n1[1], d[2] * n1[0] - d[0] * n1[2], d[0] * n1[1] - d[1] * n1[0]};
-    std::array<double, 3> x0{};
-    for (int c = 0; c < 3; ++c) x0[c] = (h1 * a[c] + h2 * b[c]) / dd;
-    // (x0 + t d)² + (y0 + t d)² = z0 + t dz.
-    const double qa = d[0] * d[0] + d[1] * d[1];
-    const double qb = 2 * (x0[0] * d[0] + x0[1] * d[1]) - d[2];
-    const double qc = x0[0] * x0[0] + x0[1] * x0[1] - x0[2];
-    double disc = qb * qb - 4 * qa * qc;
-    // Within its rounding error, the discriminant is 0: the bisectors touch (tangent circles), one
-    // vertex, not two at ~√ε apart (fuzz finding sites-2).
-    if (std::fabs(disc) <= 8 * std::numeric_limits<double>::epsilon() * (qb * qb + 4 * std::fabs(qa * qc))) disc = 0;
-    if (disc < 0) continue;
-    const double sq = std::sqrt(disc);
-    const double q = -0.5 * (qb + (qb >= 0 ? sq : -sq));
-    std::vector<double> roots;
-    if (qa != 0 && std::isfinite(q / qa)) roots.push_back(q / qa);
-    if (q != 0 && disc > 0) roots.push_back(qc / q);
-    if (qa == 0 && q == 0) continue;
-    for (double t : roots) {
-      const Point2 x{o.x + x0[0] + t * d[0], o.y + x0[1] + t * d[1]};
-      if (!std::isfinite(x.x) || !std::isfinite(x.y)) continue;
-      if (!minimal(tri[0], x, tri[1], tri[2])) continue;
-      raw.push_back({x, tri});
+    std::array<SiteIndex, 3> apex{no_site, no_site, no_site};
+    std::array<const void*, 3> apex_cell{};
+    if (dim == 3) {
+      const auto mirror = c->neighbor(idx);
+      if (!rt.is_infinite(c->vertex(idx))) apex[0] = c->vertex(idx)->info(), apex_cell[0] = &*c;
+      const auto mv = mirror->vertex(rt.mirror_index(c, idx));
+      if (!rt.is_infinite(mv)) apex[1] = mv->info(), apex_cell[1] = &*mirror;
+    } else {
+      for (int k = 0; k < 3; ++k) {
+        const auto nb = c->neighbor(k);
+        const auto v = nb->vertex(nb->index(c));
+        if (!rt.is_infinite(v)) apex[static_cast<std::size_t>(k)] = v->info(), apex_cell[static_cast<std::size_t>(k)] = &*nb;
+      }
+    }
+    for (const RootVerdict& r : facet_vertices(sites, tri, apex)) {
+      if (!r.kept) continue;
+      const std::size_t id = parent.size();
+      parent.push_back(id);
+      raw.push_back({tri, r.s});
+      raw_node.push_back(id);
+      // A tie with the apex of a tetrahedron: the point is that tetrahedron's orthocentre. (In dimension
+      // 2 a face's power line may meet Q twice, and a tie does not say which point of the neighbour's
+      // line it is: those are merged below.)
+      if (dim == 3)
+        for (std::size_t a = 0; a < 3; ++a)
+          if (r.tie[a]) unite(id, node_of(apex_cell[a]));
     }
   }
-  // Merge vertices at the same place (four or more sites meeting at a point): within 1e-10 of the
-  // sites' extent plus the vertex's own magnitude (far vertices are less accurate).
-  double extent = 0;
-  if (!sites.empty()) {
-    double x0 = sites[0].x, x1 = x0, y0 = sites[0].y, y1 = y0;
-    for (const MobiusSite& s : sites) x0 = std::min(x0, s.x), x1 = std::max(x1, s.x), y0 = std::min(y0, s.y), y1 = std::max(y1, s.y);
-    extent = std::max({x1 - x0, y1 - y0, std::fabs(x0), std::fabs(x1), std::fabs(y0), std::fabs(y1)});
+  // Raw vertices at the same point that no tie links (four or more coplanar lifted centres share a
+  // power line: co-circular sites of equal λ in a 3-dimensional triangulation) are merged by an exact
+  // comparison of the points, among the pairs close in doubles.
+  std::vector<Point2> approx(raw.size());
+  {
+    double scale = 0;
+    for (const MobiusSite& st : sites) scale = std::max({scale, std::fabs(st.x), std::fabs(st.y)});
+    for (std::size_t k = 0; k < raw.size(); ++k) approx[k] = vertex_point(sites, raw[k].tri, raw[k].s);
+    auto eps_at = [&](Point2 p) { return 1e-9 * (std::fabs(p.x) + std::fabs(p.y)) + 1e-12 * scale + 1e-300; };
+    std::vector<std::size_t> by_x(raw.size());
+    for (std::size_t k = 0; k < raw.size(); ++k) by_x[k] = k;
+    std::sort(by_x.begin(), by_x.end(), [&](std::size_t u, std::size_t v) { return approx[u].x < approx[v].x; });
+    for (std::size_t a = 0; a < by_x.size(); ++a) {
+      const std::size_t u = by_x[a];
+      const double eps = eps_at(approx[u]);
+      for (std::size_t b = a + 1; b < by_x.size() && approx[by_x[b]].x - approx[u].x <= 2 * eps; ++b) {
+        const std::size_t w = by_x[b];
+        if (std::fabs(approx[w].y - approx[u].y) > 2 * eps || find(raw_node[u]) == find(raw_node[w])) continue;
+        if (same_point(sites, raw[u].tri, raw[u].s, raw[w].tri, raw[w].s)) unite(raw_node[u], raw_node[w]);
+      }
+    }
   }
-  auto eps_at = [&](Point2 p) { return 1e-10 * (extent + std::fabs(p.x) + std::fabs(p.y)) + 1e-300; };
-  std::vector<std::size_t> order(raw.size()), rep(raw.size());
-  for (std::size_t k = 0; k < raw.size(); ++k) order[k] = k, rep[k] = k;
-  std::sort(order.begin(), order.end(), [&](std::size_t u, std::size_t v) { return raw[u].point.x < raw[v].point.x; });
-  for (std::size_t a = 0; a < order.size(); ++a) {
-    if (rep[order[a]] != order[a]) continue;
-    const Point2 pa = raw[order[a]].point;
-    const double eps = eps_at(pa);
-    for (std::size_t b = a + 1; b < order.size() && raw[order[b]].point.x - pa.x <= eps; ++b)
-      if (std::fabs(raw[order[b]].point.y - pa.y) <= eps && rep[order[b]] == order[b]) rep[order[b]] = order[a];
-  }
-  std::vector<std::size_t> compact(raw.size(), MobiusEdge::npos);
-  for (std::size_t k = 0; k < raw.size(); ++k)
-    if (rep[k] == k) compact[k] = vertices.size(), vertices.push_back(raw[k]);
-  for (std::size_t k = 0; k < raw.size(); ++k) {
-    const std::size_t id = compact[rep[k]];
-    const auto& t = raw[k].sites;
+  // One vertex per class, numbered in the order of the smallest raw vertex (sites, root) of the class,
+  // which is also its representative: the numbering does not depend on CGAL's storage order (which
+  // depends on CGAL's global random state).
+  std::vector<std::size_t> order(raw.size());
+  for (std::size_t k = 0; k < raw.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t u, std::size_t v) {
+    return std::tie(raw[u].tri, raw[u].s) < std::tie(raw[v].tri, raw[v].s);
+  });
+  std::unordered_map<std::size_t, std::size_t> vertex_of_root;
+  for (const std::size_t k : order) {
+    const std::size_t root = find(raw_node[k]);
+    auto [it, fresh] = vertex_of_root.emplace(root, vertices.size());
+    if (fresh) {
+      vertices.push_back({approx[k], raw[k].tri});
+      exact.push_back({raw[k].tri, raw[k].s, {}});
+    }
+    const std::size_t id = it->second;
+    auto& vs = exact[id].sites;
+    for (SiteIndex s : raw[k].tri)
+      if (std::find(vs.begin(), vs.end(), s) == vs.end()) vs.push_back(s);
+    const auto& t = raw[k].tri;
     for (auto [u, v] : {std::pair{t[0], t[1]}, std::pair{t[0], t[2]}, std::pair{t[1], t[2]}}) {
       auto& list = on_pair[key(u, v)];
       if (std::find(list.begin(), list.end(), id) == list.end()) list.push_back(id);
@@ -308,63 +786,92 @@ void MobiusDiagram::Impl::build_edges(const std::unordered_map<std::uint64_t, st
     const MobiusSite &si = sites[i], &sj = sites[j];
     const auto it = on_pair.find(key(i, j));
     const std::vector<std::size_t>& on = it == on_pair.end() ? none : it->second;
-    const Point2 o{si.x, si.y};
-    const double pjx = sj.x - o.x, pjy = sj.y - o.y;
-    // Local: δ_i − δ_j = (λ_i − λ_j)|x|² − 2(b_i − b_j)·x + (c_i − c_j), b_i = 0, c_i = −μ_i.
-    const double dl = si.lambda - sj.lambda;
-    const double gx = -sj.lambda * pjx, gy = -sj.lambda * pjy;  // b_i − b_j
-    const double dc = -si.mu - (sj.lambda * (pjx * pjx + pjy * pjy) - sj.mu);
-    if (dl != 0) {
-      const Point2 cl{gx / dl, gy / dl};
-      const double r2 = cl.x * cl.x + cl.y * cl.y - dc / dl;
-      if (!(r2 > 0)) continue;
-      const double r = std::sqrt(r2);
-      const Point2 c{cl.x + o.x, cl.y + o.y};
-      const SiteIndex inside = dl > 0 ? i : j;
+    // Which pieces are edges is decided exactly: on both sides of each vertex on the bisector
+    // (departures), or at one point of a bisector without vertices; the geometry below is in doubles.
+    std::vector<std::pair<bool, bool>> side(on.size());
+    for (std::size_t k = 0; k < on.size(); ++k)
+      side[k] = departures(sites, exact[on[k]].tri, exact[on[k]].s, i, j, others(on[k], i, j));
+    // Vertices sorted by a double position along the bisector: consecutive ones closer than their
+    // rounding (`slack`) are put in their exact order (compare_along), keeping the positions sorted.
+    auto exact_order = [&](std::vector<std::pair<double, std::size_t>>& list, auto slack) {
+      for (std::size_t pass = 0; pass < list.size(); ++pass) {
+        bool swapped = false;
+        for (std::size_t k = 0; k + 1 < list.size(); ++k) {
+          const std::size_t u = list[k].second, w = list[k + 1].second;
+          if (list[k + 1].first - list[k].first > slack(u) + slack(w)) continue;
+          if (compare_along(sites, exact[on[u]].tri, exact[on[u]].s, exact[on[w]].tri, exact[on[w]].s, i, j) != Sign::positive)
+            continue;
+          std::swap(list[k].second, list[k + 1].second);
+          swapped = true;
+        }
+        if (!swapped) break;
+      }
+    };
+    auto whole = [&] {
+      std::vector<SiteIndex> rest;
+      for (SiteIndex l : adjacency[i])
+        if (l != j) rest.push_back(l);
+      return whole_bisector_is_edge(sites, i, j, rest);
+    };
+    const Bisector geometry = bisector(sites, i, j);
+    if (si.lambda != sj.lambda) {
+      const Point2 c = geometry.c;
+      const double r = geometry.r;
+      const SiteIndex inside = si.lambda > sj.lambda ? i : j;
       std::vector<std::pair<double, std::size_t>> angles;
-      for (std::size_t v : on) angles.emplace_back(angle_of(c, vertices[v].point), v);
+      for (std::size_t k = 0; k < on.size(); ++k) angles.emplace_back(angle_of(c, vertices[on[k]].point), k);
       std::sort(angles.begin(), angles.end());
+      if (angles.size() > 1) {
+        // Start after the largest gap, so that no two close vertices straddle the ends of the list.
+        std::size_t start = 0;
+        double widest = -1;
+        for (std::size_t k = 0; k < angles.size(); ++k) {
+          const double gap = k + 1 < angles.size() ? angles[k + 1].first - angles[k].first
+                                                   : angles[0].first + two_pi - angles[k].first;
+          if (gap > widest) widest = gap, start = (k + 1) % angles.size();
+        }
+        std::rotate(angles.begin(), angles.begin() + static_cast<std::ptrdiff_t>(start), angles.end());
+        for (std::size_t k = 1; k < angles.size(); ++k)
+          while (angles[k].first < angles[k - 1].first) angles[k].first += two_pi;
+        exact_order(angles, [&](std::size_t k) {
+          const Point2 p = vertices[on[k]].point;
+          return 1e-9 * (1 + (std::fabs(p.x - c.x) + std::fabs(p.y - c.y) + std::fabs(p.x) + std::fabs(p.y)) / std::max(r, 1e-300));
+        });
+      }
       auto add_arc = [&](double start, double sweep, std::size_t from, std::size_t to) {
-        const CurvePiece p = arc(c, r, start, sweep);
-        if (!minimal(i, p.midpoint(), j)) return;
-        MobiusEdge e{i, j, p, from, to, inside};
+        MobiusEdge e{i, j, arc(c, r, start, sweep), from, to, inside};
         if (from != MobiusEdge::npos) e.curve.from = vertices[from].point;
         if (to != MobiusEdge::npos) e.curve.to = vertices[to].point;
+        for (const Point2& s : e.curve.sample(0.2)) include(s);
         edges.push_back(e);
-        for (const Point2& s : p.sample(0.2)) include(s);
       };
       if (angles.empty()) {
-        add_arc(0, two_pi, MobiusEdge::npos, MobiusEdge::npos);
+        if (whole()) add_arc(0, two_pi, MobiusEdge::npos, MobiusEdge::npos);
         continue;
       }
       for (std::size_t k = 0; k < angles.size(); ++k) {
-        const auto [a0, v0] = angles[k];
-        const auto [a1raw, v1] = angles[(k + 1) % angles.size()];
+        const auto [a0, k0] = angles[k];
+        const auto [a1raw, k1] = angles[(k + 1) % angles.size()];
         const double a1 = k + 1 < angles.size() ? a1raw : a1raw + two_pi;
-        if (a1 - a0 <= 1e-12) continue;
-        add_arc(a0, a1 - a0, v0, v1);
+        if (side[k0].first != side[k1].second) ++order_conflicts;
+        if (side[k0].first) add_arc(a0, a1 - a0, on[k0], on[k1]);
       }
     } else {
-      const double g2 = gx * gx + gy * gy;
-      if (!(g2 > 0)) continue;  // equal sites: one is hidden
-      // Line 2 g·x = dc (local); direction perpendicular to g.
-      const double gn = std::sqrt(g2);
-      const Point2 x0{o.x + gx * dc / (2 * g2), o.y + gy * dc / (2 * g2)};
-      const Point2 dir{-gy / gn, gx / gn};
+      if (si.lambda == 0 || (si.x == sj.x && si.y == sj.y)) continue;  // no line (equal sites: one is hidden)
+      const Point2 x0 = geometry.x0, dir = geometry.dir;
       // δ_i − δ_j = −2 g·x + dc decreases along +g: i lies on the +g side; the left of dir is
       // (−dir.y, dir.x) = −g/|g|, the side of j.
       const SiteIndex left = j;
       std::vector<std::pair<double, std::size_t>> ts;
-      for (std::size_t v : on)
-        ts.emplace_back((vertices[v].point.x - x0.x) * dir.x + (vertices[v].point.y - x0.y) * dir.y, v);
+      for (std::size_t k = 0; k < on.size(); ++k)
+        ts.emplace_back((vertices[on[k]].point.x - x0.x) * dir.x + (vertices[on[k]].point.y - x0.y) * dir.y, k);
       std::sort(ts.begin(), ts.end());
+      exact_order(ts, [&](std::size_t k) {
+        const Point2 p = vertices[on[k]].point;
+        return 1e-9 * (std::fabs(p.x) + std::fabs(p.y) + std::fabs(x0.x) + std::fabs(x0.y)) + 1e-300;
+      });
       auto point_at = [&](double t) { return Point2{x0.x + t * dir.x, x0.y + t * dir.y}; };
       auto add = [&](double t0, double t1, bool inf0, bool inf1, std::size_t from, std::size_t to) {
-        double tm = (t0 + t1) / 2;
-        if (inf0 && inf1) tm = 0;
-        else if (inf0) tm = t1 - 1 - std::fabs(t1);
-        else if (inf1) tm = t0 + 1 + std::fabs(t0);
-        if (!minimal(i, point_at(tm), j)) return;
         if (inf0 && inf1) include(x0);
         MobiusEdge e{i, j, segment(point_at(t0), point_at(t1)), from, to, left};
         if (from != MobiusEdge::npos) e.curve.from = vertices[from].point;
@@ -373,14 +880,18 @@ void MobiusDiagram::Impl::build_edges(const std::unordered_map<std::uint64_t, st
         edges.push_back(e);
       };
       if (ts.empty()) {
-        add(0, 0, true, true, MobiusEdge::npos, MobiusEdge::npos);
+        if (whole()) add(0, 0, true, true, MobiusEdge::npos, MobiusEdge::npos);
         continue;
       }
-      add(ts.front().first, ts.front().first, true, false, MobiusEdge::npos, ts.front().second);
-      for (std::size_t k = 0; k + 1 < ts.size(); ++k)
-        if (ts[k + 1].first - ts[k].first > 1e-12 * (1 + std::fabs(ts[k].first)))
-          add(ts[k].first, ts[k + 1].first, false, false, ts[k].second, ts[k + 1].second);
-      add(ts.back().first, ts.back().first, false, true, ts.back().second, MobiusEdge::npos);
+      const auto [tf, kf] = ts.front();
+      const auto [tb, kb] = ts.back();
+      if (side[kf].second) add(tf, tf, true, false, MobiusEdge::npos, on[kf]);
+      for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
+        const std::size_t k0 = ts[k].second, k1 = ts[k + 1].second;
+        if (side[k0].first != side[k1].second) ++order_conflicts;
+        if (side[k0].first) add(ts[k].first, ts[k + 1].first, false, false, on[k0], on[k1]);
+      }
+      if (side[kb].first) add(tb, tb, false, true, on[kb], MobiusEdge::npos);
     }
   }
   const double grow = 0.05 * std::max(fr.width(), fr.height());
@@ -414,6 +925,7 @@ void MobiusDiagram::Impl::build_cells(const std::vector<std::pair<std::size_t, s
     Point2 p;
     std::size_t node;
     SiteIndex after = no_site;  ///< for the end of an unbounded edge: the site whose cell follows it counter-clockwise
+    LineEnd end{no_site, no_site, false};  ///< for the end of an unbounded edge: its line and direction
   };
   const double W = frame.width(), H = frame.height();
   auto perimeter = [&](Point2 p) {
@@ -435,11 +947,11 @@ void MobiusDiagram::Impl::build_cells(const std::vector<std::pair<std::size_t, s
     const MobiusEdge& E = edges[e];
     if (ends & 1u) {
       edge_from[e] = V + fnodes.size();
-      fnodes.push_back({perimeter(E.curve.from), E.curve.from, edge_from[e], E.left == E.a ? E.b : E.a});
+      fnodes.push_back({perimeter(E.curve.from), E.curve.from, edge_from[e], E.left == E.a ? E.b : E.a, {E.a, E.b, false}});
     }
     if (ends & 2u) {
       edge_to[e] = V + fnodes.size();
-      fnodes.push_back({perimeter(E.curve.to), E.curve.to, edge_to[e], E.left});
+      fnodes.push_back({perimeter(E.curve.to), E.curve.to, edge_to[e], E.left, {E.a, E.b, true}});
     }
   }
   {
@@ -448,6 +960,26 @@ void MobiusDiagram::Impl::build_cells(const std::vector<std::pair<std::size_t, s
     for (int c = 0; c < 4; ++c) fnodes.push_back({ss[c], corners[c], V + fnodes.size()});
   }
   std::sort(fnodes.begin(), fnodes.end(), [](const FrameNode& a, const FrameNode& b) { return a.s < b.s; });
+  // The order of the edge ends along the frame is their order at infinity (edges do not cross): where
+  // two consecutive ends are too close for the doubles, it is decided exactly (compare_ends) and the
+  // ends are exchanged if needed (their positions along the frame stay sorted).
+  {
+    const double tol = 1e-9 * 2 * (W + H);
+    std::vector<std::size_t> ends;
+    for (std::size_t k = 0; k < fnodes.size(); ++k)
+      if (fnodes[k].after != no_site) ends.push_back(k);
+    for (std::size_t pass = 0; pass <= ends.size(); ++pass) {
+      bool swapped = false;
+      for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
+        FrameNode &a = fnodes[ends[k]], &b = fnodes[ends[k + 1]];
+        if (b.s - a.s > tol || compare_ends(sites, a.end, b.end) != Sign::positive) continue;
+        std::swap(a, b);
+        std::swap(a.s, b.s);
+        swapped = true;
+      }
+      if (!swapped) break;
+    }
+  }
   // Frame nodes at the same point are one node (an unbounded edge ending exactly at a corner, two
   // edges crossing the frame at one point: fuzz finding sites-2), else the chain of its cell breaks.
   {
@@ -532,7 +1064,7 @@ void MobiusDiagram::Impl::build_cells(const std::vector<std::pair<std::size_t, s
     std::vector<std::size_t> outers;
     std::vector<double> areas(loops[s].size());
     for (std::size_t k = 0; k < loops[s].size(); ++k) {
-      areas[k] = loops[s][k].area();
+      areas[k] = own_area(loops[s][k]);
       if (areas[k] > 0) outers.push_back(k);
     }
     std::sort(outers.begin(), outers.end(), [&](std::size_t a, std::size_t b) { return areas[a] < areas[b]; });
@@ -563,6 +1095,7 @@ MobiusDiagram::MobiusDiagram(std::vector<MobiusSite> sites, const Box& box) : im
     if (!std::isfinite(sites[i].x) || !std::isfinite(sites[i].y) || !std::isfinite(sites[i].lambda) ||
         !std::isfinite(sites[i].mu))
       throw InputError("Möbius diagram: site " + std::to_string(i) + " has a non-finite value");
+  for (std::size_t i = 0; i < sites.size(); ++i) require_liftable(sites[i], "", 0, "Möbius diagram: site " + std::to_string(i));
   impl_->sites = std::move(sites);
   impl_->box = box;
   impl_->build();
@@ -625,15 +1158,19 @@ bool MobiusDiagram::is_valid(bool verbose) const {
   auto fail = [](std::string s) { return s; };
   const std::string violation = [&]() -> std::string {
     if (!m.rt.is_valid()) return fail("CGAL's 3D regular triangulation is not valid");
+    if (m.order_conflicts > 0)
+      return fail(std::to_string(m.order_conflicts) + " piece(s) of bisector between two vertices ordered wrongly in doubles");
     std::vector<int> uses(m.edges.size(), 0);
     double total = 0;
+
     for (SiteIndex s = 0; s < m.cells.size(); ++s) {
       if (m.hidden[s] && !m.cells[s].empty()) return fail("hidden site " + std::to_string(s) + " has a non-empty cell");
       for (const CellComponent& c : m.cells[s]) {
         if (!c.outer.closed) return fail("an outer boundary of cell " + std::to_string(s) + " is not closed");
         for (const BoundaryLoop& h : c.holes)
           if (!h.closed) return fail("a hole of cell " + std::to_string(s) + " is not closed");
-        total += c.area();
+        total += own_area(c.outer);
+        for (const BoundaryLoop& h : c.holes) total += own_area(h);
         auto count = [&](const BoundaryLoop& l) {
           for (const BoundaryPiece& p : l.pieces)
             if (p.edge != MobiusEdge::npos) ++uses[p.edge];
@@ -647,11 +1184,17 @@ bool MobiusDiagram::is_valid(bool verbose) const {
     for (const MobiusVertex& v : m.vertices) {
       if (!std::isfinite(v.point.x) || !std::isfinite(v.point.y))
         return fail("a vertex is not finite: the sites are beyond what doubles represent");
+      // The scale of the three distances' terms, with the effect of the vertex's rounding (relative
+      // 1e-16 of its coordinates) on them.
+      double scale = 1e-300;
+      for (SiteIndex t : v.sites) {
+        const MobiusSite& a = m.sites[t];
+        const double r2 = squared_distance(v.point, {a.x, a.y});
+        scale += std::fabs(a.lambda) * (r2 + 1e-9 * std::sqrt(r2) * (std::fabs(v.point.x) + std::fabs(v.point.y))) + std::fabs(a.mu);
+      }
       const double d0 = mobius_distance(v.point, m.sites[v.sites[0]]);
       for (int k = 1; k < 3; ++k) {
         const double dk = mobius_distance(v.point, m.sites[v.sites[static_cast<std::size_t>(k)]]);
-        const MobiusSite& a = m.sites[v.sites[0]];
-        const double scale = std::fabs(a.lambda) * squared_distance(v.point, {a.x, a.y}) + std::fabs(a.mu) + std::fabs(dk) + 1e-300;
         if (std::fabs(d0 - dk) > 1e-6 * scale) return fail("a vertex is not equidistant from its three sites");
       }
     }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 #include <set>
+#include <tuple>
 
 #include "laguerre/core/diagrams/MinimizationDiagram.hpp"
 #include "laguerre/core/diagrams/MobiusDiagram.hpp"
@@ -280,4 +281,226 @@ TEST(MobiusDiagram, FrameCornersAndTangentBisectors) {
   ASSERT_EQ(tangent.vertices().size(), 1u);
   EXPECT_NEAR(tangent.vertices()[0].point.x, 1, 1e-12);
   EXPECT_NEAR(tangent.vertices()[0].point.y, 1, 1e-12);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Exact oracle: the nearest sites at a point by the Möbius distance in exact rationals.
+
+#include <boost/multiprecision/cpp_int.hpp>
+
+namespace {
+
+using Rational = boost::multiprecision::cpp_rational;
+
+// Every site at the smallest exact Möbius distance from q (the doubles q, p, λ, μ taken as exact).
+std::vector<SiteIndex> exact_nearest(const std::vector<MobiusSite>& s, Point2 q) {
+  std::vector<SiteIndex> best;
+  Rational least;
+  for (SiteIndex i = 0; i < s.size(); ++i) {
+    const Rational dx = Rational(q.x) - Rational(s[i].x), dy = Rational(q.y) - Rational(s[i].y);
+    const Rational d = Rational(s[i].lambda) * (dx * dx + dy * dy) - Rational(s[i].mu);
+    if (best.empty() || d < least) best = {i}, least = d;
+    else if (d == least) best.push_back(i);
+  }
+  return best;
+}
+
+// Brute-force vertices in doubles: for each triple, the common points of its bisector circles with no
+// other site closer (relative tolerance 1e-9); meant for generic sites, where no triple is ambiguous.
+std::set<std::array<SiteIndex, 3>> brute_force_vertex_triples(const std::vector<MobiusSite>& s) {
+  std::set<std::array<SiteIndex, 3>> out;
+  const std::size_t n = s.size();
+  for (SiteIndex i = 0; i < n; ++i)
+    for (SiteIndex j = i + 1; j < n; ++j)
+      for (SiteIndex k = j + 1; k < n; ++k) {
+        // δ_a − δ_i = A_a|x|² + B_a·x + C_a for a = j, k; eliminate |x|² when possible.
+        auto coef = [&](SiteIndex a) {
+          return std::array<double, 4>{s[a].lambda - s[i].lambda, -2 * (s[a].lambda * s[a].x - s[i].lambda * s[i].x),
+                                       -2 * (s[a].lambda * s[a].y - s[i].lambda * s[i].y),
+                                       s[a].lambda * (s[a].x * s[a].x + s[a].y * s[a].y) - s[a].mu -
+                                           (s[i].lambda * (s[i].x * s[i].x + s[i].y * s[i].y) - s[i].mu)};
+        };
+        const auto cj = coef(j), ck = coef(k);
+        // Line L: Ak·(δ_j − δ_i) − Aj·(δ_k − δ_i) = 0 (linear); intersect with δ_j − δ_i = 0 (or with the
+        // line of δ_k − δ_i when both A are 0).
+        const double lx = ck[0] * cj[1] - cj[0] * ck[1], ly = ck[0] * cj[2] - cj[0] * ck[2], lc = ck[0] * cj[3] - cj[0] * ck[3];
+        const double ln = std::hypot(lx, ly);
+        if (!(ln > 0)) continue;
+        // Parametrize L: x = x0 + t u.
+        const double ux = -ly / ln, uy = lx / ln, x0 = -lx * lc / (ln * ln), y0 = -ly * lc / (ln * ln);
+        const auto& c = cj[0] != 0 || ck[0] == 0 ? cj : ck;
+        // c0 |x0 + t u|² + c1 (x0 + t ux) + c2 (y0 + t uy) + c3 = 0.
+        const double qa = c[0], qb = 2 * c[0] * (x0 * ux + y0 * uy) + c[1] * ux + c[2] * uy,
+                     qc = c[0] * (x0 * x0 + y0 * y0) + c[1] * x0 + c[2] * y0 + c[3];
+        std::vector<double> ts;
+        if (qa == 0) {
+          if (qb != 0) ts.push_back(-qc / qb);
+        } else {
+          const double disc = qb * qb - 4 * qa * qc;
+          if (disc < 0) continue;
+          ts.push_back((-qb + std::sqrt(disc)) / (2 * qa)), ts.push_back((-qb - std::sqrt(disc)) / (2 * qa));
+        }
+        for (double t : ts) {
+          const Point2 x{x0 + t * ux, y0 + t * uy};
+          const double di = mobius_distance(x, s[i]);
+          bool kept = true;
+          for (SiteIndex l = 0; l < n && kept; ++l)
+            kept = l == i || l == j || l == k || mobius_distance(x, s[l]) > di - 1e-9 * (std::fabs(di) + 1);
+          if (kept) out.insert({i, j, k});
+        }
+      }
+  return out;
+}
+
+std::vector<Point2> sample_points(const Box& box, std::size_t count, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> x(box.xmin, box.xmax), y(box.ymin, box.ymax);
+  std::vector<Point2> out(count);
+  for (auto& p : out) p = {x(rng), y(rng)};
+  return out;
+}
+
+}  // namespace
+
+TEST(MobiusDiagram, LocateIsExactAgainstTheRationalOracle) {
+  // locate() answers a site at the exact smallest distance everywhere, also at the (rounded) vertices,
+  // where three or more sites are within rounding of each other; the computed cells agree wherever the
+  // two smallest distances differ by more than 1e-6 relative.
+  for (unsigned seed : {11u, 12u, 13u}) {
+    const auto sites = random_mobius(30, seed);
+    const Box box{-2, -2, 12, 12};
+    const MobiusDiagram d(sites, box);
+    ASSERT_TRUE(d.is_valid(true)) << "seed " << seed;
+    std::vector<Point2> points = sample_points(box, 1500, seed);
+    for (const auto& v : d.vertices()) points.push_back(v.point);
+    std::size_t cells_checked = 0;
+    for (const Point2 q : points) {
+      const auto best = exact_nearest(sites, q);
+      const SiteIndex l = d.locate(q);
+      EXPECT_NE(std::find(best.begin(), best.end(), l), best.end()) << "locate at " << q.x << ", " << q.y;
+      std::vector<double> ds;
+      for (const auto& s : sites) ds.push_back(mobius_distance(q, s));
+      std::sort(ds.begin(), ds.end());
+      if (ds[1] - ds[0] > 1e-6 * (std::fabs(ds[0]) + std::fabs(ds[1]) + 1)) {
+        EXPECT_EQ(d.locate_in_cells(q).first, best[0]) << "cells at " << q.x << ", " << q.y;
+        ++cells_checked;
+      }
+    }
+    EXPECT_GT(cells_checked, 1400u);
+  }
+}
+
+TEST(MobiusDiagram, VerticesAgreeWithBruteForceTriples) {
+  // Generic random sites: the vertices' site triples are exactly the triples whose bisector circles
+  // meet at a point with no closer site (brute force over all triples), one vertex per such point.
+  for (unsigned seed : {21u, 22u, 23u, 24u}) {
+    const auto sites = random_mobius(25, seed);
+    const MobiusDiagram d(sites, {-2, -2, 12, 12});
+    ASSERT_TRUE(d.is_valid(true)) << "seed " << seed;
+    std::set<std::array<SiteIndex, 3>> triples;
+    for (const auto& v : d.vertices()) triples.insert(v.sites);
+    EXPECT_EQ(triples, brute_force_vertex_triples(sites)) << "seed " << seed;
+    // A vertex's three sites are the exact nearest sites among all, up to its rounding.
+    for (const auto& v : d.vertices()) {
+      const double d0 = mobius_distance(v.point, sites[v.sites[0]]);
+      for (SiteIndex l = 0; l < sites.size(); ++l)
+        EXPECT_GE(mobius_distance(v.point, sites[l]), d0 - 1e-9 * (1 + std::fabs(d0)));
+    }
+  }
+}
+
+TEST(MobiusDiagram, FiveSitesThroughOnePointGiveOneVertex) {
+  // Integer sites with μ = λ|p|² − 1: every δ_i(0) = 1 exactly, so all five cells meet at the origin. The
+  // degenerate vertex is found once (the raw vertices of the lifted facets are merged exactly) and
+  // its ten bisector pairs are cut correctly (valid cells, oracle agreement).
+  std::vector<MobiusSite> s;
+  for (auto [x, y, l] : std::vector<std::array<double, 3>>{{3, 4, 2}, {-5, 0, 1}, {0, -2, 3}, {4, -4, 1}, {-1, 3, 4}})
+    s.push_back({x, y, l, l * (x * x + y * y) - 1});
+  const Box box{-8, -8, 8, 8};
+  const MobiusDiagram d(s, box);
+  ASSERT_TRUE(d.is_valid(true));
+  std::size_t at_origin = 0;
+  for (const auto& v : d.vertices()) at_origin += std::hypot(v.point.x, v.point.y) < 1e-12;
+  EXPECT_EQ(at_origin, 1u);
+  const auto best = exact_nearest(s, {0, 0});
+  EXPECT_EQ(best.size(), 5u);
+  EXPECT_GT(check_against_oracle(d, box, 80), 80 * 80 / 2);
+}
+
+TEST(MobiusDiagram, FormerOpenFuzzFindingsAreValid) {
+  // Fuzz finding sites-2 (tests/fuzz/regressions/sites/sites-2-*): with the double constructions
+  // these failed is_valid (cells not closed); with the exact combinatorics they are valid and agree
+  // with the rational oracle.
+  const std::vector<std::vector<MobiusSite>> cases{
+      {{0, 0, 1, 0}, {655350, 1, 1, 0}, {1, 0, 1, 0}},
+      {{65536, 0, 1, 0}, {65532, 0, 1, 0}, {0, 1, 1, 0}, {1, 0, 1, 0}},
+  };
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    std::vector<Point2> pts;
+    for (const auto& s : cases[k]) pts.push_back({s.x, s.y});
+    const Box box = bounding_box(pts, 0.15);
+    const MobiusDiagram d(cases[k], box);
+    EXPECT_TRUE(d.is_valid(true)) << "case " << k;
+    for (const Point2 q : sample_points(d.frame(), 500, static_cast<unsigned>(k))) {
+      const auto best = exact_nearest(cases[k], q);
+      EXPECT_NE(std::find(best.begin(), best.end(), d.locate(q)), best.end()) << "case " << k;
+    }
+  }
+}
+
+TEST(MobiusDiagram, DeterministicAndIndependentOfTheInputOrder) {
+  const auto sites = random_mobius(40, 31);
+  const Box box{-2, -2, 12, 12};
+  const MobiusDiagram a(sites, box), b(sites, box);
+  ASSERT_EQ(a.vertices().size(), b.vertices().size());
+  for (std::size_t k = 0; k < a.vertices().size(); ++k) {
+    EXPECT_EQ(a.vertices()[k].point.x, b.vertices()[k].point.x);
+    EXPECT_EQ(a.vertices()[k].point.y, b.vertices()[k].point.y);
+    EXPECT_EQ(a.vertices()[k].sites, b.vertices()[k].sites);
+  }
+  ASSERT_EQ(a.edges().size(), b.edges().size());
+  for (std::size_t k = 0; k < a.edges().size(); ++k) {
+    EXPECT_EQ(a.edges()[k].a, b.edges()[k].a);
+    EXPECT_EQ(a.edges()[k].from, b.edges()[k].from);
+    EXPECT_EQ(a.edges()[k].curve.to.x, b.edges()[k].curve.to.x);
+  }
+  // Reversed input: the same vertices (as site triples of the original numbering; a triple may have
+  // two vertices), within rounding.
+  std::vector<MobiusSite> reversed(sites.rbegin(), sites.rend());
+  const MobiusDiagram r(reversed, box);
+  ASSERT_TRUE(r.is_valid(true));
+  const SiteIndex n = sites.size();
+  using Keyed = std::tuple<std::array<SiteIndex, 3>, double, double>;
+  std::vector<Keyed> va, vr;
+  for (const auto& v : a.vertices()) va.emplace_back(v.sites, v.point.x, v.point.y);
+  for (const auto& v : r.vertices()) {
+    std::array<SiteIndex, 3> t{n - 1 - v.sites[0], n - 1 - v.sites[1], n - 1 - v.sites[2]};
+    std::sort(t.begin(), t.end());
+    vr.emplace_back(t, v.point.x, v.point.y);
+  }
+  std::sort(va.begin(), va.end()), std::sort(vr.begin(), vr.end());
+  ASSERT_EQ(va.size(), vr.size());
+  for (std::size_t k = 0; k < va.size(); ++k) {
+    EXPECT_EQ(std::get<0>(va[k]), std::get<0>(vr[k]));
+    EXPECT_NEAR(std::get<1>(va[k]), std::get<1>(vr[k]), 1e-12 * (1 + std::fabs(std::get<1>(va[k]))));
+    EXPECT_NEAR(std::get<2>(va[k]), std::get<2>(vr[k]), 1e-12 * (1 + std::fabs(std::get<2>(va[k]))));
+  }
+  EXPECT_EQ(a.edges().size(), r.edges().size());
+  EXPECT_EQ(a.empty_sites().size(), r.empty_sites().size());
+}
+
+TEST(MobiusDiagram, RejectsLiftedSpheresBeyondTheRange) {
+  // λx = 1e80 > 1e75: InputError naming the site; at the limit the site is accepted.
+  EXPECT_THROW(MobiusDiagram({{0, 0, 1, 0}, {1e40, 0, 1e40, 0}}, {0, 0, 1, 1}), InputError);
+  EXPECT_THROW(MobiusDiagram({{0, 0, 1, 1e76}}, {0, 0, 1, 1}), InputError);
+  try {
+    MobiusDiagram({{0, 0, 1, 0}, {1, 1, 1, 0}, {0, 0, 1e76, 0}}, {0, 0, 1, 1});
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("site 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1e75"), std::string::npos) << e.what();
+  }
+  EXPECT_GT(lifted_magnitude({1e30, 0, 1e40, 0}), max_lifted_magnitude);  // weight λ²|p|² = 1e140
+  EXPECT_NEAR(lifted_magnitude({1e30, 0, 1e-40, 0}), 1e20, 1e6);  // the weight −λ|p|²
+  EXPECT_NO_THROW(MobiusDiagram({{0, 0, 1, 1e75}, {1, 0, 1, 0}}, {0, 0, 1, 1}));
 }

@@ -160,6 +160,11 @@ TEST_F(DiagramCli, NumbersBeyondTheAdmissibleRangeNameTheLine) {
   expect_input_error("diagram --kind power " + heavy, {heavy + ":3: found '1e300' in column 3 `w`", range, "power diagram"});
   expect_input_error("diagram --kind apollonius " + heavy, {heavy + ":3:", range, "Apollonius diagram"});
   expect_input_error("diagram --kind anisotropic " + write("m.txt", "0 0 1 0 1\n1 1 1e200 0 1\n"), {":2:", range});
+  // Möbius and mw sites: the lifted sphere (λx, λy, (1 − λ)/2, weight) must stay within 1e75.
+  const std::string lifted = write("lifted.txt", "0 0 1 0\n1 1 1 0\n1e40 0 1e40 0\n");
+  expect_input_error("diagram --kind mobius " + lifted, {lifted + ":3:", "lifts to a sphere of magnitude", "at most 1e75"});
+  const std::string light = write("light.txt", "0 0 1\n1 1 1e-38\n");
+  expect_input_error("diagram --kind mw " + light, {light + ":2:", "at most 1e75"});
   // At the edge of the range the diagram is computed; a picture with a circle of radius 1e75 in a
   // window of size 3 does not stall (Cairo used to flatten it into countless segments).
   const json scaled = run_json("diagram --kind power " + write("edge.txt", "0 0 2.5e149\n1e75 0 0\n0 1e75 0\n-1e75 -1e75 1\n"));

@@ -6,20 +6,31 @@
 /// Linearization. On the paraboloid Q = {(x, z) : z = |x|²} of R³ the power to the sphere Σ_i of centre
 /// (λ_i p_i, (1 − λ_i)/2) and squared radius R_i = λ_i²|p_i|² + ((1 − λ_i)/2)² − λ_i|p_i|² + μ_i equals
 /// δ_i(x) + z²: the common term z² does not change the minimum, so the Möbius diagram is the vertical
-/// projection of the power diagram of the Σ_i restricted to Q. We compute the 3D regular triangulation
-/// of the Σ_i (CGAL::Regular_triangulation_3, exact predicates on the double-rounded Σ_i):
-/// - a site whose Σ_i is hidden has an empty Möbius cell (more sites may have empty cells: their power
-///   cell misses Q; they are reported in `empty_sites()`);
-/// - the *vertices* are the points where a power edge (dual of a triangle ijk) crosses Q: the (at most
-///   two) common points of the bisector circles of ijk, kept when no neighbour of i in the
-///   triangulation is closer (the power cell of i is cut out by its neighbours);
+/// projection of the power diagram of the Σ_i restricted to Q. Every combinatorial decision is exact
+/// for the input doubles (filtered: interval arithmetic, then exact rationals):
+/// - the 3D regular triangulation of the Σ_i (CGAL::Regular_triangulation_3 on lazy exact numbers: the
+///   Σ_i are not rounded) gives the hidden sites (empty cells; more sites may have empty cells: their
+///   power cell misses Q; all are reported in `empty_sites()`) and `locate` (exact point location);
+/// - the *vertices* are the points where a power edge (dual of a triangle ijk) crosses Q: a point of
+///   the power line ∩ Q (coordinates a + b√D, D rational) is a vertex when neither apex of the two
+///   tetrahedra on ijk is strictly closer; an apex at equal distance means four or more sites meet
+///   there, and such raw vertices are merged through the tetrahedra they tie with (one vertex, exactly);
 /// - the *edges* lie on the bisectors of the triangulation's edges ij: a circle (λ_i ≠ λ_j; the site
-///   with the larger λ is inside) or a line (λ_i = λ_j); the vertices on it cut it into pieces and a
-///   piece is an edge when its midpoint has no closer neighbour of i.
-/// Vertices are computed in doubles from the closed-form intersection (local coordinates centred on
-/// the three sites); the neighbour tests use a relative tolerance of 1e-10, so that a vertex of four
-/// almost cocircular bisectors may be reported twice, at the same place (then two vertices and a
-/// zero-length edge appear; `is_valid` accepts it).
+///   with the larger λ is inside) or a line (λ_i = λ_j); whether the bisector just before and just
+///   after each vertex on it belongs to the cells of i and j is decided exactly (the sign of the
+///   derivative of δ_k − δ_i along the bisector for the other sites k at the vertex, or of δ_k − δ_i
+///   elsewhere on the bisector at a tangency), and for a bisector without vertices at one of its points;
+/// - the order of the ends of unbounded edges along the frame, where the doubles cannot tell, is their
+///   exact order at infinity.
+/// What stays in doubles is the geometry (vertex coordinates, rounded once from the exact values;
+/// circle centres and radii) and the order of the vertices along one bisector by their double angle:
+/// two distinct vertices closer than the doubles resolve may be ordered wrongly, which `is_valid`
+/// reports ("ordered wrongly in doubles").
+///
+/// Input range: every site's lifted sphere (the centre's coordinates λx, λy, (1 − λ)/2 and the weight)
+/// must be at most max_lifted_magnitude = 1e75 in magnitude (InputError otherwise, require_liftable):
+/// the predicates multiply up to four such numbers, which then stay within double range, so the
+/// interval filter works instead of falling back to exact arithmetic everywhere.
 ///
 /// Cells. Unbounded pieces (rays, lines: only between sites of equal smallest λ) are clipped to the
 /// *frame*, the smallest box containing the requested box, every vertex and every bounded edge, grown
@@ -33,11 +44,23 @@
 /// linearization does not need λ > 0), but the sites must be finite.
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "laguerre/core/diagrams/AffineDiagram.hpp"
 
 namespace laguerre::core {
+
+/// Largest magnitude of a lifted sphere's centre coordinate or weight (see the file comment).
+inline constexpr double max_lifted_magnitude = 1e75;
+
+/// The largest magnitude among the lifted sphere's centre coordinates λx, λy, (1 − λ)/2 and its weight
+/// λ(λ − 1)|p|² + ((1 − λ)/2)² + μ, in doubles (infinite when they overflow).
+double lifted_magnitude(const MobiusSite& s);
+
+/// Throws InputError at `source`:`line` naming `what` (e.g. "site 3") when the lifted sphere of `s`
+/// exceeds max_lifted_magnitude.
+void require_liftable(const MobiusSite& s, const std::string& source, std::size_t line, const std::string& what);
 
 /// A piece of curve: an arc of circle or a straight segment, oriented from `from` to `to`.
 struct CurvePiece {
@@ -54,8 +77,9 @@ struct CurvePiece {
   std::vector<Point2> sample(double max_step = 0.05, double max_error = 1e300) const;
   /// The piece traversed backwards.
   CurvePiece reversed() const;
-  /// Contribution ½∮(x dy − y dx) of the piece to the signed area of a closed loop.
-  double area_term() const;
+  /// Contribution ½∮(x dy − y dx) of the piece to the signed area of a closed loop, in coordinates
+  /// relative to `origin` (a point near the loop keeps the rounding relative to the loop's size).
+  double area_term(Point2 origin = {}) const;
   /// Point halfway along the piece.
   Point2 midpoint() const;
 };
@@ -89,8 +113,8 @@ struct BoundaryPiece {
 struct BoundaryLoop {
   std::vector<BoundaryPiece> pieces;  ///< consecutive pieces
   bool closed = true;                 ///< whether the last piece ends where the first starts
-  /// Signed area enclosed (positive counter-clockwise).
-  double area() const;
+  /// Signed area enclosed (positive counter-clockwise), summed relative to `origin`.
+  double area(Point2 origin = {}) const;
   /// Polyline through the loop (arcs sampled as in CurvePiece::sample).
   std::vector<Point2> polyline(double max_step = 0.05, double max_error = 1e300) const;
 };
@@ -99,14 +123,15 @@ struct BoundaryLoop {
 struct CellComponent {
   BoundaryLoop outer;               ///< counter-clockwise
   std::vector<BoundaryLoop> holes;  ///< clockwise
-  /// Area of the component (outer area plus the negative hole areas).
-  double area() const;
+  /// Area of the component (outer area plus the negative hole areas), summed relative to `origin`.
+  double area(Point2 origin = {}) const;
 };
 
 /// Möbius diagram of Möbius sites by linearization; see the file comment.
 class MobiusDiagram {
  public:
-  /// Builds the diagram of `sites` (finite values; throws InputError otherwise); `box` is the
+  /// Builds the diagram of `sites` (finite values, lifted spheres within max_lifted_magnitude; throws
+  /// InputError otherwise); `box` is the
   /// requested window (the frame contains it).
   MobiusDiagram(std::vector<MobiusSite> sites, const Box& box);
   /// Destructor.
@@ -135,8 +160,8 @@ class MobiusDiagram {
   const std::vector<MobiusEdge>& edges() const;
   /// The components of the cell of site i (empty when the cell is empty).
   const std::vector<CellComponent>& cell(SiteIndex i) const;
-  /// A site minimizing δ at q: located in the 3D power diagram at the lifted point (q, |q|²)
-  /// (exact predicates on the rounded lifted point); no_site without sites. O(log n) expected when the
+  /// A site minimizing δ at q: located in the 3D power diagram at the lifted point (q, |q|²), exactly
+  /// (the lifted point is not rounded); no_site without sites. O(log n) expected when the
   /// lifted triangulation is 3-dimensional; CGAL scans all vertices in lower dimensions (equal λ).
   SiteIndex locate(Point2 q) const;
   /// Which cell component contains q, by the computed boundaries: (site, component index), or
@@ -144,8 +169,9 @@ class MobiusDiagram {
   /// Brute force over the components' polylines (arcs within 1e-7 × the frame size), built on the
   /// first call: meant for tests and small diagrams, and not thread-safe on that first call.
   std::pair<SiteIndex, std::size_t> locate_in_cells(Point2 q) const;
-  /// Checks the invariants: loops closed, every edge used once by each of its two sites' cells,
-  /// vertex sites equidistant (relative 1e-6), component areas adding up to the frame's area.
+  /// Checks the invariants: no vertices ordered wrongly along a bisector, loops closed, every edge used
+  /// once by each of its two sites' cells, vertex sites equidistant (relative 1e-6), component areas
+  /// adding up to the frame's area.
   /// With `verbose`, writes the first violated invariant on std::cerr. False also when a vertex is not
   /// finite (input beyond what doubles represent).
   bool is_valid(bool verbose = false) const;
