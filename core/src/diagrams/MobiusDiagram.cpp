@@ -18,6 +18,7 @@
 #include <numbers>
 #include <sstream>
 #include <tuple>
+#include <type_traits>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -68,6 +69,13 @@ struct Field {
   Surd<NT> mul(const Surd<NT>& u, const Surd<NT>& v) const { return {u.a * v.a + u.b * v.b * D, u.a * v.b + u.b * v.a}; }
   /// Exact sign of a + b√D (throws Uncertain_conversion_exception on an uncertain interval).
   Sign sign(const Surd<NT>& u) const {
+    if constexpr (std::is_same_v<NT, CGAL::Interval_nt<false>>) {
+      // The interval of a + b√D itself first: a may be 0 identically (an interval around 0) while the
+      // whole is far from 0; otherwise the algebraic rule below decides (or gives up to exact).
+      const NT v = u.a + u.b * CGAL::sqrt(D);
+      if (v.inf() > 0) return Sign::positive;
+      if (v.sup() < 0) return Sign::negative;
+    }
     const Sign sa = sign_of<NT>(u.a);
     const Sign sb = sign_of<NT>(D) == Sign::zero ? Sign::zero : sign_of<NT>(u.b);
     if (sb == Sign::zero) return sa;
@@ -231,8 +239,8 @@ Point2 vertex_point(const std::vector<MobiusSite>& sites, const std::array<SiteI
   return compute.template operator()<CGAL::Exact_rational>();
 }
 
-/// The bisector of sites i and j in doubles, rounded once from exact values (intervals when they are
-/// tight, else exact rationals): a circle (centre, radius; λ_i ≠ λ_j; radius 0 when empty) or a line
+/// The bisector of sites i and j in doubles, within 1e-9 relative of the exact values (intervals when
+/// they are that tight, else exact rationals rounded once): a circle (centre, radius; λ_i ≠ λ_j; radius 0 when empty) or a line
 /// (a point and the unit direction (−g_y, g_x)/|g|, g = λ_i p_i − λ_j p_j).
 struct Bisector {
   bool circle = false;
@@ -273,7 +281,7 @@ Bisector bisector(const std::vector<MobiusSite>& sites, SiteIndex i, SiteIndex j
     const std::array<I, 4> v = parts.template operator()<I>();
     bool tight = true;
     for (const I& x : v)
-      tight = tight && std::isfinite(x.inf()) && std::isfinite(x.sup()) && x.sup() - x.inf() <= 1e-12 * std::fabs(x.sup() + x.inf());
+      tight = tight && std::isfinite(x.inf()) && std::isfinite(x.sup()) && x.sup() - x.inf() <= 1e-9 * std::fabs(x.sup() + x.inf());
     if (tight) {
       std::array<double, 4> m{};
       for (int k = 0; k < 4; ++k) m[static_cast<std::size_t>(k)] = CGAL::to_double(v[static_cast<std::size_t>(k)]);
@@ -391,6 +399,11 @@ Sign compare_ends(const std::vector<MobiusSite>& sites, const LineEnd& a, const 
 /// Sign of U + V√D2 with U, V in Q(√D1) (two vertices of different facets compared), exactly.
 template <class NT>
 Sign tower_sign(const Field<NT>& f1, const Surd<NT>& U, const Surd<NT>& V, const NT& D2) {
+  if constexpr (std::is_same_v<NT, CGAL::Interval_nt<false>>) {
+    const NT r1 = CGAL::sqrt(f1.D), v = U.a + U.b * r1 + (V.a + V.b * r1) * CGAL::sqrt(D2);
+    if (v.inf() > 0) return Sign::positive;
+    if (v.sup() < 0) return Sign::negative;
+  }
   const Sign su = f1.sign(U);
   const Sign sv = sign_of<NT>(D2) == Sign::zero ? Sign::zero : f1.sign(V);
   if (sv == Sign::zero) return su;
