@@ -336,6 +336,20 @@ std::pair<bool, bool> departures(const std::vector<MobiusSite>& sites, const std
   });
 }
 
+/// Whether the bisector circle of i and j (λ_i ≠ λ_j) has a positive radius: a point circle (e.g. two
+/// sites at one place, μ equal) or an empty one carries no edge, whatever vertices lie on it. Exact.
+bool circle_has_radius(const std::vector<MobiusSite>& sites, SiteIndex i, SiteIndex j) {
+  return filtered([&]<class NT>() {
+    const MobiusSite& o = sites[i];
+    const LocalSite<NT> li(o, o), lj(sites[j], o);
+    const NT dl = li.lambda - lj.lambda;
+    const NT gx = -lj.lambda * lj.qx, gy = -lj.lambda * lj.qy;
+    const NT dc = -li.mu - (lj.lambda * (lj.qx * lj.qx + lj.qy * lj.qy) - lj.mu);
+    const NT cx = gx / dl, cy = gy / dl;
+    return sign_of<NT>(cx * cx + cy * cy - dc / dl) == Sign::positive;
+  });
+}
+
 /// For a bisector of i and j with no vertex on it: whether the whole curve (circle or line) is an edge,
 /// i.e. one of its points is at least as close to i as to every site of `others`. False when the
 /// bisector is empty or a point. Exact.
@@ -828,6 +842,7 @@ void MobiusDiagram::Impl::build_edges(const std::unordered_map<std::uint64_t, st
     };
     const Bisector geometry = bisector(sites, i, j);
     if (si.lambda != sj.lambda) {
+      if (!circle_has_radius(sites, i, j)) continue;
       const Point2 c = geometry.c;
       const double r = geometry.r;
       const SiteIndex inside = si.lambda > sj.lambda ? i : j;

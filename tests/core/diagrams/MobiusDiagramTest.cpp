@@ -428,12 +428,16 @@ TEST(MobiusDiagram, FiveSitesThroughOnePointGiveOneVertex) {
 }
 
 TEST(MobiusDiagram, FormerOpenFuzzFindingsAreValid) {
-  // Fuzz finding sites-2 (tests/fuzz/regressions/sites/sites-2-*): with the double constructions
-  // these failed is_valid (cells not closed); with the exact combinatorics they are valid and agree
-  // with the rational oracle.
+  // Fuzz findings sites-2 and sites-5 (tests/fuzz/regressions/sites/): with the double constructions
+  // (or an intermediate exact version) these failed is_valid (cells not closed); they are valid and
+  // agree with the rational oracle.
   const std::vector<std::vector<MobiusSite>> cases{
       {{0, 0, 1, 0}, {655350, 1, 1, 0}, {1, 0, 1, 0}},
       {{65536, 0, 1, 0}, {65532, 0, 1, 0}, {0, 1, 1, 0}, {1, 0, 1, 0}},
+      // sites-5-point-circle, sites-5-point-cell-zero-lambda: a cell reduced to the point (1, 0), where
+      // the bisector circle of two sites has radius 0 (no edge on it)
+      {{0, 0, 1, 1}, {655350, 1, 1, 0}, {1, 0, 1, 0}, {1, 0, 488, 0}},
+      {{0, 0, 1, 1}, {655350, 1, 0, 0}, {1, 0, 1, 0}},
   };
   for (std::size_t k = 0; k < cases.size(); ++k) {
     std::vector<Point2> pts;
