@@ -5,7 +5,7 @@
 # (incomplete-Cholesky conjugate gradients), on random Delaunay triangulations and uniform random
 # triangulations, stopped at LPD.
 #   tools/bench/newton.sh [--huge] [--solvers "lu cholesky pcg"] [--families "delaunay uniform-triangulation"]
-#                         [--layouts "frames"] [--max-steps K] [SIZES…]
+#                         [--layouts "frames"] [--max-steps K] [--time-limit S] [--blas-dir DIR] [SIZES…]
 # Defaults: sizes 10000 100000; --huge adds 1000000 (the lu solver is skipped there: ~40 s per step).
 # Per row: steps as iterations/improving Newton steps (an iteration whose Newton step cannot improve is
 # a plain sweep; capped at --max-steps, default 60), status (converged / iteration_cap / precision_loss, never hidden), vertices
@@ -15,6 +15,14 @@
 # that survives a loaded machine), wall seconds of the whole command
 # (reading and checking the graph, writing the JSON) and its peak RSS (/usr/bin/time). Then the growth
 # exponents of steps and pack time between successive sizes (t ∝ n^a).
+# Columns read_s (the command's wall time outside core::pack: reading and checking the graph, writing
+# the JSON) and phases (core::pack's wall seconds by phase, packing.phase_seconds: Jacobian assembly /
+# factorization and solve / line search / layouts / LPD checks; sweeps and set-up are not shown).
+# --time-limit S passes `--time-limit S` to pack (status time_limit when it is hit). --blas-dir DIR
+# puts DIR first on LD_LIBRARY_PATH for the pack runs, e.g. the directory of an unpacked
+# libopenblas0-pthread (`apt-get download libopenblas0-pthread && dpkg -x …`: its libblas.so.3 then
+# serves CHOLMOD without changing the system's libblas alternative); the header names the libblas
+# the program loads.
 # Inputs are cached in $LAGUERRE_BENCH_CACHE (default /tmp/laguerre-bench-newton): a 10^6 Delaunay
 # triangulation takes about a minute to generate. OPENBLAS_NUM_THREADS and OMP_NUM_THREADS default to 1
 # (a shared 2-core machine: spinning BLAS threads cost more than they bring here).
@@ -23,6 +31,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 
 solvers="lu cholesky pcg" families="delaunay uniform-triangulation" layouts=frames max_steps=60 huge=0 sizes=()
+time_limit=() blas_dir=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --huge) huge=1; shift ;;
@@ -30,7 +39,9 @@ while [ $# -gt 0 ]; do
     --families) families=$2; shift 2 ;;
     --layouts) layouts=$2; shift 2 ;;
     --max-steps) max_steps=$2; shift 2 ;;
-    -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
+    --time-limit) time_limit=(--time-limit "$2"); shift 2 ;;
+    --blas-dir) blas_dir=$2; shift 2 ;;
+    -h|--help) awk 'NR > 1 && /^#/ {print; next} NR > 1 {exit}' "$0"; exit 0 ;;
     *) sizes+=("$1"); shift ;;
   esac
 done
@@ -49,8 +60,13 @@ mkdir -p "$cache"
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 
-echo "# $(date -u '+%Y-%m-%d %H:%M UTC'), $(getconf _NPROCESSORS_ONLN) cores, load:$(uptime | sed 's/.*load average://'), OPENBLAS_NUM_THREADS=$OPENBLAS_NUM_THREADS"
-printf '%-22s %8s %-9s %-7s %7s %-15s %9s %10s %-16s %9s %9s %9s %9s\n' family n solver layout steps status LPD min_radius precision pack_s pack_cpu_s wall_s peak_MiB
+if [ -n "$blas_dir" ]; then
+  [ -e "$blas_dir/libblas.so.3" ] || { echo "newton.sh: --blas-dir $blas_dir has no libblas.so.3" >&2; exit 2; }
+  export LD_LIBRARY_PATH="$blas_dir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+fi
+blas=$(ldd "$laguerre" | awk '/libblas/ {print $3}')
+echo "# $(date -u '+%Y-%m-%d %H:%M UTC'), $(getconf _NPROCESSORS_ONLN) cores, load:$(uptime | sed 's/.*load average://'), OPENBLAS_NUM_THREADS=$OPENBLAS_NUM_THREADS, libblas $(readlink -f "$blas")"
+printf '%-22s %8s %-9s %-7s %7s %-15s %9s %10s %-16s %9s %9s %9s %9s %7s  %s\n' family n solver layout steps status LPD min_radius precision pack_s pack_cpu_s wall_s peak_MiB read_s 'phases(jac/solve/ls/layout/checks)'
 rows=$dir/rows.tsv
 : > "$rows"
 for family in $families; do
@@ -65,8 +81,8 @@ for family in $families; do
       if [ "$solver" = lu ] && [ "$n" -ge 1000000 ]; then continue; fi
       rc=0
       /usr/bin/time -f '%e %M' -o "$dir/time" "$laguerre" pack "$graph" --accelerate newton --newton-solver "$solver" \
-        --layout "$layout" --max-iterations "$max_steps" --no-picture -o "$dir/out" --force > "$dir/log" 2>&1 || rc=$?
-      # Exit status 3: not converged (cap or precision loss), reported in the row; anything else fails.
+        --layout "$layout" --max-iterations "$max_steps" "${time_limit[@]}" --no-picture -o "$dir/out" --force > "$dir/log" 2>&1 || rc=$?
+      # Exit status 3: not converged (cap, time limit or precision loss), reported in the row; anything else fails.
       if [ "$rc" -ne 0 ] && [ "$rc" -ne 3 ]; then
         echo "newton.sh: laguerre pack failed on $graph with $solver (exit status $rc)" >&2
         cat "$dir/log" >&2
@@ -77,11 +93,14 @@ import json, sys
 p = json.load(open(sys.argv[1]))["packing"]
 wall, peak_kib = open(sys.argv[2]).read().split()[-2:]
 pr = p["precision"]
+ph = p["phase_seconds"]
+phases = "/".join(f"{ph[k]:.1f}" for k in ("jacobian", "solve", "line_search", "layout", "checks"))
 print("\t".join([sys.argv[3], sys.argv[4], sys.argv[5], f"{p['iterations']}/{p['accelerated_jumps']}", p["status"], str(p["local_ok"]),
                  f"{p['smallest_radius']:.3g}", f"{p['seconds']:.2f}", f"{p['cpu_seconds']:.2f}", wall,
-                 f"{int(peak_kib) / 1024:.0f}", sys.argv[6], f"{pr['status']}:{pr['resolution']:.1e}"]))
+                 f"{int(peak_kib) / 1024:.0f}", sys.argv[6], f"{pr['status']}:{pr['resolution']:.1e}",
+                 f"{float(wall) - p['seconds']:.1f}", phases]))
 PY
-      tail -n 1 "$rows" | awk -F'\t' '{printf "%-22s %8s %-9s %-7s %7s %-15s %9s %10s %-16s %9s %9s %9s %9s\n", $1,$2,$3,$12,$4,$5,$6,$7,$13,$8,$9,$10,$11}'
+      tail -n 1 "$rows" | awk -F'\t' '{printf "%-22s %8s %-9s %-7s %7s %-15s %9s %10s %-16s %9s %9s %9s %9s %7s  %s\n", $1,$2,$3,$12,$4,$5,$6,$7,$13,$8,$9,$10,$11,$14,$15}'
      done
     done
   done

@@ -20,7 +20,7 @@ namespace laguerre::tools {
 
 namespace {
 constexpr CommandHelp pack_help{"pack", "Compute a greedy power embedding of a planar graph (thesis §5.3).",
-                                "Exit status: 0 converged, 3 not converged (cap or precision loss), 2 bad input."};
+                                "Exit status: 0 converged, 3 not converged (iteration cap, time limit or precision loss), 2 bad input."};
 
 struct PackArgs {
   GraphArgs graph;
@@ -29,6 +29,7 @@ struct PackArgs {
   std::string root = "deepest";
   int steps = 1;
   int max_iterations = 100000;
+  double time_limit = 0;
   double epsilon = 1e-9;
   std::string out;
   bool force = false;
@@ -84,6 +85,7 @@ int run_pack(const PackArgs& a) {
   opt.root = core::parse_name(core::root_rule_names, a.root, "--root");
   opt.steps_per_check = a.steps;
   opt.max_iterations = a.max_iterations;
+  opt.time_limit = a.time_limit;
   opt.angle_epsilon = a.epsilon;
   opt.acceleration = core::parse_name(core::acceleration_names, a.accelerate, "--accelerate");
   opt.newton_solver = core::parse_name(core::newton_solver_names, a.newton_solver, "--newton-solver");
@@ -149,7 +151,16 @@ int run_pack(const PackArgs& a) {
                                    {"significand_bits_needed", bits_needed}}},
                     {"root", r.layout.root == core::none ? nlohmann::json() : nlohmann::json(g.id(r.layout.root))},
                     {"seconds", seconds},
-                    {"cpu_seconds", cpu_seconds}};
+                    {"cpu_seconds", cpu_seconds},
+                    {"time_limit", a.time_limit > 0 ? nlohmann::json(a.time_limit) : nlohmann::json()},
+                    {"phase_seconds", {{"setup", r.phase_seconds.setup},
+                                       {"sweeps", r.phase_seconds.sweeps},
+                                       {"jacobian", r.phase_seconds.jacobian},
+                                       {"solve", r.phase_seconds.solve},
+                                       {"line_search", r.phase_seconds.line_search},
+                                       {"layout", r.phase_seconds.layout},
+                                       {"checks", r.phase_seconds.checks},
+                                       {"final", r.phase_seconds.final}}}};
   for (core::Vertex v = 0; v < g.num_vertices(); ++v)
     doc["vertices"][v]["local"] = std::string(core::to_string(r.local[v]));
   nlohmann::json faces = nlohmann::json::array();
@@ -186,12 +197,22 @@ int run_pack(const PackArgs& a) {
      << r.iterations << " iterations, " << seconds << " s (" << cpu_seconds << " s CPU)\n";
   if (r.status == core::PackStatus::iteration_cap)
     os << "             --max-iterations " << a.max_iterations << " reached before the stop rule held\n";
+  else if (r.status == core::PackStatus::time_limit)
+    os << "             --time-limit " << a.time_limit << " s reached before the stop rule held (the last layout is checked and written)\n";
   else if (r.status == core::PackStatus::precision_loss)
     os << "             the layout is " << core::name_of(core::precision_names, r.layout.precision)
        << " in doubles (" << (r.layout.precision == core::Precision::collapsed
                                   ? "a circle spans fewer than 16 units in the last place of its coordinates"
                                   : "NaN, infinite or non-positive radius")
        << "): nothing is claimed\n";
+  {
+    const core::PackPhaseSeconds& p = r.phase_seconds;
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "phases       setup %.2f, sweeps %.2f, jacobian %.2f, solve %.2f, line search %.2f, layout %.2f, checks %.2f, final %.2f s\n",
+                  p.setup, p.sweeps, p.jacobian, p.solve, p.line_search, p.layout, p.checks, p.final);
+    os << text;
+  }
   if (r.skipped_checks > 0)
     os << "             " << r.skipped_checks << " collapsed or unrepresentable layouts mid-run were not checked (the final one is)\n";
   if (opt.acceleration == core::Acceleration::newton)
@@ -228,6 +249,10 @@ Action add_pack_command(CLI::App& app) {
   c.cmd->add_option("--steps-per-check,-N", c.args->steps, "Thurston sweeps between two layouts and checks")
       ->check(CLI::Range(1, 10000))->capture_default_str();
   c.cmd->add_option("--max-iterations", c.args->max_iterations, "Cap on sweeps")->check(CLI::Range(1, 100000000))->capture_default_str();
+  c.cmd->add_option("--time-limit", c.args->time_limit,
+                    "Stop after SECONDS of wall time in the packer, tested after every sweep or Newton step: the current "
+                    "radii are laid out, checked and written, status time_limit, exit status 3 (default: no limit)")
+      ->check(CLI::PositiveNumber)->type_name("SECONDS");
   c.cmd->add_option("--epsilon", c.args->epsilon, "Angle-sum tolerance for --stop angle (radians)")->capture_default_str();
   c.cmd->add_option("-o,--out", c.args->out, "Output path stem (writes STEM.json, STEM.svg, STEM.png); default GRAPHNAME-packing");
   c.cmd->add_flag("--force", c.args->force, "Overwrite existing output files");

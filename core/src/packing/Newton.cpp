@@ -9,7 +9,9 @@
 #endif
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -295,6 +297,24 @@ NewtonMethod::NewtonMethod(NewtonSolver solver) : solver_(solver), state_(std::m
 NewtonMethod::~NewtonMethod() = default;
 
 NewtonStep NewtonMethod::step(const PackingComplex& k, Radii& h) {
+  NewtonStep out;
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point mark = Clock::now();
+  double* phase = &out.line_search_seconds;  // the phase the clock is running for
+  auto switch_to = [&](double* next) {
+    const Clock::time_point now = Clock::now();
+    *phase += std::chrono::duration<double>(now - mark).count();
+    mark = now;
+    phase = next;
+  };
+  step_in(k, h, out, [&](int p) {
+    switch_to(p == 0 ? &out.jacobian_seconds : p == 1 ? &out.solve_seconds : &out.line_search_seconds);
+  });
+  switch_to(phase);
+  return out;
+}
+
+void NewtonMethod::step_in(const PackingComplex& k, Radii& h, NewtonStep& out, const std::function<void(int)>& phase) {
   State& st = *state_;
   if (st.complex != &k || st.num_vertices != k.graph.num_vertices()) {
     st.complex = &k;
@@ -303,8 +323,7 @@ NewtonStep NewtonMethod::step(const PackingComplex& k, Radii& h) {
     st.cholesky.reset();
   }
   const std::vector<Vertex>& interior = st.interior.vertices;
-  NewtonStep out;
-  if (interior.empty()) return out;
+  if (interior.empty()) return;
   Eigen::VectorXd r;
   const double norm0 = residuals(k, h, interior, r);
   out.error_before = out.error_after = r.cwiseAbs().maxCoeff();
@@ -313,17 +332,21 @@ NewtonStep NewtonMethod::step(const PackingComplex& k, Radii& h) {
   // δs: the Newton direction in s = log h.
   Eigen::VectorXd delta;
   if (solver_ == NewtonSolver::lu) {
+    phase(0);
     const SpMat jac = jacobian_in_log_radius(k, h, st.interior);
+    phase(1);
     Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu;
     lu.compute(jac);
-    if (lu.info() != Eigen::Success) return out;
+    if (lu.info() != Eigen::Success) return;
     delta = lu.solve(-r);
-    if (lu.info() != Eigen::Success) return out;
+    if (lu.info() != Eigen::Success) return;
   } else {
+    phase(0);
     assemble_jacobian(k, h, st.interior, st.outer, st.inner, st.values);
     for (double& x : st.values) x = -x;  // A = −J, symmetric positive definite
     const SpMat a = Eigen::Map<const SpMat>(n, n, static_cast<Eigen::Index>(st.values.size()), st.outer.data(),
                                             st.inner.data(), st.values.data());
+    phase(1);
     Eigen::VectorXd du;
     if (solver_ == NewtonSolver::cholesky) {
       if (!st.cholesky) {
@@ -331,15 +354,15 @@ NewtonStep NewtonMethod::step(const PackingComplex& k, Radii& h) {
         st.cholesky->analyzePattern(a);
       }
       st.cholesky->factorize(a);
-      if (st.cholesky->info() != Eigen::Success) return out;
+      if (st.cholesky->info() != Eigen::Success) return;
       du = st.cholesky->solve(r);
-      if (st.cholesky->info() != Eigen::Success) return out;
+      if (st.cholesky->info() != Eigen::Success) return;
     } else {
       Eigen::ConjugateGradient<SpMat, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>>> cg;
       cg.setTolerance(std::clamp(std::sqrt(norm0), 1e-14, 1e-4));
       cg.setMaxIterations(5000);
       cg.compute(a);
-      if (cg.info() != Eigen::Success) return out;
+      if (cg.info() != Eigen::Success) return;
       du = cg.solve(r);
       out.linear_iterations = static_cast<int>(cg.iterations());
     }
@@ -349,9 +372,10 @@ NewtonStep NewtonMethod::step(const PackingComplex& k, Radii& h) {
       delta[i] = du[i] * (hv < 1e-8 ? 1.0 : std::sinh(hv) / hv);  // δs = δu · ds/du
     }
   }
-  if (!delta.allFinite()) return out;
+  if (!delta.allFinite()) return;
 
   // Damped step: at most a factor e² per radius, halved until ‖θ − 2π‖₂ decreases.
+  phase(2);
   double t = std::min(1.0, 2.0 / std::max(1e-300, delta.cwiseAbs().maxCoeff()));
   Radii trial = h;
   for (int halving = 0; halving < 40; ++halving, t *= 0.5) {
@@ -364,10 +388,9 @@ NewtonStep NewtonMethod::step(const PackingComplex& k, Radii& h) {
       out.improved = true;
       out.error_after = rt.cwiseAbs().maxCoeff();
       out.halvings = halving;
-      return out;
+      return;
     }
   }
-  return out;
 }
 
 NewtonStep newton_step(const PackingComplex& k, Radii& h, NewtonSolver solver) {

@@ -7,6 +7,7 @@
 #include "laguerre/core/packing/PackingNames.hpp"
 #include "laguerre/core/packing/RadiusOnly.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -27,6 +28,7 @@ std::string_view to_string(PackStatus status) {
   switch (status) {
     case PackStatus::converged: return "converged";
     case PackStatus::iteration_cap: return "iteration_cap";
+    case PackStatus::time_limit: return "time_limit";
     case PackStatus::precision_loss: return "precision_loss";
   }
   return "?";
@@ -45,8 +47,25 @@ double max_tangency_error(const PlanarGraph& g, const CircleEmbedding& circles) 
 
 PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* visitor) {
   LAGUERRE_PRECONDITION(options.steps_per_check >= 1, "steps_per_check must be at least 1.");
-  const PackingComplex k = PackingComplex::from_graph(g);
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  Clock::time_point mark = start;
   PackResult result;
+  PackPhaseSeconds& phases = result.phase_seconds;
+  auto lap = [&](double& phase) {  // adds the wall time since the previous lap to `phase`
+    const Clock::time_point now = Clock::now();
+    phase += std::chrono::duration<double>(now - mark).count();
+    mark = now;
+  };
+  // The time limit is tested between steps: a run stops after the step in progress, then its final
+  // layout and check are made as at the cap.
+  bool timed_out = false;
+  auto out_of_time = [&] {
+    if (options.time_limit > 0 && std::chrono::duration<double>(Clock::now() - start).count() >= options.time_limit)
+      timed_out = true;
+    return timed_out;
+  };
+  const PackingComplex k = PackingComplex::from_graph(g);
   result.rule = options.stop;
   result.radii = initial_radii(k);
   Radii scratch;
@@ -60,8 +79,10 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   auto lay_out_and_check = [&](int iteration, bool final) {
     // Returns whether the requested rule holds; records first occurrences of tracked rules.
     ++result.layouts;
+    lap(phases.checks);  // (the radius-only gate before it)
     result.layout = lay_out(k, result.radii, root, options.layout_method, options.layout_arithmetic);
     result.circles.assign(result.layout.circles.begin(), result.layout.circles.begin() + static_cast<long>(n));
+    lap(phases.layout);
     result.angle_error = angle_error(k, result.radii);
     // A collapsed or unrepresentable layout (Precision) carries no claim: mid-run (Newton's first
     // steps, an early wave) it only means "not yet", so its coordinates are not checked at all — no
@@ -96,6 +117,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     if (visitor && skip) visitor->on_unchecked(iteration, result.angle_error, result.layout.precision);
     if (visitor && !skip) visitor->on_check(iteration, result.angle_error, result.local_ok);
     if (radius_only && !lpd) gap /= 2;
+    lap(phases.checks);
     switch (options.stop) {
       case StopRule::lpd: return lpd;
       case StopRule::exact: return exact;
@@ -106,8 +128,11 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   };
   auto check = [&](int iteration) {
     // At the cap the layout is made whatever the test says: the run ends with coordinates.
-    const bool final = iteration >= options.max_iterations;
-    if (radius_only && !final && !radius_only_everywhere(k, result.radii, gap)) return false;
+    const bool final = iteration >= options.max_iterations || timed_out;
+    if (radius_only && !final && !radius_only_everywhere(k, result.radii, gap)) {
+      lap(phases.checks);
+      return false;
+    }
     return lay_out_and_check(iteration, final);
   };
 
@@ -125,7 +150,12 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   Layout tree;  // Newton–Krylov: the layout tree (combinatorial: every round's)
   auto sweep_once = [&] {
     if (newton) {  // a Newton step, or a plain sweep where Newton cannot improve (rounding level)
-      if (newton_method.step(k, result.radii).improved) {
+      const NewtonStep step = newton_method.step(k, result.radii);
+      phases.jacobian += step.jacobian_seconds;
+      phases.solve += step.solve_seconds;
+      phases.line_search += step.line_search_seconds;
+      mark = Clock::now();  // the step's time is in its three phases; a fall-back sweep is a sweep
+      if (step.improved) {
         ++result.jumps;
         return;
       }
@@ -150,13 +180,19 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
       accelerator.after_sweep(k, previous, result.radii);
     }
   };
+  auto step_once = [&] {
+    sweep_once();
+    lap(phases.sweeps);
+  };
   bool done = false;
   if (radius_only && options.termination == Termination::radius_flood) {
     // The gate's AND flooded on the radius exchange (docs/radius-only.md, §8): the test of a tested
     // step s is known everywhere at step s + D; the run lays out X(s) then, and goes on from X(s + D)
     // if the check fails (the pending tests, made with the old tolerance, are dropped).
     LAGUERRE_PRECONDITION(!newton && !krylov, "the flooded radius-only gate runs with Jacobi sweeps (no Newton).");
+    lap(phases.setup);
     const int depth = static_cast<int>(radius_flood_depth(lay_out(k, result.radii, root)));
+    lap(phases.layout);
     const int period = radius_flood_period(depth, options.steps_per_check);
     result.flood_depth = depth;
     struct Pending {
@@ -166,7 +202,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     std::deque<Pending> pending;  // the tested steps whose test held, oldest first
     int t = 0;
     while (true) {
-      if (t >= options.max_iterations) {  // the cap: the current radii are laid out
+      if (t >= options.max_iterations || (t > 0 && out_of_time())) {  // cap or time limit: the current radii are laid out
         done = lay_out_and_check(t, true);
         it = t;
         break;
@@ -183,24 +219,29 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
       }
       if (radius_flood_tested(t, options.steps_per_check, period) && radius_only_everywhere(k, result.radii, gap))
         pending.push_back({t, result.radii});
-      sweep_once();
+      lap(phases.checks);
+      step_once();
       ++t;
     }
     result.decision_step = t;
   } else {
+    lap(phases.setup);
     done = check(0);
     if (krylov) tree = result.layout;
-    while (!done && it < options.max_iterations) {
+    while (!done && it < options.max_iterations && !timed_out) {
       const int steps = std::min(options.steps_per_check, options.max_iterations - it);
-      for (int s = 0; s < steps; ++s) sweep_once();
-      it += steps;
-      done = check(it);
+      for (int s = 0; s < steps; ++s) {
+        step_once();
+        ++it;
+        if (out_of_time()) break;
+      }
+      done = check(it);  // the final check if out of time
     }
     result.decision_step = it;
   }
   result.iterations = it;
   if (!newton && !krylov) result.jumps = local ? local_jumps : accelerator.jumps();
-  result.status = done ? PackStatus::converged : PackStatus::iteration_cap;
+  result.status = done ? PackStatus::converged : timed_out ? PackStatus::time_limit : PackStatus::iteration_cap;
   // Never claim anything on circles the doubles cannot carry (Layout.hpp, docs/precision.md).
   if (result.layout.precision == Precision::unrepresentable || result.layout.precision == Precision::collapsed)
     result.status = PackStatus::precision_loss;
@@ -212,6 +253,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   }
   result.max_tangency_error = max_tangency_error(g, result.circles);
   result.face_circles.assign(result.layout.circles.begin() + static_cast<long>(n), result.layout.circles.end());
+  lap(phases.final);
   return result;
 }
 

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 
 #include "laguerre/core/Error.hpp"
@@ -156,4 +157,58 @@ TEST(Packer, NewtonStepNeverIncreasesTheAngleError) {
     previous = step.error_after;
   }
   EXPECT_LT(previous, 1e-10);
+}
+
+TEST(Packer, TimeLimitStopsAfterTheStepInProgressAndChecksTheLastLayout) {
+  // A limit far below one sweep: the run stops after its first sweep (plain) or Newton step, lays the
+  // radii out and checks them like at the cap, and says time_limit.
+  const PlanarGraph g = delaunay(300, 4);
+  for (const Acceleration a : {Acceleration::plain, Acceleration::newton}) {
+    PackOptions opt;
+    opt.acceleration = a;
+    opt.steps_per_check = 5;
+    opt.time_limit = 1e-9;
+    const PackResult r = pack(g, opt);
+    EXPECT_EQ(r.status, PackStatus::time_limit) << to_string(a);
+    EXPECT_EQ(r.iterations, 1) << to_string(a);
+    EXPECT_EQ(r.layouts, 2) << to_string(a);  // iteration 0 and the final one
+    EXPECT_EQ(r.local, check_all(g, r.circles)) << to_string(a);
+    EXPECT_EQ(to_string(r.status), "time_limit");
+  }
+  // A generous limit changes nothing: the same run as without it.
+  PackOptions opt;
+  opt.acceleration = Acceleration::newton;
+  const PackResult free_run = pack(g, opt);
+  opt.time_limit = 3600;
+  const PackResult limited = pack(g, opt);
+  ASSERT_EQ(limited.status, PackStatus::converged);
+  EXPECT_EQ(limited.iterations, free_run.iterations);
+  EXPECT_EQ(limited.radii, free_run.radii);
+}
+
+TEST(Packer, PhaseSecondsAccountForTheRunAndNameNewtonsParts) {
+  const PlanarGraph g = delaunay(2000, 8);
+  for (const Acceleration a : {Acceleration::plain, Acceleration::newton}) {
+    PackOptions opt;
+    opt.acceleration = a;
+    const auto t0 = std::chrono::steady_clock::now();
+    const PackResult r = pack(g, opt);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ASSERT_EQ(r.status, PackStatus::converged);
+    const PackPhaseSeconds& p = r.phase_seconds;
+    for (double x : {p.setup, p.sweeps, p.jacobian, p.solve, p.line_search, p.layout, p.checks, p.final}) EXPECT_GE(x, 0.0);
+    const double sum = p.setup + p.sweeps + p.jacobian + p.solve + p.line_search + p.layout + p.checks + p.final;
+    EXPECT_LE(sum, wall * 1.0001 + 1e-6);  // disjoint laps of the same clock
+    EXPECT_GE(sum, 0.9 * wall);            // and nothing large outside them
+    EXPECT_GT(p.layout, 0.0);
+    EXPECT_GT(p.checks, 0.0);
+    if (a == Acceleration::newton) {
+      EXPECT_GT(p.jacobian, 0.0);
+      EXPECT_GT(p.solve, 0.0);
+      EXPECT_GT(p.line_search, 0.0);
+    } else {
+      EXPECT_GT(p.sweeps, 0.0);
+      EXPECT_EQ(p.jacobian + p.solve + p.line_search, 0.0);
+    }
+  }
 }

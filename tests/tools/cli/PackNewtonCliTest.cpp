@@ -63,3 +63,30 @@ TEST_F(PackNewtonCli, PrecisionStatusNamesTheLayoutAndBadLayoutIsAnInputError) {
   EXPECT_EQ(bad.status, 2) << bad.out;
   EXPECT_NE(bad.out.find("--layout"), std::string::npos) << bad.out;
 }
+
+TEST_F(PackNewtonCli, TimeLimitEndsWithItsStatusAndThePhasesAreWritten) {
+  const std::string stem = path("timed");
+  const Outcome r = run("pack " + example + " --time-limit 0.000000001 --no-picture -o " + stem);
+  EXPECT_EQ(r.status, 3) << r.out;
+  EXPECT_NE(r.out.find("time_limit"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--time-limit 1e-09 s reached before the stop rule held"), std::string::npos) << r.out;
+  std::ifstream in(stem + ".json");
+  const nlohmann::json p = nlohmann::json::parse(in)["packing"];
+  EXPECT_EQ(p["status"], "time_limit");
+  EXPECT_EQ(p["iterations"], 1);
+  EXPECT_EQ(p["time_limit"].get<double>(), 1e-9);
+  for (const char* phase : {"setup", "sweeps", "jacobian", "solve", "line_search", "layout", "checks", "final"})
+    EXPECT_GE(p["phase_seconds"][phase].get<double>(), 0.0) << phase;
+  const Outcome newton = run("pack " + example + " --accelerate newton --no-picture -o " + path("phases"));
+  ASSERT_EQ(newton.status, 0) << newton.out;
+  std::ifstream in2(path("phases") + ".json");
+  const nlohmann::json q = nlohmann::json::parse(in2)["packing"];
+  EXPECT_GT(q["phase_seconds"]["solve"].get<double>(), 0.0);
+  EXPECT_TRUE(q["time_limit"].is_null());
+  const Outcome bad = run("pack " + example + " --time-limit -1 --no-picture -o " + path("bad"));
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--time-limit"), std::string::npos) << bad.out;
+  const Outcome help = run("pack --help");
+  EXPECT_NE(help.out.find("--time-limit"), std::string::npos);
+  EXPECT_NE(help.out.find("time limit"), std::string::npos);
+}

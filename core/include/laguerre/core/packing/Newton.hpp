@@ -21,6 +21,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string_view>
 #include <vector>
@@ -49,6 +50,9 @@ struct NewtonStep {
   double error_after = 0;    ///< max |θ − 2π| after (equal to before when !improved)
   int halvings = 0;          ///< step halvings of the line search
   int linear_iterations = 0; ///< conjugate-gradient iterations (NewtonSolver::pcg; 0 otherwise)
+  double jacobian_seconds = 0;     ///< wall seconds assembling the Jacobian (closed form, or differences for lu)
+  double solve_seconds = 0;        ///< wall seconds factorizing and solving (CHOLMOD/LDLT, SparseLU, or CG)
+  double line_search_seconds = 0;  ///< wall seconds of the residuals: the one before the step and the damped trials
 };
 
 /// Damped Newton steps with one linear solver. The object keeps what does not change between the
@@ -67,6 +71,8 @@ public:
 
 private:
   struct State;
+  // The step itself; `phase(p)` is called when it enters assembly (0), solve (1), line search (2).
+  void step_in(const PackingComplex& k, Radii& h, NewtonStep& out, const std::function<void(int)>& phase);
   NewtonSolver solver_;
   std::unique_ptr<State> state_;
 };

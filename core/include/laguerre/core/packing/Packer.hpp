@@ -38,6 +38,7 @@ Termination parse_termination(std::string_view name);
 enum class PackStatus {
   converged,      ///< the stopping rule holds
   iteration_cap,  ///< `max_iterations` sweeps without the rule holding
+  time_limit,     ///< `PackOptions::time_limit` seconds passed without the rule holding
   precision_loss  ///< the final layout is collapsed or unrepresentable in doubles (Precision): nothing is
                   ///< claimed, whatever the exact checks said on the stored numbers. Such layouts met
                   ///< mid-run are not checked and do not end the run (PackResult::skipped_checks)
@@ -63,6 +64,21 @@ struct PackOptions {
   double radius_only_gap = 1e-2;                  ///< the radius-only gate's initial closing gap (radians)
   LayoutMethod layout_method = LayoutMethod::wave;   ///< placements of the checks' layouts (wave: the network's)
   LayoutArithmetic layout_arithmetic = LayoutArithmetic::binary64;  ///< arithmetic of the checks' layouts
+  double time_limit = 0;  ///< > 0: wall seconds after which the run stops, tested after every sweep or Newton
+                          ///< step (a step in progress is finished); the current radii are then laid out and
+                          ///< checked like at the cap, and the run ends PackStatus::time_limit unless the rule holds
+};
+
+/// Wall seconds of a packing run by phase (`PackResult::phase_seconds`).
+struct PackPhaseSeconds {
+  double setup = 0;        ///< the packing complex, initial radii and root
+  double sweeps = 0;       ///< Thurston sweeps and accelerators, Newton–Krylov steps, Newton's fall-back sweeps
+  double jacobian = 0;     ///< Acceleration::newton: assembling the Jacobian
+  double solve = 0;        ///< Acceleration::newton: factorizing and solving (or CG)
+  double line_search = 0;  ///< Acceleration::newton: the residuals before each step and of the damped trials
+  double layout = 0;       ///< the checks' layouts
+  double checks = 0;       ///< LPD/GLPD, tangency and angle checks, the radius-only gate
+  double final = 0;        ///< statistics after the run (the LPD count and tangency error of the final layout)
 };
 
 /// Result of a packing run.
@@ -89,6 +105,7 @@ struct PackResult {
                            ///< always checked
   int decision_step = 0;  ///< sweeps computed when the run stopped (iterations + D with Termination::radius_flood)
   int flood_depth = 0;    ///< Termination::radius_flood: D, the steps from a test to its decision (0 otherwise)
+  PackPhaseSeconds phase_seconds;     ///< where the run's wall time went
   Layout layout;                      ///< the final layout of the whole complex
   Radii radii;                        ///< final hyperbolic radius h per vertex of the complex (∞ on the boundary)
 };
