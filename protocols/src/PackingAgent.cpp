@@ -299,7 +299,7 @@ void PackingAgent::handle_settled(std::size_t i, const ElectionMsg& m) {
       ++counters().unexpected;
       return;
     }
-    learn_final(deg_);
+    learn_final(deg_, id_);
     return;
   }
   if (!quiet_) {
@@ -320,23 +320,21 @@ void PackingAgent::handle_final(std::size_t i, const ElectionMsg& m) {
     if (!boundary_) ++counters().unexpected;  // on the ring the two ways meet
     return;
   }
-  final_id_ = m.id;
-  learn_final(i);
+  learn_final(i, m.id);
 }
 
-void PackingAgent::learn_final(std::size_t from) {
+void PackingAgent::learn_final(std::size_t from, NodeId winner) {
   // Every estimate is final and delivered: the BFS parent (the first neighbour one shallower) and the
   // children (the neighbours whose last valid claim names this vertex) are known for good.
   depth_final_ = true;
-  if (from == deg_) final_id_ = id_;
   if (!boundary_) {
     std::size_t parent = 0;
     while (parent < deg_ && peers_[parent].depth + 1 != depth_) ++parent;
     if (parent != bfs_parent_ || told_ != bfs_parent_ || depth_deficit_ != 0) ++counters().unexpected;
   }
-  const ElectionMsg token{ElectionStage::final, 0, final_id_};
+  const ElectionMsg token{ElectionStage::final, 0, winner};
   encode(token, buffer());
-  if (boundary_) {  // on round the ring, the way it came (both ways from its sender)
+  if (boundary_) {  // on round the ring the way it came (both ways from its sender)
     const std::size_t out = outer_gap_, in = (outer_gap_ + 1) % deg_;
     if (from != in) send_encoded(in);
     if (from != out && out != in) send_encoded(out);

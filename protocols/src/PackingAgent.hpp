@@ -151,7 +151,8 @@ private:
   void offer_settled(NodeId id);
   void handle_settled(std::size_t i, const ElectionMsg& m);
   void handle_final(std::size_t i, const ElectionMsg& m);
-  void learn_final(std::size_t from);  // from: the K index it came from (deg: this vertex's own token)
+  // from: the K index it came from (deg: this vertex's own token); winner: whose `settled` token it was.
+  void learn_final(std::size_t from, NodeId winner);
   // Election (PackingAgent.cpp, "Election"): the subtree's best key up the BFS forest, the boundary's
   // round the ring, the winner's down the forest.
   void advance_key();
@@ -225,7 +226,7 @@ private:
   // child it came from (deg: this vertex); on the boundary, the best ring key forwarded (or sent) so
   // far and the best one held until the subtree's key is known.
   static constexpr NodeId no_key = ~NodeId{0};
-  NodeId settled_sent_ = no_key, held_settled_ = no_key, final_id_ = no_key;
+  NodeId settled_sent_ = no_key, held_settled_ = no_key;
   std::uint32_t bfs_parent_ = unknown;  // K index (deg for a boundary vertex)
   bool key_reported_ = false;
   std::uint32_t best_depth_ = 0;
