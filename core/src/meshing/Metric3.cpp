@@ -63,11 +63,6 @@ Matrix3 square_root(const Metric3& m) {
   return out;
 }
 
-std::array<double, 3> multiply(const Matrix3& f, const std::array<double, 3>& v) {
-  return {f[0] * v[0] + f[1] * v[1] + f[2] * v[2], f[3] * v[0] + f[4] * v[1] + f[5] * v[2],
-          f[6] * v[0] + f[7] * v[1] + f[8] * v[2]};
-}
-
 std::array<double, 3> solve(const Matrix3& f, const std::array<double, 3>& v) {
   const double c00 = f[4] * f[8] - f[5] * f[7], c01 = f[5] * f[6] - f[3] * f[8], c02 = f[3] * f[7] - f[4] * f[6];
   const double det = f[0] * c00 + f[1] * c01 + f[2] * c02;
@@ -76,12 +71,6 @@ std::array<double, 3> solve(const Matrix3& f, const std::array<double, 3>& v) {
   // inverse = adjugate / det, adjugate = cofactor matrixᵀ
   return {(c00 * v[0] + c10 * v[1] + c20 * v[2]) / det, (c01 * v[0] + c11 * v[1] + c21 * v[2]) / det,
           (c02 * v[0] + c12 * v[1] + c22 * v[2]) / det};
-}
-
-double metric_length(const Metric3& m, const std::array<double, 3>& v) {
-  const double q = m.xx * v[0] * v[0] + m.yy * v[1] * v[1] + m.zz * v[2] * v[2] +
-                   2 * (m.xy * v[0] * v[1] + m.xz * v[0] * v[2] + m.yz * v[1] * v[2]);
-  return std::sqrt(std::max(0.0, q));
 }
 
 std::array<double, 2> generalized_eigenvalues(const Metric3& m, const Metric3& n) {

@@ -544,8 +544,8 @@ private:
 
   /// The tetrahedron `key` in S_w, or null.
   const StarTet* find_tet(Index w, const Key& key) const {
-    for (const StarTet& t : stars_[w].tets)
-      if (t.key == key) return &t;
+    for (const StarTet& t : stars_[w].tets)  // four comparisons, not memcmp
+      if (t.key[0] == key[0] && t.key[1] == key[1] && t.key[2] == key[2] && t.key[3] == key[3]) return &t;
     return nullptr;
   }
 

@@ -66,6 +66,30 @@ int metric_in_sphere_filter(const P3& p, const P3& q, const P3& r, const P3& s, 
   double largest_m = 0;
   for (double e : metric) largest_m = std::max(largest_m, std::abs(e));
   if (!(largest > 0) || !(largest_m > 0) || !std::isfinite(largest) || !std::isfinite(largest_m)) return kUndecided;
+  // Fast path: the same determinant unscaled, against the static bound below scaled back,
+  // 2⁻⁴⁰·L⁵·L_M (L, L_M the largest difference and metric entry; 2⁻⁴⁰ also covers the rounding of
+  // L⁵·L_M), when L ∈ [2⁻¹⁰⁰, 2¹⁰⁰] and L_M ∈ [2⁻²⁰⁰, 2²⁰⁰]: no overflow (|D| < 2⁸·L⁵·L_M ≤ 2⁷⁰⁸),
+  // and an underflowed intermediate (≤ 2⁻¹⁰⁷⁵, amplified by at most 2⁴·L_M·L³ by the later products,
+  // ~100 of them) stays below 2⁻¹⁰⁶⁰·L_M·L³, far below 2⁻⁴¹·L⁵·L_M since L² ≥ 2⁻²⁰⁰.
+  if (largest >= 0x1p-100 && largest <= 0x1p100 && largest_m >= 0x1p-200 && largest_m <= 0x1p200) {
+    double l[4];
+    for (int i = 0; i < 4; ++i) {
+      const double x = d[i][0], y = d[i][1], z = d[i][2];
+      l[i] = (metric[0] * (x * x) + metric[3] * (y * y)) + metric[5] * (z * z) +
+             2 * ((metric[1] * (x * y) + metric[2] * (x * z)) + metric[4] * (y * z));
+    }
+    double e2[4][4];
+    for (int j = 0; j < 4; ++j)
+      for (int k = j + 1; k < 4; ++k) e2[j][k] = d[j][0] * d[k][1] - d[k][0] * d[j][1];
+    const auto minor3 = [&](int a, int b, int c) {
+      return (d[a][2] * e2[b][c] - d[b][2] * e2[a][c]) + d[c][2] * e2[a][b];
+    };
+    const double det =
+        (l[1] * minor3(0, 2, 3) - l[0] * minor3(1, 2, 3)) + (l[3] * minor3(0, 1, 2) - l[2] * minor3(0, 1, 3));
+    const double l2 = largest * largest, bound = 0x1p-40 * (l2 * l2 * largest * largest_m);
+    if (det > bound) return 1;
+    if (det < -bound) return -1;
+  }
   const double scale = inverse_power_of_two(largest), scale_m = inverse_power_of_two(largest_m);
   if (scale == 0 || scale_m == 0) return kUndecided;
   constexpr double kTiny = 0x1p-900;  // scaled nonzero values below this: let the exact path decide

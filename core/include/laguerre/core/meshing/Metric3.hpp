@@ -6,7 +6,9 @@
 /// root F = M^{1/2} stretches space so that d_M(x, y) = ‖F(x − y)‖₂. The relative distortion is, as in
 /// the plane, γ(M, N) = √max(λ₊, 1/λ₋) over the roots λ of det(M − λN) = 0 (Metric.hpp explains why).
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace laguerre::core {
 
@@ -36,14 +38,21 @@ std::array<double, 3> sizes_of(const Metric3& m);
 /// The symmetric square root F = M^{1/2} (FᵀF = M, det F > 0), by eigen-decomposition.
 Matrix3 square_root(const Metric3& m);
 
-/// F·v.
-std::array<double, 3> multiply(const Matrix3& f, const std::array<double, 3>& v);
+/// F·v (inline: the 3D star mesher's inner loops).
+inline std::array<double, 3> multiply(const Matrix3& f, const std::array<double, 3>& v) {
+  return {f[0] * v[0] + f[1] * v[1] + f[2] * v[2], f[3] * v[0] + f[4] * v[1] + f[5] * v[2],
+          f[6] * v[0] + f[7] * v[1] + f[8] * v[2]};
+}
 
 /// F⁻¹·v (Cramer's rule; F invertible).
 std::array<double, 3> solve(const Matrix3& f, const std::array<double, 3>& v);
 
-/// ‖v‖_M = √(vᵀ M v).
-double metric_length(const Metric3& m, const std::array<double, 3>& v);
+/// ‖v‖_M = √(vᵀ M v) (inline: the 3D star mesher's inner loops).
+inline double metric_length(const Metric3& m, const std::array<double, 3>& v) {
+  const double q = m.xx * v[0] * v[0] + m.yy * v[1] * v[1] + m.zz * v[2] * v[2] +
+                   2 * (m.xy * v[0] * v[1] + m.xz * v[0] * v[2] + m.yz * v[1] * v[2]);
+  return std::sqrt(std::max(0.0, q));
+}
 
 /// The roots λ₋ ≤ λ₊ of det(M − λN) = 0 (the extreme eigenvalues of N⁻¹M; positive).
 std::array<double, 2> generalized_eigenvalues(const Metric3& m, const Metric3& n);
