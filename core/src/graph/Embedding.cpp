@@ -8,6 +8,8 @@
 #include <boost/graph/boyer_myrvold_planar_test.hpp>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <sstream>
@@ -109,16 +111,15 @@ std::string point_text(Point2 p) {
   return s.str();
 }
 
-void check_no_crossings(const std::vector<Point2>& pos, const IndexEdges& edges,
-                        const std::vector<std::uint64_t>& ids, const std::string& source) {
-  struct Box {
-    double xmin, xmax, ymin, ymax;
-  };
-  std::vector<Box> boxes(edges.size());
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const Point2 a = pos[edges[i].first], b = pos[edges[i].second];
-    boxes[i] = {std::min(a.x, b.x), std::max(a.x, b.x), std::min(a.y, b.y), std::max(a.y, b.y)};
-  }
+struct Box {
+  double xmin, xmax, ymin, ymax;
+};
+
+// The sweep by the left ends of the boxes: throws on the first crossing in its order. Used for the
+// error message (the same pair is named whichever search found that there is one) and when the grid
+// below would be too large (edges of very different lengths).
+void sweep_for_crossings(const std::vector<Point2>& pos, const IndexEdges& edges, const std::vector<Box>& boxes,
+                          const std::vector<std::uint64_t>& ids, const std::string& source) {
   std::vector<std::size_t> order(edges.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
@@ -138,6 +139,78 @@ void check_no_crossings(const std::vector<Point2>& pos, const IndexEdges& edges,
                                   edge_name(ids[c], ids[d]) + " cross or touch.");
     }
   }
+}
+
+// Whether two edges that share no vertex cross or touch (exact), over the pairs whose closed boxes
+// overlap. The candidates come from a uniform grid of about one cell per edge: each edge is listed in
+// every cell its box meets, and a pair is tested only in the cell of the lower-left corner of the
+// intersection of its boxes — a point of both boxes, so both edges are listed there (the cell index
+// is a non-decreasing function of each coordinate), and a single cell, so each pair is tested once.
+// Linear time for edges of comparable lengths (a random drawing of 10^6 vertices: 3·10^6 edges), where
+// the sweep by the left ends of the boxes tested every pair within an edge's x-range (~E^1.5).
+void check_no_crossings(const std::vector<Point2>& pos, const IndexEdges& edges,
+                        const std::vector<std::uint64_t>& ids, const std::string& source) {
+  const std::size_t m = edges.size();
+  if (m < 2) return;
+  std::vector<Box> boxes(m);
+  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+  double sum_w = 0, sum_h = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    const Point2 a = pos[edges[i].first], b = pos[edges[i].second];
+    boxes[i] = {std::min(a.x, b.x), std::max(a.x, b.x), std::min(a.y, b.y), std::max(a.y, b.y)};
+    x0 = std::min(x0, boxes[i].xmin), x1 = std::max(x1, boxes[i].xmax);
+    y0 = std::min(y0, boxes[i].ymin), y1 = std::max(y1, boxes[i].ymax);
+    sum_w += boxes[i].xmax - boxes[i].xmin, sum_h += boxes[i].ymax - boxes[i].ymin;
+  }
+  // Cells about the size of a typical box, at most ~2 per edge in total.
+  const double w = x1 - x0, h = y1 - y0;
+  const double cell_w = std::max(sum_w / static_cast<double>(m), w / 4096), cell_h = std::max(sum_h / static_cast<double>(m), h / 4096);
+  auto cells_along = [&](double extent, double cell) {
+    const double c = cell > 0 && extent > 0 ? std::floor(extent / cell) + 1 : 1;
+    return static_cast<std::size_t>(std::clamp(c, 1.0, 4096.0));
+  };
+  std::size_t gx = cells_along(w, cell_w), gy = cells_along(h, cell_h);
+  while (gx * gy > 2 * m && (gx > 1 || gy > 1)) {  // keep the grid no larger than the edge list
+    gx = std::max<std::size_t>(1, gx / 2);
+    gy = std::max<std::size_t>(1, gy / 2);
+  }
+  const double sx = w > 0 ? static_cast<double>(gx) / w : 0, sy = h > 0 ? static_cast<double>(gy) / h : 0;
+  auto cx = [&](double x) { return std::min(gx - 1, static_cast<std::size_t>(std::max(0.0, (x - x0) * sx))); };
+  auto cy = [&](double y) { return std::min(gy - 1, static_cast<std::size_t>(std::max(0.0, (y - y0) * sy))); };
+  // Cell lists in compressed form: count, prefix sums, fill. Long boxes among short ones could list an
+  // edge in very many cells: then the sweep does the work.
+  std::size_t entries = 0;
+  for (const Box& b : boxes) entries += (cx(b.xmax) - cx(b.xmin) + 1) * (cy(b.ymax) - cy(b.ymin) + 1);
+  if (entries > 16 * m + 1024) return sweep_for_crossings(pos, edges, boxes, ids, source);
+  std::vector<std::size_t> start(gx * gy + 1, 0);
+  for (const Box& b : boxes)
+    for (std::size_t j = cy(b.ymin); j <= cy(b.ymax); ++j)
+      for (std::size_t i = cx(b.xmin); i <= cx(b.xmax); ++i) ++start[j * gx + i + 1];
+  for (std::size_t c = 0; c < gx * gy; ++c) start[c + 1] += start[c];
+  std::vector<std::uint32_t> list(start.back());
+  {
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t e = 0; e < m; ++e) {
+      const Box& b = boxes[e];
+      for (std::size_t j = cy(b.ymin); j <= cy(b.ymax); ++j)
+        for (std::size_t i = cx(b.xmin); i <= cx(b.xmax); ++i) list[fill[j * gx + i]++] = static_cast<std::uint32_t>(e);
+    }
+  }
+  for (std::size_t c = 0; c < gx * gy; ++c)
+    for (std::size_t p = start[c]; p < start[c + 1]; ++p)
+      for (std::size_t q = p + 1; q < start[c + 1]; ++q) {
+        const Box &bi = boxes[list[p]], &bj = boxes[list[q]];
+        if (bj.xmin > bi.xmax || bi.xmin > bj.xmax || bj.ymin > bi.ymax || bi.ymin > bj.ymax) continue;
+        if (cy(std::max(bi.ymin, bj.ymin)) * gx + cx(std::max(bi.xmin, bj.xmin)) != c) continue;  // tested elsewhere
+        const auto [a, b] = edges[list[p]];
+        const auto [u, v] = edges[list[q]];
+        if (a == u || a == v || b == u || b == v) continue;  // overlaps at a shared end are found by the angle sort
+        if (segments_intersect(pos[a], pos[b], pos[u], pos[v])) {
+          sweep_for_crossings(pos, edges, boxes, ids, source);  // names the first crossing in its order
+          throw GraphInputError(source, 0, 0, "the drawing is not plane: edges " + edge_name(ids[a], ids[b]) + " and " +
+                                                  edge_name(ids[u], ids[v]) + " cross or touch.");
+        }
+      }
 }
 
 }  // namespace

@@ -33,33 +33,34 @@ PlanarGraph PlanarGraph::from_rotation(std::vector<std::vector<Vertex>> rotation
   const std::size_t nd = g.offset_[n];
   g.head_.resize(nd);
   g.tail_.resize(nd);
+  // Per vertex, its darts sorted by head: loops and repeated edges are adjacent there, and the twin
+  // of v→w is found by a binary search in w's block (O(E log deg), local in memory).
+  std::vector<Dart> by_head(nd);
   for (Vertex v = 0; v < n; ++v) {
-    auto sorted = rotation[v];
-    std::sort(sorted.begin(), sorted.end());
-    for (std::size_t i = 0; i < sorted.size(); ++i) {
-      if (sorted[i] >= n) fail("Vertex " + std::to_string(g.ids_[v]) + " lists a neighbour index out of range.");
-      if (sorted[i] == v) fail("Vertex " + std::to_string(g.ids_[v]) + " has a loop; the graph must be simple.");
-      if (i > 0 && sorted[i] == sorted[i - 1])
-        fail("Edge " + std::to_string(g.ids_[v]) + "-" + std::to_string(g.ids_[sorted[i]]) +
-             " appears twice; the graph must be simple.");
-    }
-    for (std::size_t i = 0; i < rotation[v].size(); ++i) {
-      g.head_[g.offset_[v] + i] = rotation[v][i];
+    const auto& list = rotation[v];
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      g.head_[g.offset_[v] + i] = list[i];
       g.tail_[g.offset_[v] + i] = v;
     }
+    const auto first = by_head.begin() + g.offset_[v], last = by_head.begin() + g.offset_[v + 1];
+    std::iota(first, last, g.offset_[v]);
+    std::sort(first, last, [&](Dart a, Dart b) { return g.head_[a] < g.head_[b]; });
+    for (auto it = first; it != last; ++it) {
+      const Vertex w = g.head_[*it];
+      if (w >= n) fail("Vertex " + std::to_string(g.ids_[v]) + " lists a neighbour index out of range.");
+      if (w == v) fail("Vertex " + std::to_string(g.ids_[v]) + " has a loop; the graph must be simple.");
+      if (it != first && w == g.head_[*(it - 1)])
+        fail("Edge " + std::to_string(g.ids_[v]) + "-" + std::to_string(g.ids_[w]) +
+             " appears twice; the graph must be simple.");
+    }
   }
-  // Twins by sorting (tail, head) keys.
-  std::vector<Dart> order(nd);
-  std::iota(order.begin(), order.end(), Dart{0});
-  auto key = [&](Dart d) { return std::pair{g.tail_[d], g.head_[d]}; };
-  std::sort(order.begin(), order.end(), [&](Dart a, Dart b) { return key(a) < key(b); });
   g.twin_.assign(nd, none);
   for (Dart d = 0; d < nd; ++d) {
-    const auto want = std::pair{g.head_[d], g.tail_[d]};
-    auto it = std::lower_bound(order.begin(), order.end(), want,
-                               [&](Dart a, const std::pair<Vertex, Vertex>& k) { return key(a) < k; });
-    if (it == order.end() || key(*it) != want)
-      fail("Vertex " + std::to_string(g.ids_[g.tail_[d]]) + " lists " + std::to_string(g.ids_[g.head_[d]]) +
+    const Vertex v = g.tail_[d], w = g.head_[d];
+    const auto first = by_head.begin() + g.offset_[w], last = by_head.begin() + g.offset_[w + 1];
+    const auto it = std::lower_bound(first, last, v, [&](Dart a, Vertex k) { return g.head_[a] < k; });
+    if (it == last || g.head_[*it] != v)
+      fail("Vertex " + std::to_string(g.ids_[v]) + " lists " + std::to_string(g.ids_[w]) +
            " as a neighbour but not the other way round.");
     g.twin_[d] = *it;
   }

@@ -26,9 +26,12 @@ struct GraphInput {
 /// edges are pairs of vertex indices. The rotation is the exact counter-clockwise order around each
 /// position; the outer face is the unbounded one (`outer_given` is true). Throws GraphInputError (with
 /// `source` and no line) if the drawing is not a plane drawing of a simple connected graph. The crossing
-/// test sweeps the edges' bounding boxes in x order: O(m log m) plus one exact segment test per pair of
-/// edges whose boxes overlap (O(m²) in the worst case, about m√m for uniform random points); with
-/// `check_crossings` false it is skipped (for drawings known to be plane, e.g. Delaunay triangulations).
+/// test buckets the edges' bounding boxes in a uniform grid of about one cell per edge and tests each
+/// pair of edges whose boxes overlap once, exactly: O(m) for edges of comparable lengths (random
+/// drawings); when boxes of very different sizes would list edges in more than 16m cells it sweeps the
+/// boxes in x order instead (O(m²) in the worst case). A crossing is named as the x-order sweep finds it
+/// first. With `check_crossings` false it is skipped (for drawings known to be plane, e.g. Delaunay
+/// triangulations).
 /// Preconditions (LAGUERRE_PRECONDITION): one position per id, edge indices below ids.size().
 GraphInput graph_from_drawing(std::vector<std::uint64_t> ids, std::vector<Point2> positions,
                               const std::vector<std::pair<Vertex, Vertex>>& edges, const std::string& source,
