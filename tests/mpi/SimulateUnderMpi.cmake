@@ -1,7 +1,8 @@
 # `mpirun -np RANKS laguerre simulate GRAPH OPTIONS…` prints, on rank 0 only, the JSON document the
 # sequential run prints, but for the three wall-clock fields (wall_seconds, events_per_second,
 # peak_memory_bytes) and mpi_ranks (which must say RANKS: the parallel kernel ran), with the same
-# exit status.
+# exit status; its "mpi" summary has RANKS entries per rank whose events add up to the sequential
+# run's and whose nodes add up to the graph's, and at least one window.
 #   cmake -DLAGUERRE=… -DMPIEXEC=… -DRANKS=2 -DGRAPH=… -DOPTIONS="a;b" -P SimulateUnderMpi.cmake
 function(strip_wall json out)
   foreach(key wall_seconds events_per_second peak_memory_bytes)
@@ -25,10 +26,29 @@ if(NOT ranks EQUAL RANKS)
   message(FATAL_ERROR "the run does not report ${RANKS} MPI ranks (mpi_ranks: ${ranks}${no_ranks})")
 endif()
 string(JSON parallel REMOVE "${parallel}" mpi_ranks)
+string(JSON windows GET "${parallel}" mpi windows)
+string(JSON per_rank LENGTH "${parallel}" mpi events)
+if(NOT per_rank EQUAL RANKS OR windows LESS 1)
+  message(FATAL_ERROR "the kernel summary has ${per_rank} ranks and ${windows} windows (expected ${RANKS}, >= 1)")
+endif()
+set(event_sum 0)
+set(node_sum 0)
+math(EXPR last "${RANKS} - 1")
+foreach(r RANGE ${last})
+  string(JSON e GET "${parallel}" mpi events ${r})
+  string(JSON k GET "${parallel}" mpi nodes ${r})
+  math(EXPR event_sum "${event_sum} + ${e}")
+  math(EXPR node_sum "${node_sum} + ${k}")
+endforeach()
+string(JSON parallel REMOVE "${parallel}" mpi)
 strip_wall("${sequential}" a)
 strip_wall("${parallel}" b)
 if(NOT a STREQUAL b)
   message(FATAL_ERROR "the ${RANKS}-rank run differs from the sequential one:\n${a}\n---\n${b}")
 endif()
 string(JSON events GET "${sequential}" events)
+string(JSON nodes GET "${sequential}" nodes)
+if(NOT event_sum EQUAL events OR NOT node_sum EQUAL nodes)
+  message(FATAL_ERROR "the ranks processed ${event_sum} events on ${node_sum} nodes; the sequential run ${events} on ${nodes}")
+endif()
 message(STATUS "identical on ${RANKS} ranks (${events} events)")

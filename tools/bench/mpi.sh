@@ -6,8 +6,10 @@
 # 10^5 runs are printed side by side: they must be equal (the parallel run is the sequential one).
 # Then the packing protocol (`laguerre simulate`, a Delaunay graph of --protocol nodes, 50 Thurston
 # steps, constant 1 ms latency, one forwarded pair) sequentially and on the same ranks: events, wall,
-# peak memory of the protocol phase (the largest over the ranks) and a hash of the JSON without
-# its wall-clock fields (equal on every line: the same run).
+# peak memory of the protocol phase (the largest over the ranks), on more than one rank the kernel's
+# windows, copies exchanged per window, cut links and the slowest rank's seconds in events and in
+# synchronization (`simulate --json`'s "mpi"), and a hash of the JSON without its wall-clock and
+# kernel fields (equal on every line: the same run).
 #   tools/bench/mpi.sh [--preset release] [--sizes "316 1000"] [--until "50 5"] [--ranks "1 2"]
 #                      [--protocol 10000] [--baseline DIR]
 # --sizes are torus sides (316² = 99 856, 1000² = 10^6 nodes); --until the simulated seconds of each;
@@ -67,9 +69,15 @@ import hashlib, json, sys
 tag, ranks, path = sys.argv[1], sys.argv[2], sys.argv[3]
 d = json.load(open(path))
 peak = d.pop("peak_memory_bytes"); wall = d.pop("wall_seconds"); d.pop("events_per_second"); d.pop("mpi_ranks", None)
+mpi = d.pop("mpi", None)  # the parallel kernel's windows and timings (not part of the result)
 same = hashlib.sha256(json.dumps(d, sort_keys=True).encode()).hexdigest()[:16]
+kernel = ""
+if mpi:
+    w = max(mpi["windows"], 1)
+    kernel = (f" windows={mpi['windows']} copies_per_window={mpi['remote_copies'] / w:.1f} cut_links={mpi['cut_links']} "
+              f"events_s_max_rank={max(mpi['event_seconds']):.3f} sync_s_max_rank={max(mpi['sync_seconds']):.3f}")
 print(f"{tag} mode=protocol ranks={ranks} nodes={d['nodes']} events={d['events']} wall_s={wall:.3f} "
-      f"peak_mb_max_rank={peak / 1e6:.1f} result={same}")
+      f"peak_mb_max_rank={peak / 1e6:.1f}{kernel} result={same}")
 PY
   }
   for b in "${!builds[@]}"; do

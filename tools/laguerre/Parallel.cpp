@@ -108,4 +108,25 @@ std::vector<std::size_t> metis_workers(const core::PlanarGraph& g, std::size_t p
 
 int mpi_ranks() { return world_ranks; }
 
+nlohmann::json parallel_summary() {
+#ifdef LAGUERRE_WITH_MPI
+  const auto* mpi = dynamic_cast<const sim::mpi::MpiHostRunner*>(runner.get());
+  if (mpi == nullptr) return nullptr;
+  const sim::mpi::ParallelReport& r = mpi->report();
+  return {{"ranks", r.ranks},
+          {"windows", r.windows},
+          {"lookahead_seconds", sim::to_seconds(r.lookahead)},
+          {"cut_links", r.cut_links},
+          {"remote_copies", r.remote_copies},
+          {"remote_bytes", r.remote_bytes},
+          {"nodes", r.nodes},
+          {"events", r.events},
+          {"event_seconds", r.event_seconds},
+          {"sync_seconds", r.sync_seconds},
+          {"peak_memory_bytes", r.peak_memory_bytes}};
+#else
+  return nullptr;
+#endif
+}
+
 }  // namespace laguerre::tools

@@ -9,6 +9,8 @@
 #include <cstddef>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "laguerre/core/graph/PlanarGraph.hpp"
 #include "laguerre/scenarios/Runner.hpp"
 #include "laguerre/sim/HostRunner.hpp"
@@ -37,6 +39,11 @@ int mpi_ranks();
 
 /// The runner the simulation commands use: the MPI one on more than one rank, else nullptr.
 sim::HostRunner* host_runner();
+
+/// What the parallel kernel did in the runs of host_runner() so far: ranks, windows, lookahead, cut
+/// links, copies and bytes sent between ranks, and per rank its nodes, events, seconds in events and
+/// in synchronization and peak memory (sim::mpi::ParallelReport). Null when sequential.
+nlohmann::json parallel_summary();
 
 /// The sharing of a sweep's runs among the ranks (`run`, `compare`): every rank runs its share, each
 /// run sequentially, and all get every record (scenarios::RunSplit); nullptr on one rank.

@@ -115,6 +115,8 @@ int run_simulate(const SimulateArgs& a) {
   if (line.active()) setup.on_progress = [&](const scenarios::ProtocolProgress& p) { line.draw(meter.text(p), true); };
   const scenarios::ProtocolOutcome po = scenarios::run_packing_protocol(g, loaded.input.positions, setup);
   line.finish();
+  nlohmann::json extra;  // the protocol ran on the parallel kernel: what it did (before forwarding runs)
+  if (mpi_ranks() > 1) extra["mpi_ranks"] = mpi_ranks(), extra["mpi"] = parallel_summary();
   const std::string verify = a.verify ? scenarios::verify_against_core(g, loaded.kind, setup, po) : "";
 
   // Forward packets hop by hop on the final embedding, one simulation per scheme. Greedy power uses
@@ -124,8 +126,6 @@ int run_simulate(const SimulateArgs& a) {
   const auto pairs = blocker.empty() ? core::select_pairs(n, selection) : std::vector<std::pair<core::Vertex, core::Vertex>>{};
   const std::vector<scenarios::ForwardingResult> results =
       scenarios::run_forwarding(g, po.circles, loaded.input.positions, setup.link, a.seed, schemes, pairs);
-  nlohmann::json extra;  // the protocol ran on the parallel kernel
-  if (mpi_ranks() > 1) extra["mpi_ranks"] = mpi_ranks();
   return print_protocol_summary(
       {loaded, setup, a.mode, a.graph.outer, po, results, schemes, a.verify ? &verify : nullptr, {}, extra, blocker}, a.json);
 }
