@@ -31,7 +31,8 @@
 # under uniform, plane shock, the curved sphere shock sphere:0.2:0.4:0.5:2:0.5:0.5:-1.5 (the former
 # sphere:0.15:0.4:0.5:0.3 with --distortion 2.5 rotates by ~1 rad per element and cascades, see
 # docs/star-mesher3.md; `mesh3.sh --known` runs it), muparser expression), laguerre's
-# stars capped at MESH3_MAX_VERTICES (2000) vertices, then gmsh 3D. Debian's gmsh 4.8.4 has no
+# stars capped at MESH3_MAX_VERTICES (2000) vertices, then gmsh 3D; without --quick also a row of
+# about 10^5 tetrahedra (cube, uniform:0.028:0.028:0.056, uncapped: the issue's size). Debian's gmsh 4.8.4 has no
 # anisotropic 3D algorithm (BAMG is 2D; it is built without Mmg), so gmsh meshes isotropic tetrahedra
 # (`Mesh.Algorithm3D = 1`, Delaunay) under a background scalar view: on the stars mesh of the row, the
 # size F3·S/√λ_max(M) at each vertex (the field's smallest size, so that no edge is long in the metric;
@@ -204,12 +205,22 @@ if ((three)); then
            "expr:xx=25;xy=0;xz=0;yy=25;yz=0;zz=25/(1+2*z)^2")
   printf '\n%-24s %-6s %8s %9s %8s %8s %8s %8s %8s %7s %8s %8s  %s\n' row tool vertices tetrahedra wall_s cpu_s \
     min_dih p5_dih max_rho slivers min_len max_len status
+  # domain|field|row name; without --quick also the 10^5-tetrahedron row (the cube, uniform field fine
+  # enough for ~1.0e5 stars tetrahedra, uncapped)
+  rows3=()
   for domain in "$domains/cube.off" "$domains/box-with-hole.off"; do
-    for entry in "${fields3[@]}"; do
-      IFS='|' read -r field extra <<<"$entry"
+    for field in "${fields3[@]}"; do rows3+=("$domain|$field|${field%%:*}"); done
+  done
+  ((quick)) || rows3+=("$domains/cube.off|uniform:0.028:0.028:0.056|uniform-1e5")
+  for row3 in "${rows3[@]}"; do
+    IFS='|' read -r domain field kind <<<"$row3"
+    extra=""
+    {
       name=$(basename "$domain" .off)
-      label="$name,${field%%:*}"
-      base="$dir/3d-$name-${field%%:*}"
+      label="$name,$kind"
+      base="$dir/3d-$name-$kind"
+      cap=$max3
+      [[ $kind == uniform-1e5 ]] && cap=1000000
       for tool in stars gmsh; do
         stem="$base-$tool"
         if [[ $tool == gmsh ]]; then
@@ -305,7 +316,7 @@ PY
           cmd=(gmsh "$stem.geo" -3 -format mesh -o "$stem.mesh")
         else
           # shellcheck disable=SC2206
-          cmd=("$laguerre" mesh "$domain" --metric "$field" $extra --max-vertices "$max3" -o "$stem" --force --no-picture --json)
+          cmd=("$laguerre" mesh "$domain" --metric "$field" $extra --max-vertices "$cap" -o "$stem" --force --no-picture --json)
         fi
         run_row 24 "$label" "$tool" "$stem" "$domain" "$field" "${cmd[@]}" || continue
         python3 - "$stem.json" "$label" "$tool" "$wall" "$cpu" <<'PY'
@@ -321,7 +332,7 @@ print(f"{sys.argv[2]:<24} {sys.argv[3]:<6} {d['vertices']:>8} {d['tetrahedra']:>
       f"{q['slivers']:>7} {q['edge_length']['min']:>8.3f} {q['edge_length']['max']:>8.3f}  {state}")
 PY
       done
-    done
+    }
   done
 fi
 echo "load after: $(uptime | sed 's/.*load average: //')"
