@@ -128,6 +128,20 @@ std::ostream& operator<<(std::ostream& o, const Outcomes& c) {
            << ", layout only " << c.layout_only;
 }
 
+// At the cap a gated termination still lays out the current radii and checks them, whatever its
+// tests said: one layout, three iterations, the reported conditions those of the exact check.
+void expect_cap_ends_with_a_checked_layout(Termination t) {
+  PackOptions capped;
+  capped.termination = t;
+  capped.max_iterations = 3;
+  const PlanarGraph g = prepare_for_packing(random_delaunay_triangulation(200, 3));
+  const PackResult c = pack(g, capped);
+  EXPECT_EQ(c.status, PackStatus::iteration_cap) << to_string(t);
+  EXPECT_EQ(c.layouts, 1) << to_string(t);
+  EXPECT_EQ(c.iterations, 3) << to_string(t);
+  EXPECT_EQ(check_all(g, c.circles), c.local) << to_string(t);
+}
+
 }  // namespace
 
 TEST(RadiusOnly, ConsistentStarsDecideLpdInEveryMoebiusFrame) {
@@ -191,15 +205,7 @@ TEST(RadiusOnly, PackWithRadiusOnlyTerminationClaimsOnlyCheckedLpd) {
     EXPECT_LT(b.layouts, a.layouts);
     EXPECT_EQ(a.layouts, a.iterations + 1);
   }
-  // At the cap the run still ends with a checked layout.
-  PackOptions capped;
-  capped.termination = Termination::radius_only;
-  capped.max_iterations = 3;
-  const PlanarGraph g = prepare_for_packing(random_delaunay_triangulation(200, 3));
-  const PackResult c = pack(g, capped);
-  EXPECT_EQ(c.status, PackStatus::iteration_cap);
-  EXPECT_EQ(c.layouts, 1);
-  EXPECT_EQ(check_all(g, c.circles), c.local);
+  expect_cap_ends_with_a_checked_layout(Termination::radius_only);
   EXPECT_EQ(parse_termination("radius-only"), Termination::radius_only);
   EXPECT_EQ(parse_termination("radius-flood"), Termination::radius_flood);
   EXPECT_EQ(to_string(Termination::layout), "layout");
@@ -258,16 +264,7 @@ TEST(RadiusOnly, FloodedGateLaysOutTheTestedIterateDStepsLater) {
     }
   EXPECT_GT(same, 0);
   EXPECT_GT(failed_checks, 0);  // both outcomes of the exact check occur
-  // At the cap the current radii are laid out and checked, pending tests or not.
-  PackOptions capped;
-  capped.termination = Termination::radius_flood;
-  capped.max_iterations = 3;
-  const PlanarGraph g = prepare_for_packing(random_delaunay_triangulation(200, 3));
-  const PackResult c = pack(g, capped);
-  EXPECT_EQ(c.status, PackStatus::iteration_cap);
-  EXPECT_EQ(c.layouts, 1);
-  EXPECT_EQ(c.iterations, 3);
-  EXPECT_EQ(check_all(g, c.circles), c.local);
+  expect_cap_ends_with_a_checked_layout(Termination::radius_flood);
   EXPECT_EQ(radius_flood_period(126, 2), 1);
   EXPECT_EQ(radius_flood_period(127, 2), 2);
   EXPECT_TRUE(radius_flood_tested(12, 3, 2));

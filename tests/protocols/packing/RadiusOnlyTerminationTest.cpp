@@ -32,28 +32,38 @@ std::uint64_t total_sent(DequeHost& host, std::size_t n) {
   for (core::Vertex v = 0; v < n; ++v) s += host.node(v).counters().sent;
   return s;
 }
-}  // namespace
-
-TEST(RadiusOnlyTermination, TriangulationsEqualCoreBitForBit) {
+// The equivalence cases of both gated terminations: Delaunay triangulations n = 4…200 (seeds 1–2,
+// N = 1 and 3, graphs with a root) and 3-connected graphs n = 5…80, each run FIFO with the default
+// gap and shuffled with the gap 0.3 (some exact checks then fail). Returns core::pack's results of
+// the shuffled triangulation runs.
+std::vector<core::PackResult> expect_gated_runs_equal_core(core::Termination t) {
+  std::vector<core::PackResult> loose;
   for (std::size_t n : {4, 5, 8, 16, 40, 90, 200})
     for (std::uint64_t seed = 1; seed <= 2; ++seed)
       for (int steps : {1, 3}) {
         const core::PlanarGraph g = delaunay(n, seed);
         if (core::choose_root(core::PackingComplex::from_graph(g), core::RootRule::deepest) == core::none) continue;
         const std::string label = "n=" + std::to_string(n) + " seed=" + std::to_string(seed) + " N=" + std::to_string(steps);
-        expect_sync_equals_core(g, radius_only(steps), 0, label);
-        expect_sync_equals_core(g, radius_only(steps, 0.3), seed, label + " gap 0.3 shuffled");  // failed checks
-        if (::testing::Test::HasFailure()) return;
+        expect_sync_equals_core(g, radius_only(steps, 1e-2, t), 0, label);
+        expect_sync_equals_core(g, radius_only(steps, 0.3, t), seed, label + " gap 0.3 shuffled");
+        loose.push_back(core::pack(g, reference_options(radius_only(steps, 0.3, t))));
+        if (::testing::Test::HasFailure()) return loose;
       }
-}
-
-TEST(RadiusOnlyTermination, ThreeConnectedGraphsEqualCoreBitForBit) {
   for (std::size_t n : {5, 8, 12, 20, 35, 80})
     for (std::uint64_t seed = 1; seed <= 2; ++seed) {
       const core::PlanarGraph g = three_connected(n, 100 * n + seed);
-      expect_sync_equals_core(g, radius_only(static_cast<int>(seed)), 3 * seed, "n=" + std::to_string(n));
-      if (::testing::Test::HasFailure()) return;
+      expect_sync_equals_core(g, radius_only(static_cast<int>(seed), 1e-2, t), 3 * seed, "n=" + std::to_string(n));
+      expect_sync_equals_core(g, radius_only(1, 0.3, t), seed, "n=" + std::to_string(n) + " gap 0.3");
+      if (::testing::Test::HasFailure()) return loose;
     }
+  return loose;
+}
+}  // namespace
+
+TEST(RadiusOnlyTermination, TriangulationsAndThreeConnectedGraphsEqualCoreBitForBit) {
+  int failed_checks = 0;
+  for (const core::PackResult& r : expect_gated_runs_equal_core(core::Termination::radius_only)) failed_checks += r.layouts - 1;
+  EXPECT_GT(failed_checks, 0) << "both outcomes of the exact check";
 }
 
 TEST(RadiusOnlyTermination, CapAndAccelerationEqualCore) {
@@ -97,33 +107,14 @@ TEST(RadiusOnlyTermination, ConvergesOnlyOnAPassedExactCheckWithFewerMessages) {
 // acceleration and over lossy links.
 PackingParams flood(int steps = 1, double gap = 1e-2) { return radius_only(steps, gap, core::Termination::radius_flood); }
 
-TEST(RadiusFloodTermination, TriangulationsEqualCoreBitForBit) {
-  int failed_checks = 0, runs = 0;
-  for (std::size_t n : {4, 5, 8, 16, 40, 90, 200})
-    for (std::uint64_t seed = 1; seed <= 2; ++seed)
-      for (int steps : {1, 3}) {
-        const core::PlanarGraph g = delaunay(n, seed);
-        if (core::choose_root(core::PackingComplex::from_graph(g), core::RootRule::deepest) == core::none) continue;
-        const std::string label = "n=" + std::to_string(n) + " seed=" + std::to_string(seed) + " N=" + std::to_string(steps);
-        expect_sync_equals_core(g, flood(steps), 0, label);
-        expect_sync_equals_core(g, flood(steps, 0.3), seed, label + " gap 0.3 shuffled");
-        const core::PackResult r = core::pack(g, reference_options(flood(steps, 0.3)));
-        EXPECT_EQ(r.decision_step, r.iterations + r.flood_depth) << label;
-        failed_checks += r.layouts - 1;
-        ++runs;
-        if (::testing::Test::HasFailure()) return;
-      }
-  EXPECT_GT(failed_checks, 0) << "both outcomes of the exact check, over " << runs << " runs";
-}
-
-TEST(RadiusFloodTermination, ThreeConnectedGraphsEqualCoreBitForBit) {
-  for (std::size_t n : {5, 8, 12, 20, 35, 80})
-    for (std::uint64_t seed = 1; seed <= 2; ++seed) {
-      const core::PlanarGraph g = three_connected(n, 100 * n + seed);
-      expect_sync_equals_core(g, flood(static_cast<int>(seed)), 3 * seed, "n=" + std::to_string(n));
-      expect_sync_equals_core(g, flood(1, 0.3), seed, "n=" + std::to_string(n) + " gap 0.3");
-      if (::testing::Test::HasFailure()) return;
-    }
+TEST(RadiusFloodTermination, TriangulationsAndThreeConnectedGraphsEqualCoreBitForBit) {
+  int failed_checks = 0;
+  const std::vector<core::PackResult> loose = expect_gated_runs_equal_core(core::Termination::radius_flood);
+  for (const core::PackResult& r : loose) {
+    EXPECT_EQ(r.decision_step, r.iterations + r.flood_depth);
+    failed_checks += r.layouts - 1;
+  }
+  EXPECT_GT(failed_checks, 0) << "both outcomes of the exact check, over " << loose.size() << " runs";
 }
 
 TEST(RadiusFloodTermination, CapAccelerationAndLossyLinksEqualCore) {
