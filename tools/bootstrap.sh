@@ -25,6 +25,7 @@ packages=(
   libboost-dev libboost-graph-dev             # planarity (Boyer–Myrvold), graph algorithms
   libeigen3-dev                               # linear algebra
   libsuitesparse-dev                          # CHOLMOD: supernodal Cholesky for Newton packing at 10^6 (optional)
+  libopenblas0-pthread                        # the libblas.so.3/liblapack.so.3 CHOLMOD's factorization calls (~2x the reference BLAS)
   libmuparser-dev                             # metric fields given as expressions (meshing)
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev  # scenario files, CLI, JSON output
   libcairo2-dev                               # pictures (SVG, PNG)

@@ -60,6 +60,9 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   // The time limit is tested between steps: a run stops after the step in progress, then its final
   // layout and check are made as at the cap.
   bool timed_out = false;
+  // max |θ − 2π| of result.radii when a Newton step just computed it (its accepted trial), else NaN:
+  // the check then need not evaluate the angle sums again (the same function of the same radii).
+  double known_angle_error = std::numeric_limits<double>::quiet_NaN();
   auto out_of_time = [&] {
     if (options.time_limit > 0 && std::chrono::duration<double>(Clock::now() - start).count() >= options.time_limit)
       timed_out = true;
@@ -83,7 +86,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     result.layout = lay_out(k, result.radii, root, options.layout_method, options.layout_arithmetic);
     result.circles.assign(result.layout.circles.begin(), result.layout.circles.begin() + static_cast<long>(n));
     lap(phases.layout);
-    result.angle_error = angle_error(k, result.radii);
+    result.angle_error = std::isnan(known_angle_error) ? angle_error(k, result.radii) : known_angle_error;
     // A collapsed or unrepresentable layout (Precision) carries no claim: mid-run (Newton's first
     // steps, an early wave) it only means "not yet", so its coordinates are not checked at all — no
     // LPD/GLPD and no exact-packing decision is taken on them, and the run goes on. The final layout
@@ -149,6 +152,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
   Radii previous;
   Layout tree;  // Newton–Krylov: the layout tree (combinatorial: every round's)
   auto sweep_once = [&] {
+    known_angle_error = std::numeric_limits<double>::quiet_NaN();
     if (newton) {  // a Newton step, or a plain sweep where Newton cannot improve (rounding level)
       const NewtonStep step = newton_method.step(k, result.radii);
       phases.jacobian += step.jacobian_seconds;
@@ -156,6 +160,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
       phases.line_search += step.line_search_seconds;
       mark = Clock::now();  // the step's time is in its three phases; a fall-back sweep is a sweep
       if (step.improved) {
+        known_angle_error = step.error_after;
         ++result.jumps;
         return;
       }
