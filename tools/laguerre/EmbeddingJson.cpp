@@ -1,8 +1,10 @@
 #include "EmbeddingJson.hpp"
 
+#include <charconv>
 #include <fstream>
 #include <unordered_map>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/InputFile.hpp"
 #include "laguerre/core/graph/GraphError.hpp"
 
@@ -10,21 +12,57 @@ namespace laguerre::tools {
 
 using nlohmann::json;
 
-json embedding_to_json(const core::PlanarGraph& g, const core::CircleEmbedding& circles) {
-  json vertices = json::array();
-  for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
-    json nb = json::array();
-    for (core::Vertex w : g.neighbours(v)) nb.push_back(g.id(w));
-    vertices.push_back({{"id", g.id(v)},
-                        {"x", circles[v].x},
-                        {"y", circles[v].y},
-                        {"r", circles[v].r},
-                        {"boundary", g.is_boundary(v)},
-                        {"neighbours", nb}});
-  }
+void write_embedding_json(std::ostream& os, json doc, const core::PlanarGraph& g, const core::CircleEmbedding& circles,
+                          const std::vector<std::string>& local) {
   json outer = json::array();
   for (core::Vertex v : g.boundary_cycle()) outer.push_back(g.id(v));
-  return {{"outer_face", outer}, {"vertices", vertices}};
+  doc["outer_face"] = std::move(outer);
+  LAGUERRE_PRECONDITION(doc.is_object() && !doc.contains("vertices") && (--doc.end()).key() < "vertices",
+                        "write_embedding_json: every key of the document must sort before \"vertices\".");
+  LAGUERRE_PRECONDITION(local.empty() || local.size() == g.num_vertices(), "write_embedding_json: one 'local' per vertex.");
+  // dump(1) of the keys before "vertices", its closing "\n}" removed; then the vertices at depth 2,
+  // with dump(1)'s layout: one space of indent per level, "key": value, ",\n" between members.
+  std::string text = doc.dump(1);
+  text.resize(text.size() - 2);
+  text += ",\n \"vertices\": ";
+  if (g.num_vertices() == 0) text += "[]";
+  const auto number = [&](double x) { text += json(x).dump(); };  // nlohmann's own number format
+  const auto integer = [&](std::uint64_t x) {
+    char buf[24];
+    text.append(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
+  };
+  for (core::Vertex v = 0; v < g.num_vertices(); ++v) {
+    text += v == 0 ? "[\n  {\n   \"boundary\": " : ",\n  {\n   \"boundary\": ";
+    text += g.is_boundary(v) ? "true" : "false";
+    text += ",\n   \"id\": ";
+    integer(g.id(v));
+    if (!local.empty()) {
+      text += ",\n   \"local\": ";
+      text += json(local[v]).dump();
+    }
+    text += ",\n   \"neighbours\": ";
+    const auto nb = g.neighbours(v);
+    if (nb.empty()) text += "[]";
+    for (std::size_t i = 0; i < nb.size(); ++i) {
+      text += i == 0 ? "[\n    " : ",\n    ";
+      integer(g.id(nb[i]));
+    }
+    if (!nb.empty()) text += "\n   ]";
+    text += ",\n   \"r\": ";
+    number(circles[v].r);
+    text += ",\n   \"x\": ";
+    number(circles[v].x);
+    text += ",\n   \"y\": ";
+    number(circles[v].y);
+    text += "\n  }";
+    if (text.size() >= (1u << 20)) {  // written in pieces of about a megabyte
+      os << text;
+      text.clear();
+    }
+  }
+  if (g.num_vertices() > 0) text += "\n ]";
+  text += "\n}";
+  os << text;
 }
 
 bool is_embedding_file(const std::string& path) {

@@ -118,7 +118,7 @@ int run_pack(const PackArgs& a) {
       r.layout.resolution > 0
           ? std::max(53, static_cast<int>(std::ceil(53 + std::log2(core::Layout::degraded_resolution / r.layout.resolution))))
           : 0;
-  nlohmann::json doc = embedding_to_json(g, r.circles);
+  nlohmann::json doc;
   doc["format"] = "laguerre-embedding";
   doc["version"] = 1;
   doc["name"] = loaded.input.name;
@@ -161,10 +161,11 @@ int run_pack(const PackArgs& a) {
                                        {"layout", r.phase_seconds.layout},
                                        {"checks", r.phase_seconds.checks},
                                        {"final", r.phase_seconds.final}}}};
-  for (core::Vertex v = 0; v < g.num_vertices(); ++v)
-    doc["vertices"][v]["local"] = std::string(core::to_string(r.local[v]));
+  std::vector<std::string> local;
+  local.reserve(g.num_vertices());
+  for (core::Vertex v = 0; v < g.num_vertices(); ++v) local.emplace_back(core::to_string(r.local[v]));
   nlohmann::json faces = nlohmann::json::array();
-  const core::PackingComplex k = core::PackingComplex::from_graph(g);
+  const core::PackingComplex k = r.face_circles.empty() ? core::PackingComplex{} : core::PackingComplex::from_graph(g);
   for (std::size_t i = 0; i < r.face_circles.size(); ++i) {
     nlohmann::json ids = nlohmann::json::array();
     for (core::Dart d : g.face_darts(k.face_of_vertex[i])) ids.push_back(g.id(g.tail(d)));
@@ -173,9 +174,12 @@ int run_pack(const PackArgs& a) {
   doc["face_circles"] = faces;
 
   if (a.json_stdout) {
-    std::cout << doc.dump(1) << '\n';
+    write_embedding_json(std::cout, std::move(doc), g, r.circles, local);
+    std::cout << '\n';
   } else {
-    std::ofstream(stem + ".json") << doc.dump(1) << '\n';
+    std::ofstream out(stem + ".json");
+    write_embedding_json(out, std::move(doc), g, r.circles, local);
+    out << '\n';
   }
   std::vector<std::string> pictures;
   if (!a.no_picture) {

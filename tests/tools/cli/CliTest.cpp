@@ -54,6 +54,38 @@ TEST_F(Cli, PackWritesAGreedyEmbeddingAndPicture) {
   }
 }
 
+// The embedding file is streamed vertex by vertex (write_embedding_json): it must be, byte for byte,
+// nlohmann's dump(1) of the document it holds (what `pack` wrote when it built the whole document),
+// on a triangulation and on a 3-connected graph (face circles), in the file and on --json.
+TEST_F(Cli, PackEmbeddingFileIsTheCanonicalDumpOfItsDocument) {
+  for (const auto& g : {example, example3}) {
+    const std::string stem = path(fs::path(g).stem().string());
+    ASSERT_EQ(run("pack " + g + " --no-picture -o " + stem).status, 0);
+    std::ifstream in(stem + ".json");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto doc = nlohmann::json::parse(text);
+    EXPECT_EQ(doc.dump(1) + "\n", text) << g;
+    EXPECT_EQ(doc["vertices"].size(), 60u);
+    EXPECT_EQ(doc["vertices"][7]["local"], "holds");
+    EXPECT_FALSE(doc["outer_face"].empty());
+    if (g == example3) {
+      EXPECT_FALSE(doc["face_circles"].empty());
+    }
+    const Outcome r = run("pack " + g + " --no-picture --json", false);  // standard output only
+    ASSERT_EQ(r.status, 0);
+    auto streamed = nlohmann::json::parse(r.out);
+    EXPECT_EQ(streamed.dump(1) + "\n", r.out) << g;
+    streamed["packing"].erase("seconds");  // the run's timings differ; everything else is the file's
+    streamed["packing"].erase("cpu_seconds");
+    streamed["packing"].erase("phase_seconds");
+    auto stored = doc;
+    stored["packing"].erase("seconds");
+    stored["packing"].erase("cpu_seconds");
+    stored["packing"].erase("phase_seconds");
+    EXPECT_EQ(streamed, stored) << g;
+  }
+}
+
 TEST_F(Cli, PackRefusesToOverwriteWithoutForce) {
   const std::string stem = path("e");
   ASSERT_EQ(run("pack " + example + " -o " + stem).status, 0);
