@@ -171,45 +171,69 @@ Interior interior_of(const PackingComplex& k) {
   return in;
 }
 
-// J = ∂θ/∂u in compressed form (column c = row c by symmetry; the diagonal and the interior
-// neighbours of each interior vertex, indices increasing).
-void assemble_jacobian(const PackingComplex& k, const Radii& h, const Interior& in, std::vector<int>& outer,
-                       std::vector<int>& inner, std::vector<double>& values) {
+// The sparsity pattern of J = ∂θ/∂u in compressed form (column c = row c by symmetry; the diagonal
+// and the interior neighbours of each interior vertex, indices increasing), and where each corner's
+// derivatives go: fixed for a complex, so it is built once (JacobianPattern) and every Newton step
+// only fills the values.
+struct JacobianPattern {
+  std::vector<int> outer, inner;
+  std::vector<int> diagonal;  // per row: position of its diagonal entry in `inner`
+  std::vector<int> slot;      // per dart of an interior vertex (from first_dart): position of the entry
+                              // of its head, −1 for a boundary head (unused for boundary tails)
+};
+
+JacobianPattern jacobian_pattern(const PackingComplex& k, const Interior& in) {
   const PlanarGraph& g = k.graph;
   const std::size_t n = in.vertices.size();
-  outer.assign(n + 1, 0);
-  inner.clear();
-  values.clear();
-  std::vector<Lift> lifts(h.size());
-  for (Vertex v = 0; v < h.size(); ++v) lifts[v] = lift(h[v]);
-  std::vector<std::pair<int, double>> row;  // (column, value) of one row, before sorting
-  std::vector<int> slot;                    // per rotation position of a row: its entry in `row`, or −1
+  JacobianPattern p;
+  p.outer.assign(n + 1, 0);
+  p.diagonal.resize(n);
+  p.slot.assign(g.num_darts(), -1);
+  std::vector<std::pair<int, std::uint32_t>> row;  // (column, rotation position + 1; 0 for the diagonal)
   for (std::size_t i = 0; i < n; ++i) {
     const Vertex v = in.vertices[i];
     const Dart first = g.first_dart(v);
     const std::uint32_t deg = g.degree(v);
     row.clear();
-    row.emplace_back(static_cast<int>(i), 0.0);
-    for (std::uint32_t e = 0; e < deg; ++e)  // one slot per interior neighbour, in rotation order
-      if (in.row[g.head(first + e)] >= 0) row.emplace_back(static_cast<int>(in.row[g.head(first + e)]), 0.0);
-    slot.assign(deg, -1);
-    for (std::uint32_t e = 0, s = 1; e < deg; ++e)
-      if (in.row[g.head(first + e)] >= 0) slot[e] = static_cast<int>(s++);
+    row.emplace_back(static_cast<int>(i), 0);
+    for (std::uint32_t e = 0; e < deg; ++e)
+      if (in.row[g.head(first + e)] >= 0) row.emplace_back(static_cast<int>(in.row[g.head(first + e)]), e + 1);
+    std::sort(row.begin(), row.end());
+    for (const auto& [c, e] : row) {
+      const int at = static_cast<int>(p.inner.size());
+      if (e == 0) p.diagonal[i] = at;
+      else p.slot[first + e - 1] = at;
+      p.inner.push_back(c);
+    }
+    p.outer[i + 1] = static_cast<int>(p.inner.size());
+  }
+  return p;
+}
+
+// The values of J on `pattern` (values.size() == pattern.inner.size()). Each entry is the sum of its
+// corners' derivatives in the order of the rotation from the first dart (the diagonal: d.dv of every
+// corner; a neighbour's entry: da of its own corner, db of the previous one).
+void assemble_jacobian(const PackingComplex& k, const Radii& h, const Interior& in, const JacobianPattern& pattern,
+                       double* values) {
+  const PlanarGraph& g = k.graph;
+  const std::size_t n = in.vertices.size();
+  std::fill(values, values + pattern.inner.size(), 0.0);
+  std::vector<Lift> lifts(h.size());
+  for (Vertex v = 0; v < h.size(); ++v) lifts[v] = lift(h[v]);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vertex v = in.vertices[i];
+    const Dart first = g.first_dart(v);
+    const std::uint32_t deg = g.degree(v);
+    double& diagonal = values[pattern.diagonal[i]];
     for (std::uint32_t e = 0; e < deg; ++e) {
       const std::uint32_t f = e + 1 == deg ? 0 : e + 1;
       const Vertex a = g.head(first + e), b = g.head(first + f);
       const CornerDerivative d = corner_derivative(lifts[v], lifts[a], lifts[b], h[v], h[a], h[b], k.cos_angle[first + e],
                                                    k.cos_angle[first + f], k.cos_angle[g.next_in_face(first + e)]);
-      row[0].second += d.dv;
-      if (slot[e] >= 0) row[static_cast<std::size_t>(slot[e])].second += d.da;
-      if (slot[f] >= 0) row[static_cast<std::size_t>(slot[f])].second += d.db;
+      diagonal += d.dv;
+      if (const int s = pattern.slot[first + e]; s >= 0) values[s] += d.da;
+      if (const int s = pattern.slot[first + f]; s >= 0) values[s] += d.db;
     }
-    std::sort(row.begin(), row.end());
-    for (const auto& [c, x] : row) {
-      inner.push_back(c);
-      values.push_back(x);
-    }
-    outer[i + 1] = static_cast<int>(inner.size());
   }
 }
 
@@ -271,15 +295,16 @@ double radius_of_u(double u) {
 
 AngleJacobian angle_jacobian(const PackingComplex& k, const Radii& h) {
   const Interior in = interior_of(k);
-  std::vector<int> outer, inner;
-  std::vector<double> values;
-  assemble_jacobian(k, h, in, outer, inner, values);
+  const JacobianPattern pattern = jacobian_pattern(k, in);
+  std::vector<double> values(pattern.inner.size());
+  assemble_jacobian(k, h, in, pattern, values.data());
   AngleJacobian out;
   out.interior = in.vertices;
   out.entries.reserve(values.size());
-  for (std::size_t r = 0; r + 1 < outer.size(); ++r)
-    for (int p = outer[r]; p < outer[r + 1]; ++p)
-      out.entries.push_back({static_cast<std::uint32_t>(r), static_cast<std::uint32_t>(inner[static_cast<std::size_t>(p)]),
+  for (std::size_t r = 0; r + 1 < pattern.outer.size(); ++r)
+    for (int p = pattern.outer[r]; p < pattern.outer[r + 1]; ++p)
+      out.entries.push_back({static_cast<std::uint32_t>(r),
+                             static_cast<std::uint32_t>(pattern.inner[static_cast<std::size_t>(p)]),
                              values[static_cast<std::size_t>(p)]});
   return out;
 }
@@ -313,8 +338,8 @@ struct NewtonMethod::State {
   using Cholesky = Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>>;
 #endif
   std::optional<Cholesky> cholesky;  // symbolic analysis kept across steps
-  std::vector<int> outer, inner;
-  std::vector<double> values;
+  std::optional<JacobianPattern> pattern;
+  SpMat a;  // −J on `pattern`, its values refilled every step
   // The residuals of the radii the last step ended with (its accepted trial): the next step starts
   // from them, so θ is not evaluated twice for the same radii.
   Radii residual_radii;
@@ -350,6 +375,7 @@ void NewtonMethod::step_in(const PackingComplex& k, Radii& h, NewtonStep& out, c
     st.num_vertices = k.graph.num_vertices();
     st.interior = interior_of(k);
     st.cholesky.reset();
+    st.pattern.reset();
     st.residual_radii.clear();
   }
   const std::vector<Vertex>& interior = st.interior.vertices;
@@ -379,10 +405,16 @@ void NewtonMethod::step_in(const PackingComplex& k, Radii& h, NewtonStep& out, c
     if (lu.info() != Eigen::Success) return;
   } else {
     phase(0);
-    assemble_jacobian(k, h, st.interior, st.outer, st.inner, st.values);
-    for (double& x : st.values) x = -x;  // A = −J, symmetric positive definite
-    const SpMat a = Eigen::Map<const SpMat>(n, n, static_cast<Eigen::Index>(st.values.size()), st.outer.data(),
-                                            st.inner.data(), st.values.data());
+    if (!st.pattern) {
+      st.pattern = jacobian_pattern(k, st.interior);
+      std::vector<double> zeros(st.pattern->inner.size(), 0.0);
+      st.a = Eigen::Map<const SpMat>(n, n, static_cast<Eigen::Index>(zeros.size()), st.pattern->outer.data(),
+                                     st.pattern->inner.data(), zeros.data());
+    }
+    SpMat& a = st.a;
+    double* values = a.valuePtr();
+    assemble_jacobian(k, h, st.interior, *st.pattern, values);
+    for (Eigen::Index p = 0; p < a.nonZeros(); ++p) values[p] = -values[p];  // A = −J, symmetric positive definite
     phase(1);
     Eigen::VectorXd du;
     if (solver_ == NewtonSolver::cholesky) {
