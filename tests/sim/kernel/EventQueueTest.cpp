@@ -110,6 +110,36 @@ TEST(EventQueueTest, LadderHoldModelAndPeekMatchTheReferenceHeap) {
   EXPECT_GT(peeked, 1000u);  // the hint is usually available (6 places at each of 401 checks)
 }
 
+// A synchronous round: thousands of events at one time, pushed out of seq order (the protocol's
+// keys follow the links, not the order of scheduling). The bucket is sorted when taken, so every
+// pop is the reference's and peek(k) names the k-th next event exactly (the kernel's prefetch).
+TEST(EventQueueTest, LargeSameTimeBucketIsSortedAndPeekable) {
+  LadderEventQueue ladder;
+  DaryEventHeap<2> reference;
+  RandomStream rng = RandomStream::of(5, StreamKind::user, 3);
+  std::vector<std::uint64_t> seqs(5000);
+  for (std::size_t i = 0; i < seqs.size(); ++i) seqs[i] = i;
+  for (std::size_t i = seqs.size() - 1; i > 0; --i) std::swap(seqs[i], seqs[rng.next_u64() % (i + 1)]);
+  for (std::uint64_t s : seqs) {
+    const Event e{1'000'000, s, s, 0, 0, 0};
+    ladder.push(e);
+    reference.push(e);
+  }
+  ladder.push(Event{2'000'000, 9999, 0, 0, 0, 0});  // a later event: the round stays one bucket
+  reference.push(Event{2'000'000, 9999, 0, 0, 0, 0});
+  for (std::size_t step = 0; step < 5000; ++step) {
+    ASSERT_EQ(ladder.top().seq, reference.top().seq) << "step " << step;
+    if (step + 4 < 5000) {
+      const Event* ahead = ladder.peek(4);
+      ASSERT_NE(ahead, nullptr) << "step " << step;
+      EXPECT_EQ(ahead->seq, reference.top().seq + 4) << "step " << step;  // seqs 0…4999 in order
+    }
+    ladder.pop();
+    reference.pop();
+  }
+  EXPECT_EQ(ladder.top().seq, 9999u);
+}
+
 TEST(EventQueueTest, DaryHeapsMatchTheReferenceHeap) {
   cross_check<DaryEventHeap<4>>(5, 1000, 40'000);
   cross_check<DaryEventHeap<8>>(6, 2, 40'000);
