@@ -327,7 +327,7 @@ Vertex choose_root(const PackingComplex& k, RootRule rule) {
 
 namespace {
 template <class T>
-Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool frames) {
+Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool frames, bool stop_when_collapsed) {
   const PlanarGraph& g = k.graph;
   const std::size_t n = g.num_vertices();
   Layout out;
@@ -386,6 +386,7 @@ Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool fram
     }
   };
 
+  bool stopped = false;  // stop_when_collapsed: a collapsed circle was placed
   std::vector<Vertex> placed_now;
   if (root != none) {
     at[root] = place_root_t(T(h[root]));
@@ -461,9 +462,16 @@ Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool fram
     for (const auto& [w, ab] : placements) {
       out.wave[w] = round;
       placed_now.push_back(w);
+      if (stop_when_collapsed && !stopped) {
+        const Circle c{static_cast<double>(at[w].circle.x), static_cast<double>(at[w].circle.y),
+                       static_cast<double>(at[w].circle.r)};
+        stopped = circle_resolution(c) < Layout::collapsed_resolution;
+      }
     }
+    if (stopped) break;
   }
-  for (Vertex v = 0; v < n; ++v)
+  out.complete = !stopped;
+  for (Vertex v = 0; v < n && !stopped; ++v)
     if (out.wave[v] == none)
       throw std::logic_error("lay_out: vertex " + std::to_string(g.id(v)) + " was never placed; the complex is not a triangulated disc.");
 
@@ -471,6 +479,12 @@ Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool fram
   out.circles.resize(n);
   out.centre.resize(n);
   for (Vertex v = 0; v < n; ++v) {
+    if (out.wave[v] == none) {  // (stopped) never placed
+      constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+      out.centre[v] = {nan, nan};
+      out.circles[v] = {nan, nan, nan};
+      continue;
+    }
     out.centre[v] = {static_cast<double>(at[v].centre.re), static_cast<double>(at[v].centre.im)};
     out.circles[v] = {static_cast<double>(at[v].circle.x), static_cast<double>(at[v].circle.y), static_cast<double>(at[v].circle.r)};
   }
@@ -485,15 +499,18 @@ double circle_resolution(const Circle& c) {
   return c.r / ulp;
 }
 
-Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root, LayoutMethod method, LayoutArithmetic arithmetic) {
+Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root, LayoutMethod method, LayoutArithmetic arithmetic,
+               bool stop_when_collapsed) {
   const bool frames = method == LayoutMethod::frames;
-  Layout out = arithmetic == LayoutArithmetic::binary128 ? lay_out_t<Quad>(k, h, root, frames)
-                                                         : lay_out_t<double>(k, h, root, frames);
+  Layout out = arithmetic == LayoutArithmetic::binary128 ? lay_out_t<Quad>(k, h, root, frames, stop_when_collapsed)
+                                                         : lay_out_t<double>(k, h, root, frames, stop_when_collapsed);
   out.method = method;
   out.arithmetic = arithmetic;
   out.smallest_radius = std::numeric_limits<double>::infinity();
   out.resolution = std::numeric_limits<double>::infinity();
-  for (const Circle& c : out.circles) {
+  for (std::size_t v = 0; v < out.circles.size(); ++v) {
+    if (!out.complete && out.wave[v] == none) continue;  // not placed
+    const Circle& c = out.circles[v];
     out.smallest_radius = std::min(out.smallest_radius, c.r);
     out.resolution = std::min(out.resolution, circle_resolution(c));
   }

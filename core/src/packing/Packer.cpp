@@ -83,7 +83,11 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     // Returns whether the requested rule holds; records first occurrences of tracked rules.
     ++result.layouts;
     lap(phases.checks);  // (the radius-only gate before it)
-    result.layout = lay_out(k, result.radii, root, options.layout_method, options.layout_arithmetic);
+    // Mid-run, a collapsed layout is never checked, so the LPD, exact and cap rules cannot end the run
+    // on it: the wave may stop at its first collapsed circle. Not for the angle rule (decided on the
+    // radii: the run may end with this layout) nor Newton–Krylov (its steps read the whole tree).
+    const bool may_stop = !final && options.stop != StopRule::angle && options.acceleration != Acceleration::newton_krylov;
+    result.layout = lay_out(k, result.radii, root, options.layout_method, options.layout_arithmetic, may_stop);
     result.circles.assign(result.layout.circles.begin(), result.layout.circles.begin() + static_cast<long>(n));
     lap(phases.layout);
     result.angle_error = std::isnan(known_angle_error) ? angle_error(k, result.radii) : known_angle_error;

@@ -200,3 +200,46 @@ TEST(LayoutPrecision, CollapsedLayoutsMidRunAreNotCheckedAndTheFinalOneIs) {
     }
   }
 }
+
+TEST(LayoutPrecision, StopWhenCollapsedStopsOnlyCollapsedLayoutsAndKeepsThePlacedBits) {
+  // The packer's mid-run layouts stop at the first collapsed circle (lay_out's stop_when_collapsed).
+  // On the nested chain's collapsed radii (Newton to the cap) the stopped wave must say collapsed as
+  // the whole one does, be incomplete, and agree bit for bit on every circle it placed; on
+  // representable radii (the initial ones) it must be the whole layout.
+  const PlanarGraph g = nested_chain(45);
+  PackOptions opt;
+  opt.acceleration = Acceleration::newton;
+  opt.stop = StopRule::cap;
+  opt.max_iterations = 30;
+  opt.root = RootRule::smallest_id;
+  opt.layout_method = LayoutMethod::frames;
+  const PackResult r = pack(g, opt);
+  ASSERT_EQ(r.layout.precision, Precision::collapsed);
+  const PackingComplex k = PackingComplex::from_graph(g);
+  const Vertex root = choose_root(k, RootRule::smallest_id);
+  for (const LayoutMethod method : {LayoutMethod::frames, LayoutMethod::wave}) {
+    const Layout whole = lay_out(k, r.radii, root, method, LayoutArithmetic::binary64, false);
+    const Layout stopped = lay_out(k, r.radii, root, method, LayoutArithmetic::binary64, true);
+    ASSERT_TRUE(whole.complete);
+    ASSERT_TRUE(whole.precision == Precision::collapsed || whole.precision == Precision::unrepresentable);
+    EXPECT_TRUE(stopped.precision == Precision::collapsed || stopped.precision == Precision::unrepresentable);
+    EXPECT_FALSE(stopped.complete);
+    std::size_t placed = 0;
+    for (Vertex v = 0; v < k.graph.num_vertices(); ++v) {
+      if (stopped.wave[v] == none) {
+        EXPECT_TRUE(std::isnan(stopped.circles[v].r)) << v;
+        continue;
+      }
+      ++placed;
+      EXPECT_EQ(stopped.wave[v], whole.wave[v]) << v;
+      EXPECT_EQ(stopped.circles[v].x, whole.circles[v].x) << v;
+      EXPECT_EQ(stopped.circles[v].y, whole.circles[v].y) << v;
+      EXPECT_EQ(stopped.circles[v].r, whole.circles[v].r) << v;
+    }
+    EXPECT_LT(placed, k.graph.num_vertices());
+    EXPECT_GE(stopped.smallest_radius, whole.smallest_radius);
+    const Layout first = lay_out(k, initial_radii(k), root, method, LayoutArithmetic::binary64, true);
+    EXPECT_TRUE(first.complete);
+    EXPECT_NE(first.precision, Precision::collapsed);
+  }
+}

@@ -65,6 +65,9 @@ struct Layout {
   double resolution = 0;                    ///< min over circles of circle_resolution (0: unrepresentable)
   LayoutMethod method = LayoutMethod::wave;                  ///< how the wave placed the circles
   LayoutArithmetic arithmetic = LayoutArithmetic::binary64;  ///< what the wave computed in
+  bool complete = true;  ///< false: stopped after the round that placed the first collapsed circle
+                         ///< (`stop_when_collapsed`); unplaced vertices have wave `none` and NaN
+                         ///< circles, and smallest_radius/resolution are over the placed circles
 };
 
 /// Chooses the layout root by `rule`; `none` if no vertex of G is interior.
@@ -84,8 +87,12 @@ Vertex choose_root(const PackingComplex& k, RootRule rule);
 /// `method` = frames computes each placement through the parent's frame instead (same rounds, same
 /// tree); `arithmetic` = binary128 runs the wave in quadruple precision and rounds only the result to
 /// doubles. The defaults are what the network computes.
+/// `stop_when_collapsed`: the wave stops after the round in which a circle rounds to a collapsed or
+/// unrepresentable one (precision is then Precision::collapsed or unrepresentable, as the whole layout's
+/// would be, `complete` false): for callers that only need to know that no claim can be made on it
+/// (the packer's mid-run checks). The circles placed up to there are the same bits as without it.
 Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root, LayoutMethod method = LayoutMethod::wave,
-               LayoutArithmetic arithmetic = LayoutArithmetic::binary64);
+               LayoutArithmetic arithmetic = LayoutArithmetic::binary64, bool stop_when_collapsed = false);
 
 /// r / ulp(max(|x|, |y|, r)) of a stored circle: how many units in the last place of its coordinates
 /// its radius spans (0 if a coordinate is not finite or r ≤ 0).
