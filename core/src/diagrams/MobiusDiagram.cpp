@@ -475,6 +475,42 @@ Sign compare_along(const std::vector<MobiusSite>& sites, const std::array<SiteIn
   });
 }
 
+/// δ_a − δ_b = A|x|² − 2 (B_x x + B_y y) + C as (A, B_x, B_y, C): A = λ_a − λ_b, B = λ_a p_a − λ_b p_b,
+/// C = c_a − c_b with c = λ|p|² − μ.
+template <class NT>
+std::array<NT, 4> difference(const MobiusSite& a, const MobiusSite& b) {
+  const NT la(a.lambda), lb(b.lambda), xa(a.x), ya(a.y), xb(b.x), yb(b.y);
+  return {la - lb, la * xa - lb * xb, la * ya - lb * yb,
+          la * (xa * xa + ya * ya) - NT(a.mu) - (lb * (xb * xb + yb * yb) - NT(b.mu))};
+}
+
+/// Whether u = δ_k − δ_i and w = δ_k − δ_j (as from `difference`) may satisfy u = −s w with s > 0: false
+/// only when an interval proves otherwise (a 2 × 2 minor certainly nonzero, or u · w certainly ≥ 0).
+/// Interval arithmetic: the caller protects the rounding mode.
+bool may_be_between(const std::array<CGAL::Interval_nt<false>, 4>& u, const std::array<CGAL::Interval_nt<false>, 4>& w) {
+  const CGAL::Interval_nt<false> dot = u[0] * w[0] + u[1] * w[1] + u[2] * w[2] + u[3] * w[3];
+  if (dot.inf() >= 0) return false;
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) {
+      const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+      const CGAL::Interval_nt<false> m = u[ua] * w[ub] - u[ub] * w[ua];
+      if (m.inf() > 0 || m.sup() < 0) return false;
+    }
+  return true;
+}
+
+/// Whether δ_k = (1 − t) δ_i + t δ_j for some 0 < t < 1, i.e. δ_k − δ_i = −s (δ_k − δ_j) with s > 0:
+/// then δ_k ≥ min(δ_i, δ_j) everywhere, with equality only on the bisector of i and j. Exact.
+bool strictly_between(const std::vector<MobiusSite>& sites, SiteIndex k, SiteIndex i, SiteIndex j) {
+  return filtered([&]<class NT>() {
+    const std::array<NT, 4> u = difference<NT>(sites[k], sites[i]), w = difference<NT>(sites[k], sites[j]);
+    for (std::size_t a = 0; a < 4; ++a)
+      for (std::size_t b = a + 1; b < 4; ++b)
+        if (sign_of<NT>(u[a] * w[b] - u[b] * w[a]) != Sign::zero) return false;
+    return sign_of<NT>(u[0] * w[0] + u[1] * w[1] + u[2] * w[2] + u[3] * w[3]) == Sign::negative;
+  });
+}
+
 /// Point-in-polygon by crossing number (polygon as a closed polyline, last point may repeat the first).
 bool inside_polyline(const std::vector<Point2>& poly, Point2 q) {
   bool in = false;
@@ -596,7 +632,7 @@ struct MobiusDiagram::Impl {
   std::vector<MobiusSite> sites;
   Box box, frame;
   RT3 rt;
-  std::vector<bool> hidden;
+  std::vector<bool> hidden, weakly_hidden;
   std::vector<std::vector<SiteIndex>> adjacency;
   std::vector<std::pair<SiteIndex, SiteIndex>> lifted;
   std::vector<MobiusVertex> vertices;
@@ -629,6 +665,7 @@ struct MobiusDiagram::Impl {
     return rt.nearest_power_vertex(K::Point_3(x, y, x * x + y * y))->info();
   }
   void build();
+  void remove_weakly_hidden();
   void build_vertices(std::unordered_map<std::uint64_t, std::vector<std::size_t>>& on_pair);
   void build_edges(const std::unordered_map<std::uint64_t, std::vector<std::size_t>>& on_pair,
                    std::vector<std::pair<std::size_t, std::size_t>>& unbounded);
@@ -657,6 +694,7 @@ void MobiusDiagram::Impl::build() {
     input.emplace_back(WP3(K::Point_3(l * x, l * y, h), l * (l - 1) * (x * x + y * y) + h * h + FT(s.mu)), i);
   }
   rt.insert(input.begin(), input.end());
+  remove_weakly_hidden();
   hidden.assign(n, true);
   for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v) hidden[v->info()] = false;
   adjacency.assign(n, {});
@@ -672,6 +710,45 @@ void MobiusDiagram::Impl::build() {
   std::vector<std::pair<std::size_t, std::size_t>> unbounded;
   build_edges(on_pair, unbounded);
   build_cells(unbounded);
+}
+
+void MobiusDiagram::Impl::remove_weakly_hidden() {
+  // A weakly hidden site k (see the header): δ_k − δ_i = −s (δ_k − δ_j), s > 0, for two neighbours i, j
+  // of k in the triangulation. Its lifted power cell lies in the plane π_i = π_j and has no interior, so
+  // removing k changes no other cell (the lower envelope of the power functions is the same without
+  // it), but the sites on the two sides of a planar cell, which are such a pair (the lifted centres are
+  // collinear, k's between them), become adjacent: their edge is then built like any other.
+  // Candidates are the pairs of neighbours that intervals cannot separate; each is decided exactly.
+  weakly_hidden.assign(sites.size(), false);
+  if (rt.number_of_vertices() < 3) return;
+  std::vector<std::vector<SiteIndex>> around(sites.size());
+  for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e) {
+    const SiteIndex a = e->first->vertex(e->second)->info(), b = e->first->vertex(e->third)->info();
+    around[a].push_back(b), around[b].push_back(a);
+  }
+  std::vector<std::array<SiteIndex, 3>> candidates;
+  {
+    using I = CGAL::Interval_nt<false>;
+    CGAL::Protect_FPU_rounding<true> guard;
+    std::vector<std::array<I, 4>> d;
+    for (SiteIndex k = 0; k < sites.size(); ++k) {
+      const std::vector<SiteIndex>& nb = around[k];
+      if (nb.size() < 2) continue;
+      d.clear();
+      for (SiteIndex i : nb) d.push_back(difference<I>(sites[k], sites[i]));
+      for (std::size_t a = 0; a < nb.size(); ++a)
+        for (std::size_t b = a + 1; b < nb.size(); ++b)
+          if (may_be_between(d[a], d[b])) candidates.push_back({k, nb[a], nb[b]});
+    }
+  }
+  bool any = false;
+  for (const auto& [k, i, j] : candidates)
+    if (!weakly_hidden[k] && strictly_between(sites, k, i, j)) weakly_hidden[k] = any = true;
+  if (!any) return;
+  std::vector<RT3::Vertex_handle> weak;
+  for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
+    if (weakly_hidden[v->info()]) weak.push_back(v);
+  for (const RT3::Vertex_handle& v : weak) rt.remove(v);
 }
 
 void MobiusDiagram::Impl::build_vertices(std::unordered_map<std::uint64_t, std::vector<std::size_t>>& on_pair) {
@@ -1095,6 +1172,10 @@ void MobiusDiagram::Impl::build_cells(const std::vector<std::pair<std::size_t, s
       areas[k] = own_area(loops[s][k]);
       if (areas[k] > 0) outers.push_back(k);
     }
+    // A site with a single loop has it as its outer boundary, whatever the sign of its area in doubles:
+    // a lens thinner than an ulp, or a sliver reaching a far vertex, can round to a non-positive area
+    // (fuzz finding sites-7), and a hole needs an outer boundary around it.
+    if (outers.empty() && loops[s].size() == 1) outers.push_back(0), areas[0] = std::fabs(areas[0]) + 1e-300;
     std::sort(outers.begin(), outers.end(), [&](std::size_t a, std::size_t b) { return areas[a] < areas[b]; });
     std::vector<std::vector<Point2>> outer_poly;
     if (outers.size() > 1)
@@ -1140,6 +1221,12 @@ std::vector<SiteIndex> MobiusDiagram::hidden_sites() const {
   std::vector<SiteIndex> out;
   for (SiteIndex i = 0; i < impl_->hidden.size(); ++i)
     if (impl_->hidden[i]) out.push_back(i);
+  return out;
+}
+std::vector<SiteIndex> MobiusDiagram::weakly_hidden_sites() const {
+  std::vector<SiteIndex> out;
+  for (SiteIndex i = 0; i < impl_->weakly_hidden.size(); ++i)
+    if (impl_->weakly_hidden[i]) out.push_back(i);
   return out;
 }
 std::vector<SiteIndex> MobiusDiagram::empty_sites() const {

@@ -566,3 +566,156 @@ TEST(MobiusDiagram, NearTieVertexOfTheBenchmarkSites) {
   EXPECT_TRUE(brute.erase({3, 5, 19}) && brute.erase({3, 19, 25}));
   EXPECT_EQ(triples, brute);
 }
+
+namespace {
+
+// Brute force in rationals: the sites k with δ_k = (1 − t) δ_i + t δ_j, 0 < t < 1, for two other sites
+// i, j (δ_k − δ_i = −s (δ_k − δ_j), s > 0): never strictly nearest, so their cells have no interior.
+std::set<SiteIndex> brute_force_combinations(const std::vector<MobiusSite>& s) {
+  auto diff = [&](SiteIndex a, SiteIndex b) {
+    const Rational la(s[a].lambda), lb(s[b].lambda), xa(s[a].x), ya(s[a].y), xb(s[b].x), yb(s[b].y);
+    return std::array<Rational, 4>{la - lb, la * xa - lb * xb, la * ya - lb * yb,
+                                   la * (xa * xa + ya * ya) - Rational(s[a].mu) - lb * (xb * xb + yb * yb) + Rational(s[b].mu)};
+  };
+  std::set<SiteIndex> out;
+  for (SiteIndex k = 0; k < s.size(); ++k)
+    for (SiteIndex i = 0; i < s.size() && !out.count(k); ++i)
+      for (SiteIndex j = i + 1; j < s.size() && !out.count(k); ++j) {
+        if (i == k || j == k) continue;
+        const auto u = diff(k, i), w = diff(k, j);
+        Rational dot = 0;
+        bool proportional = true;
+        for (std::size_t a = 0; a < 4; ++a) {
+          dot += u[a] * w[a];
+          for (std::size_t b = a + 1; b < 4; ++b) proportional = proportional && u[a] * w[b] == u[b] * w[a];
+        }
+        if (proportional && dot < 0) out.insert(k);
+      }
+  return out;
+}
+
+// The site k with δ_k = (1 − t) δ_i + t δ_j (exact when the results are representable).
+MobiusSite combination(const MobiusSite& i, const MobiusSite& j, double t) {
+  const double l = (1 - t) * i.lambda + t * j.lambda;
+  const double x = ((1 - t) * i.lambda * i.x + t * j.lambda * j.x) / l, y = ((1 - t) * i.lambda * i.y + t * j.lambda * j.y) / l;
+  const double ci = i.lambda * (i.x * i.x + i.y * i.y) - i.mu, cj = j.lambda * (j.x * j.x + j.y * j.y) - j.mu;
+  return {x, y, l, l * (x * x + y * y) - ((1 - t) * ci + t * cj)};
+}
+
+// The diagram is valid, its weakly hidden sites are among the brute-force combinations, every such
+// combination has an empty cell and is hidden (weakly or not), locate answers an exact nearest site
+// and the computed cells agree with the exact nearest site wherever it is unique (sample points and
+// points near the bisectors of the combinations' pairs, where only the i–j edge separates the cells).
+void check_combinations(const std::vector<MobiusSite>& s, const Box& box, unsigned seed, const std::string& what) {
+  const MobiusDiagram d(s, box);
+  ASSERT_TRUE(d.is_valid(true)) << what;
+  const std::set<SiteIndex> combos = brute_force_combinations(s);
+  const std::vector<SiteIndex> weak = d.weakly_hidden_sites(), hidden = d.hidden_sites(), empty = d.empty_sites();
+  for (SiteIndex k : weak) EXPECT_TRUE(combos.count(k)) << what << ": weakly hidden " << k;
+  for (SiteIndex k : combos) {
+    EXPECT_NE(std::find(hidden.begin(), hidden.end(), k), hidden.end()) << what << ": combination " << k;
+    EXPECT_NE(std::find(empty.begin(), empty.end(), k), empty.end()) << what << ": combination " << k;
+  }
+  for (const auto& e : d.edges()) EXPECT_TRUE(!combos.count(e.a) && !combos.count(e.b)) << what;
+  std::size_t unique = 0;
+  for (const Point2 q : sample_points(d.frame(), 2000, seed)) {
+    const auto best = exact_nearest(s, q);
+    EXPECT_NE(std::find(best.begin(), best.end(), d.locate(q)), best.end()) << what << " at " << q.x << ", " << q.y;
+    EXPECT_EQ(std::find(weak.begin(), weak.end(), d.locate(q)), weak.end()) << what;
+    if (best.size() != 1) continue;
+    std::vector<double> ds;
+    for (const auto& site : s) ds.push_back(mobius_distance(q, site));
+    std::sort(ds.begin(), ds.end());
+    if (ds[1] - ds[0] <= 1e-6 * (std::fabs(ds[0]) + std::fabs(ds[1]) + 1)) continue;
+    EXPECT_EQ(d.locate_in_cells(q).first, best[0]) << what << " cells at " << q.x << ", " << q.y;
+    ++unique;
+  }
+  EXPECT_GT(unique, 1500u) << what;
+}
+
+}  // namespace
+
+TEST(MobiusDiagram, SharedBisectorMiddleSiteIsWeaklyHidden) {
+  // Fuzz finding sites-6 (tests/fuzz/regressions/sites/sites-6-*): δ_2 = (δ_0 + δ_1)/2, all three equal on
+  // x = 1. Site 2's cell is that line: it is weakly hidden, and the edge of 0 and 1 is the line x = 1
+  // (before, the diagram put two edges of site 2 there and none of 0 and 1: cell 0 was not closed).
+  const std::vector<MobiusSite> three{{0, 0, 1, 1}, {2, 0, 1, 1}, {1, 0, 1, 0}};
+  const Box box{-0.3, -0.3, 2.3, 0.3};
+  const MobiusDiagram d(three, box);
+  ASSERT_TRUE(d.is_valid(true));
+  EXPECT_EQ(d.weakly_hidden_sites(), (std::vector<SiteIndex>{2}));
+  EXPECT_EQ(d.hidden_sites(), (std::vector<SiteIndex>{2}));
+  EXPECT_EQ(d.empty_sites(), (std::vector<SiteIndex>{2}));
+  ASSERT_EQ(d.edges().size(), 1u);
+  EXPECT_EQ(d.edges()[0].a, 0u);
+  EXPECT_EQ(d.edges()[0].b, 1u);
+  EXPECT_EQ(d.edges()[0].curve.from.x, 1.0);
+  EXPECT_EQ(d.edges()[0].curve.to.x, 1.0);
+  check_combinations(three, box, 1, "three sites");
+  // With a site of λ = 488 at (1, 0), twice (its cell is the point (1, 0), where all meet).
+  check_combinations({{0, 0, 1, 1}, {2, 0, 1, 1}, {1, 0, 1, 0}, {1, 0, 488, 0}, {1, 0, 488, 0}}, box, 2, "point cells");
+  // Without a common bisector (μ_2 slightly smaller), site 2 has a thin cell of its own.
+  const MobiusDiagram thin({{0, 0, 1, 1}, {2, 0, 1, 1}, {1, 0, 1, 0.001}}, box);
+  ASSERT_TRUE(thin.is_valid(true));
+  EXPECT_TRUE(thin.weakly_hidden_sites().empty());
+  EXPECT_FALSE(thin.cell(2).empty());
+}
+
+TEST(MobiusDiagram, CombinationsOfTwoSitesAgreeWithTheExactOracle) {
+  // Random generic sites plus exact combinations of pairs of them: on a bisector line (equal λ; a family
+  // of three sites between the two, t = 1/4, 1/2, 3/4) and on a bisector circle (λ 1 and 3, t = 1/2),
+  // each on its own and among the others (where some are hidden by other sites).
+  for (unsigned seed : {41u, 42u, 43u}) {
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<int> coordinate(0, 10);
+    auto integer_site = [&](double lambda) {
+      const double x = 4 * coordinate(rng), y = 4 * coordinate(rng);
+      return MobiusSite{x, y, lambda, static_cast<double>(coordinate(rng))};
+    };
+    const MobiusSite a = integer_site(1), b = integer_site(1), c = integer_site(1), e = integer_site(3);
+    if ((a.x == b.x && a.y == b.y) || (c.x == e.x && c.y == e.y)) continue;
+    std::vector<MobiusSite> family{a, b, combination(a, b, 0.25), combination(a, b, 0.5), combination(a, b, 0.75)};
+    std::vector<MobiusSite> circle{c, e, combination(c, e, 0.5)};
+    const Box box{-4, -4, 44, 44};
+    check_combinations(family, box, seed, "line family, seed " + std::to_string(seed));
+    EXPECT_EQ(brute_force_combinations(family), (std::set<SiteIndex>{2, 3, 4}));
+    check_combinations(circle, box, seed, "circle, seed " + std::to_string(seed));
+    EXPECT_EQ(brute_force_combinations(circle), (std::set<SiteIndex>{2}));
+    std::vector<MobiusSite> all = random_mobius(20, seed);
+    for (auto& s : all) s.x *= 4, s.y *= 4;
+    all.insert(all.end(), family.begin(), family.end());
+    all.insert(all.end(), circle.begin(), circle.end());
+    std::shuffle(all.begin(), all.end(), rng);
+    check_combinations(all, box, seed, "among others, seed " + std::to_string(seed));
+  }
+}
+
+TEST(MobiusDiagram, SingleLoopCellsAreOuterBoundariesWhateverTheirRoundedArea) {
+  // Fuzz finding sites-7 (tests/fuzz/regressions/sites/sites-7-*): a cell with one loop whose area in
+  // doubles is not positive was taken for a hole with no outer boundary ("an outer boundary of cell 1
+  // is not closed"). (a) λ = 0.2 is not exactly 0.2: the bisector circle of sites 0 and 2 crosses the
+  // line x = 3.5 of sites 0 and 1 at y = ±9.3e-9, and site 1's cell is a lens about 3.5e-17 wide
+  // there (area rounded to 0 or below). (b) Equal λ, nearly collinear sites: a cell reaching a vertex
+  // at 4.1e15 whose area, summed from that vertex, rounds negative.
+  const std::vector<std::vector<MobiusSite>> cases{
+      {{0, 0, 1, 11}, {2, 0, 1, 1}, {1, 0, 0.2, 0}},
+      {{0.1, 0.9, 4, 0.2}, {0.287868, 0.712132, 4, 0.2}, {0.287868, 0.287868, 4, 4.2}, {0.712132, 0.287868, 4, 0.2}},
+  };
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    std::vector<Point2> pts;
+    for (const auto& s : cases[k]) pts.push_back({s.x, s.y});
+    const MobiusDiagram d(cases[k], bounding_box(pts, 0.15));
+    EXPECT_TRUE(d.is_valid(true)) << "case " << k;
+    ASSERT_EQ(d.cell(1).size(), 1u) << "case " << k;
+    EXPECT_TRUE(d.cell(1)[0].outer.closed) << "case " << k;
+    EXPECT_FALSE(d.cell(1)[0].outer.pieces.empty()) << "case " << k;
+    EXPECT_TRUE(d.cell(1)[0].holes.empty()) << "case " << k;
+    for (const Point2 q : sample_points(bounding_box(pts, 0.15), 500, static_cast<unsigned>(k))) {
+      const auto best = exact_nearest(cases[k], q);
+      EXPECT_NE(std::find(best.begin(), best.end(), d.locate(q)), best.end()) << "case " << k;
+    }
+  }
+  // Why a lens: at (3.5, 0) δ_0 = δ_1 = 5/4 exactly while δ_2 exceeds them by 1.1e-17 (λ_2 > 1/5), so the
+  // three bisectors do not meet in one point and site 1 is nearest just right of x = 3.5.
+  EXPECT_EQ(exact_nearest(cases[0], {3.5, 0}), (std::vector<SiteIndex>{0, 1}));
+}

@@ -41,8 +41,20 @@
 /// Degenerate inputs: equal sites keep one representative (the others are hidden); all λ equal gives a
 /// power diagram (a 2-dimensional triangulation in R³, straight edges); collinear lifted centres give a
 /// 1-dimensional triangulation (parallel edges, no vertices); λ may be any real (λ ≤ 0 is accepted: the
-/// linearization does not need λ > 0), but the sites must be finite. Not handled yet (open fuzz finding
-/// sites-6): three sites with one common bisector, whose middle cell has no interior; `is_valid` fails.
+/// linearization does not need λ > 0), but the sites must be finite.
+///
+/// Weakly hidden sites. A site k with δ_k = (1 − t) δ_i + t δ_j for two other sites i, j and some
+/// 0 < t < 1 (δ_k − δ_i and δ_k − δ_j proportional with opposite signs: the three sites have one common
+/// bisector, e.g. (0, 0, 1, 1), (2, 0, 1, 1), (1, 0, 1, 0) on x = 1) is never strictly nearest: δ_k ≥
+/// min(δ_i, δ_j), with equality only on the bisector of i and j. Its cell has no interior (at most a piece
+/// of that bisector, which is the edge of i and j). When i and j are neighbours of k in the lifted
+/// triangulation (always the case when k's lifted power cell is a piece of plane, i.e. its cell a
+/// curve piece), k is *weakly hidden*: it is removed from the triangulation (no other cell changes), listed
+/// in `hidden_sites()`, `weakly_hidden_sites()` and `empty_sites()`, never returned by `locate`, and the
+/// edge of i and j is built as for any two neighbours. Decided exactly (interval filter, then
+/// rationals). When no two neighbours of k give such a combination but two other sites do, k's lifted
+/// cell has dimension at most 1 (its cell is at most two points): k is kept in the triangulation, with an
+/// empty cell, like any site whose cell is a point.
 
 #include <memory>
 #include <string>
@@ -148,8 +160,11 @@ class MobiusDiagram {
   const Box& frame() const;
   /// Dimension of the 3D regular triangulation of the lifted spheres.
   int dimension() const;
-  /// Sites whose sphere Σ_i is hidden in the 3D regular triangulation (duplicates included).
+  /// Sites whose sphere Σ_i is not a vertex of the 3D regular triangulation: hidden there (duplicates
+  /// included) or weakly hidden (see the file comment).
   std::vector<SiteIndex> hidden_sites() const;
+  /// The weakly hidden sites (see the file comment), increasing.
+  std::vector<SiteIndex> weakly_hidden_sites() const;
   /// Sites whose Möbius cell is empty (hidden ones included).
   std::vector<SiteIndex> empty_sites() const;
   /// Edges of the 3D regular triangulation between visible sites (a < b), sorted: a superset of the
