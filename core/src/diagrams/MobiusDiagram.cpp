@@ -484,18 +484,37 @@ std::array<NT, 4> difference(const MobiusSite& a, const MobiusSite& b) {
           la * (xa * xa + ya * ya) - NT(a.mu) - (lb * (xb * xb + yb * yb) - NT(b.mu))};
 }
 
-/// Whether u = δ_k − δ_i and w = δ_k − δ_j (as from `difference`) may satisfy u = −s w with s > 0: false
-/// only when an interval proves otherwise (a 2 × 2 minor certainly nonzero, or u · w certainly ≥ 0).
-/// Interval arithmetic: the caller protects the rounding mode.
-bool may_be_between(const std::array<CGAL::Interval_nt<false>, 4>& u, const std::array<CGAL::Interval_nt<false>, 4>& w) {
-  const CGAL::Interval_nt<false> dot = u[0] * w[0] + u[1] * w[1] + u[2] * w[2] + u[3] * w[3];
-  if (dot.inf() >= 0) return false;
-  for (int a = 0; a < 4; ++a)
-    for (int b = a + 1; b < 4; ++b) {
-      const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
-      const CGAL::Interval_nt<false> m = u[ua] * w[ub] - u[ub] * w[ua];
-      if (m.inf() > 0 || m.sup() < 0) return false;
-    }
+/// δ_a − δ_b as from `difference`, in doubles, with a bound m of each component's magnitude: the
+/// computed component is within 8ε·m of the exact one (ε = 2^-53; a few roundings of terms
+/// bounded by m, about 7ε·m in all), up to underflow.
+struct ApproxDifference {
+  std::array<double, 4> v, m;
+};
+
+ApproxDifference approx_difference(const MobiusSite& a, const MobiusSite& b) {
+  const double pa = a.x * a.x + a.y * a.y, pb = b.x * b.x + b.y * b.y;
+  ApproxDifference d;
+  d.v = {a.lambda - b.lambda, a.lambda * a.x - b.lambda * b.x, a.lambda * a.y - b.lambda * b.y,
+         a.lambda * pa - a.mu - (b.lambda * pb - b.mu)};
+  d.m = {std::fabs(a.lambda) + std::fabs(b.lambda), std::fabs(a.lambda * a.x) + std::fabs(b.lambda * b.x),
+         std::fabs(a.lambda * a.y) + std::fabs(b.lambda * b.y),
+         std::fabs(a.lambda * pa) + std::fabs(a.mu) + std::fabs(b.lambda * pb) + std::fabs(b.mu)};
+  return d;
+}
+
+/// Whether u = δ_k − δ_i and w = δ_k − δ_j may satisfy u = −s w with s > 0 (u · w < 0 and every 2 × 2
+/// minor 0): false only when the doubles prove otherwise, a value beyond its error bound. The bound
+/// (64ε times the products of the magnitudes: twice the 8ε·m errors of both factors, the roundings of the
+/// products and sums, with margin; plus 1e-290 for underflow) keeps every exact candidate, and an
+/// overflow gives inf or NaN, which rejects nothing; the candidates are then decided exactly.
+bool may_be_between(const ApproxDifference& u, const ApproxDifference& w) {
+  constexpr double eps = 0x1p-53, rel = 64 * eps, tiny = 1e-290;
+  double dot = 0, dot_err = tiny;
+  for (std::size_t a = 0; a < 4; ++a) dot += u.v[a] * w.v[a], dot_err += rel * u.m[a] * w.m[a];
+  if (dot > dot_err) return false;
+  for (std::size_t a = 0; a < 4; ++a)
+    for (std::size_t b = a + 1; b < 4; ++b)
+      if (std::fabs(u.v[a] * w.v[b] - u.v[b] * w.v[a]) > rel * (u.m[a] * w.m[b] + u.m[b] * w.m[a]) + tiny) return false;
   return true;
 }
 
@@ -665,7 +684,8 @@ struct MobiusDiagram::Impl {
     return rt.nearest_power_vertex(K::Point_3(x, y, x * x + y * y))->info();
   }
   void build();
-  void remove_weakly_hidden();
+  /// Removes the weakly hidden sites from rt (adjacency: rt's); whether there were any.
+  bool remove_weakly_hidden();
   void build_vertices(std::unordered_map<std::uint64_t, std::vector<std::size_t>>& on_pair);
   void build_edges(const std::unordered_map<std::uint64_t, std::vector<std::size_t>>& on_pair,
                    std::vector<std::pair<std::size_t, std::size_t>>& unbounded);
@@ -694,15 +714,19 @@ void MobiusDiagram::Impl::build() {
     input.emplace_back(WP3(K::Point_3(l * x, l * y, h), l * (l - 1) * (x * x + y * y) + h * h + FT(s.mu)), i);
   }
   rt.insert(input.begin(), input.end());
-  remove_weakly_hidden();
+  auto read_edges = [&] {
+    adjacency.assign(n, {});
+    lifted.clear();
+    for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e) {
+      const SiteIndex a = e->first->vertex(e->second)->info(), b = e->first->vertex(e->third)->info();
+      adjacency[a].push_back(b), adjacency[b].push_back(a);
+      lifted.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  };
+  read_edges();
+  if (remove_weakly_hidden()) read_edges();  // the triangulation changed
   hidden.assign(n, true);
   for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v) hidden[v->info()] = false;
-  adjacency.assign(n, {});
-  for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e) {
-    const SiteIndex a = e->first->vertex(e->second)->info(), b = e->first->vertex(e->third)->info();
-    adjacency[a].push_back(b), adjacency[b].push_back(a);
-    lifted.emplace_back(std::min(a, b), std::max(a, b));
-  }
   std::sort(lifted.begin(), lifted.end());
 
   std::unordered_map<std::uint64_t, std::vector<std::size_t>> on_pair;
@@ -712,43 +736,37 @@ void MobiusDiagram::Impl::build() {
   build_cells(unbounded);
 }
 
-void MobiusDiagram::Impl::remove_weakly_hidden() {
+bool MobiusDiagram::Impl::remove_weakly_hidden() {
   // A weakly hidden site k (see the header): δ_k − δ_i = −s (δ_k − δ_j), s > 0, for two neighbours i, j
   // of k in the triangulation. Its lifted power cell lies in the plane π_i = π_j and has no interior, so
   // removing k changes no other cell (the lower envelope of the power functions is the same without
   // it), but the sites on the two sides of a planar cell, which are such a pair (the lifted centres are
   // collinear, k's between them), become adjacent: their edge is then built like any other.
-  // Candidates are the pairs of neighbours that intervals cannot separate; each is decided exactly.
+  // Candidates are the pairs of neighbours that a filter in doubles cannot separate; each is decided
+  // exactly.
   weakly_hidden.assign(sites.size(), false);
-  if (rt.number_of_vertices() < 3) return;
-  std::vector<std::vector<SiteIndex>> around(sites.size());
-  for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e) {
-    const SiteIndex a = e->first->vertex(e->second)->info(), b = e->first->vertex(e->third)->info();
-    around[a].push_back(b), around[b].push_back(a);
-  }
+  if (rt.number_of_vertices() < 3) return false;
+  const std::vector<std::vector<SiteIndex>>& around = adjacency;
   std::vector<std::array<SiteIndex, 3>> candidates;
-  {
-    using I = CGAL::Interval_nt<false>;
-    CGAL::Protect_FPU_rounding<true> guard;
-    std::vector<std::array<I, 4>> d;
-    for (SiteIndex k = 0; k < sites.size(); ++k) {
-      const std::vector<SiteIndex>& nb = around[k];
-      if (nb.size() < 2) continue;
-      d.clear();
-      for (SiteIndex i : nb) d.push_back(difference<I>(sites[k], sites[i]));
-      for (std::size_t a = 0; a < nb.size(); ++a)
-        for (std::size_t b = a + 1; b < nb.size(); ++b)
-          if (may_be_between(d[a], d[b])) candidates.push_back({k, nb[a], nb[b]});
-    }
+  std::vector<ApproxDifference> d;
+  for (SiteIndex k = 0; k < sites.size(); ++k) {
+    const std::vector<SiteIndex>& nb = around[k];
+    if (nb.size() < 2) continue;
+    d.clear();
+    for (SiteIndex i : nb) d.push_back(approx_difference(sites[k], sites[i]));
+    for (std::size_t a = 0; a < nb.size(); ++a)
+      for (std::size_t b = a + 1; b < nb.size(); ++b)
+        if (may_be_between(d[a], d[b])) candidates.push_back({k, nb[a], nb[b]});
   }
   bool any = false;
   for (const auto& [k, i, j] : candidates)
     if (!weakly_hidden[k] && strictly_between(sites, k, i, j)) weakly_hidden[k] = any = true;
-  if (!any) return;
+  if (!any) return false;
   std::vector<RT3::Vertex_handle> weak;
   for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
     if (weakly_hidden[v->info()]) weak.push_back(v);
   for (const RT3::Vertex_handle& v : weak) rt.remove(v);
+  return true;
 }
 
 void MobiusDiagram::Impl::build_vertices(std::unordered_map<std::uint64_t, std::vector<std::size_t>>& on_pair) {
