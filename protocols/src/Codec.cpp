@@ -514,6 +514,7 @@ DecodeStatus decode(std::span<const std::byte> bytes, RelayView& out) {
 
 DecodeStatus decode(std::span<const std::byte> bytes, Message& out) { return decode_set(bytes, out); }
 DecodeStatus decode(std::span<const std::byte> bytes, PackingMessage& out) { return decode_set(bytes, out); }
+DecodeStatus decode(std::span<const std::byte> bytes, RadiusMsg& out) { return decode_set(bytes, out); }
 DecodeStatus decode(std::span<const std::byte> bytes, PackingHop& out) { return decode_set(bytes, out); }
 DecodeStatus decode(std::span<const std::byte> bytes, LinkMessage& out) { return decode_set(bytes, out); }
 DecodeStatus decode(std::span<const std::byte> bytes, FramePayload& out) { return decode_set(bytes, out); }

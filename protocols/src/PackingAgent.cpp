@@ -56,6 +56,8 @@ PackingAgent::PackingAgent(PackingNode& node, std::size_t index, AgentSpec spec)
       polygon_here_(spec.polygon_here), peers_(std::make_unique<Peer[]>(deg_)),
       radius_(std::make_unique<double[]>(2 * std::size_t{deg_})) {
   told_ = deg_;
+  asynchronous_ = params_.asynchronous;
+  update_ = params_.update;
   for (std::size_t i = 0; i < deg_; ++i) {
     peers_[i].id = spec.neighbours[i];
     peers_[i].face = spec.face_nbr.empty() ? 0 : spec.face_nbr[i];
@@ -65,6 +67,8 @@ PackingAgent::PackingAgent(PackingNode& node, std::size_t index, AgentSpec spec)
   // boundary neighbours' entries become ∞ when the rounds start.
   std::fill(radius_.get(), radius_.get() + 2 * std::size_t{deg_},
             params_.asynchronous ? 1.0 : std::numeric_limits<double>::infinity());
+  radius_tag_ = std::make_unique<std::uint32_t[]>(2 * std::size_t{deg_});
+  std::fill(radius_tag_.get(), radius_tag_.get() + 2 * std::size_t{deg_}, unknown);
   if (polygon_here_) {
     poly_ = std::make_unique<Polygon>();
     poly_->g_k = std::move(spec.g_k);
@@ -173,6 +177,16 @@ void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
     return;
   }
   std::visit([&](const auto& msg) { handle(i, msg); }, m);
+}
+
+void PackingAgent::receive(std::size_t i, const RadiusMsg& m) {
+  // receive(i, PackingMessage) for its RadiusMsg alternative.
+  if (phase_ == PackingPhase::finished && asynchronous_) return;
+  if (phase_ == PackingPhase::idle || phase_ == PackingPhase::finished) {
+    ++counters().unexpected;
+    return;
+  }
+  handle(i, m);
 }
 
 // ---- Depth: event-driven BFS from the boundary (over K), Dijkstra–Scholten termination --------------
@@ -590,6 +604,10 @@ void PackingAgent::learn_shape(bool polygon) {
   shape_known_ = true;
   polygon_ = polygon;
   for (std::size_t i = 0; i < deg_; ++i) interior_nbrs_ += interior_nbr(i);
+  if (deg_ <= 64) {
+    for (std::size_t i = 0; i < deg_; ++i) interior_mask_ |= std::uint64_t{interior_nbr(i)} << i;
+    mask_ready_ = true;
+  }
   encode(ShapeMsg{true, polygon_}, buffer());
   for (std::size_t j = 0; j < deg_; ++j)
     if (peers_[j].child) send_encoded(j);
@@ -719,19 +737,27 @@ void PackingAgent::advance_async_steps() {
 }
 
 void PackingAgent::handle(std::size_t i, const RadiusMsg& m) {
-  if (params_.asynchronous) {
+  if (asynchronous_) {
     handle_async_radius(i, m);
     return;
   }
   // Radius-only: round 0 ends with an exchange of X(0), which may reach a node still in set-up.
   const bool early = radius_only_ && phase_ == PackingPhase::wave && m.step == 0;
-  if ((phase_ != PackingPhase::rounds && !early) || boundary_ || !interior_nbr(i) || m.step < step_ ||
+  if ((phase_ != PackingPhase::rounds && !early) || boundary_ || !interior_fast(i) || m.step < step_ ||
       m.step > step_ + 1) {
     ++counters().unexpected;
     return;
   }
   const std::size_t slot = m.step & 1;
-  peers_[i].radius_tag[slot] = m.step;
+  std::uint32_t& tag = radius_tag_[slot * deg_ + i];
+  if (tag != m.step) {  // a radius not yet heard (heard_all counts each once)
+    if (heard_step_[slot] != m.step) {
+      heard_step_[slot] = m.step;
+      heard_[slot] = 0;
+    }
+    ++heard_[slot];
+  }
+  tag = m.step;
   radius_[slot * deg_ + i] = m.h;
   if (early) return;
   if (radius_only_ && !layout_round_ && step_ == round_end_step_) {
@@ -750,7 +776,7 @@ void PackingAgent::advance_steps() {
     }
     step_ = round_end_step_;
   }
-  if (params_.asynchronous) {
+  if (asynchronous_) {
     advance_async_steps();
     if (step_ == round_end_step_) advance_layout();
     return;
@@ -768,8 +794,7 @@ void PackingAgent::advance_steps() {
       }
     }
     const std::size_t slot = step_ & 1;
-    for (std::size_t i = 0; i < deg_; ++i)
-      if (interior_nbr(i) && peers_[i].radius_tag[slot] != step_) return;
+    if (!heard_all(step_)) return;
     if (krylov_) {  // the step continues in krylov_apply
       krylov_begin_step();
       return;
@@ -777,7 +802,7 @@ void PackingAgent::advance_steps() {
     // The Jacobi update on K: every neighbour value is from step t (∞ for boundary neighbours), the
     // cosines are those of PackingComplex (none iff tangent_only), as in core::thurston_sweep; then
     // this vertex's local acceleration, as core::pack applies it after the sweep.
-    const double updated = core::star_updated_radius(h_, star(radius_.get() + slot * deg_), params_.update);
+    const double updated = core::star_updated_radius(h_, star(radius_.get() + slot * deg_), update_);
     h_ = accelerator_ ? accelerator_->next(h_, updated) : updated;
     ++step_;
     sent_step_ = false;
@@ -803,8 +828,7 @@ void PackingAgent::advance_radius_check() {
       for (std::size_t i = 0; i < deg_; ++i)
         if (interior_nbr(i)) send_encoded(i);
     }
-    for (std::size_t i = 0; i < deg_; ++i)
-      if (interior_nbr(i) && peers_[i].radius_tag[slot] != step_) return;
+    if (!heard_all(step_)) return;
   }
   radius_ok_ = core::radius_only_holds(h_, star(radius_.get() + slot * deg_), boundary_, gap_);
   checked_this_round_ = true;
@@ -825,12 +849,12 @@ void PackingAgent::handle(std::size_t i, const GateRadiusMsg& m) {
   // Step 0 may reach a vertex still in set-up; a neighbour is never more than one step ahead.
   const bool early = phase_ != PackingPhase::rounds && m.step == 0;
   if (!flood_ || (phase_ != PackingPhase::rounds && !early) || m.step < step_ || m.step > step_ + 1 ||
-      peers_[i].radius_tag[m.step & 1] == m.step) {
+      radius_tag_[(m.step & 1) * deg_ + i] == m.step) {
     ++counters().unexpected;
     return;
   }
   const std::size_t slot = m.step & 1;
-  peers_[i].radius_tag[slot] = m.step;
+  radius_tag_[slot * deg_ + i] = m.step;
   radius_[slot * deg_ + i] = m.h;  // ∞ from a boundary neighbour: what the entry holds anyway
   flood_->bits[slot * deg_ + i] = m.gate;
   if (phase_ == PackingPhase::rounds) flood_advance();
@@ -852,7 +876,7 @@ void PackingAgent::flood_advance() {
       send_to_all_encoded();
     }
     for (std::size_t i = 0; i < deg_; ++i)
-      if (peers_[i].radius_tag[slot] != step_) return;
+      if (radius_tag_[slot * deg_ + i] != step_) return;
     std::uint64_t heard = ~std::uint64_t{0};
     for (std::size_t i = 0; i < deg_; ++i) heard &= f.bits[slot * deg_ + i];
     f.mine &= heard;

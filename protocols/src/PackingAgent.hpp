@@ -44,15 +44,13 @@ public:
 
   void start();
   void receive(std::size_t k_index, const PackingMessage& m);
-  // Starts loading what receive() reads first: this object (its fields up to the pointers), the peer
-  // records and the radii of the current step (a hint; reads the pointers only).
-  void prefetch() const {
-    const char* self = reinterpret_cast<const char*>(this);
-    __builtin_prefetch(self);
-    __builtin_prefetch(self + 64);
-    __builtin_prefetch(peers_.get());
-    __builtin_prefetch(radius_.get());
-  }
+  // The same for a RadiusMsg decoded on its own (PackingNode's fast path: no PackingMessage).
+  void receive(std::size_t k_index, const RadiusMsg& m);
+  // What the radius path reads, for PackingNode::prefetch: this object's first two cache lines hold
+  // every field of it (see the member order); then the radius tags and the radii (no peer record).
+  // The two arrays are allocated once, by the constructor.
+  const void* radius_data() const { return radius_.get(); }
+  const void* radius_tag_data() const { return radius_tag_.get(); }
 
   PackingPhase phase() const { return phase_; }
   PackingOutcome outcome() const { return outcome_; }
@@ -84,7 +82,6 @@ private:
     std::uint32_t claim_depth = unknown;  // the depth of its newest parent claim (bfs & claim_bit: "you")
     std::uint32_t wave = unknown;     // its placement estimate in the layout wave (final once it has ended)
     std::uint32_t wave_seq = 0;       // seq of its newest WaveMsg (StartMsg: 1)
-    std::uint32_t radius_tag[2] = {unknown, unknown};  // step of the radius in radius_[parity][i]
     std::uint32_t placed_tag[2] = {unknown, unknown};  // round of circle[parity]
     core::Circle circle[2];           // its circle in the layout of a round, by parity
     std::uint32_t latest_step = 0;    // asynchronous mode: version of its newest radius
@@ -118,6 +115,9 @@ private:
   std::vector<std::byte>& buffer();
   PackingCounters& counters();
   bool interior_nbr(std::size_t i) const { return peers_[i].depth != 0; }
+  bool interior_fast(std::size_t i) const { return mask_ready_ ? (interior_mask_ >> i) & 1 : interior_nbr(i); }
+  // Synchronous mode: whether every interior neighbour's radius of step s is in.
+  bool heard_all(std::uint32_t s) const { return (heard_step_[s & 1] == s ? heard_[s & 1] : 0) == interior_nbrs_; }
   double cos_spoke(std::size_t i) const { return is_face_ || peers_[i].face ? 0.0 : 1.0; }
   double cos_rim(std::size_t i) const {
     const std::size_t j = i + 1 == deg_ ? 0 : i + 1;
@@ -210,8 +210,35 @@ private:
   // never send one), so that a step reads its star in place. Asynchronous mode: the first deg entries
   // hold the newest radius of each neighbour.
   std::unique_ptr<double[]> radius_;
+  // radius_tag_[p·deg + i]: the step whose radius radius_[p·deg + i] holds (unknown until one is heard).
+  // Apart from the peer records, with the interior mask below, so that the radius path reads no peer record.
+  std::unique_ptr<std::uint32_t[]> radius_tag_;
   std::unique_ptr<Polygon> poly_;
   std::unique_ptr<core::LocalAccelerator> accelerator_;  // a local acceleration only
+
+  // Rounds: what a radius message touches, kept in the object's first two cache lines with the
+  // fields and pointers above (PackingNode::prefetch loads them).
+  std::uint32_t round_ = 0;
+  std::uint32_t step_ = 0;
+  std::uint32_t round_end_step_ = 0;
+  std::uint32_t round_start_step_ = 0;
+  std::uint32_t interior_nbrs_ = 0;  // known at the end of the set-up
+  // Synchronous radii heard, by step parity: heard_[p] distinct interior neighbours have sent their
+  // radius of step heard_step_[p] (so a step need not read every peer record to know it is complete).
+  std::uint32_t heard_step_[2] = {unknown, unknown};
+  std::uint32_t heard_[2] = {0, 0};
+  // Bit i: K-neighbour i is interior (interior_nbr(i)); valid once mask_ready_ (the depths are final,
+  // degree ≤ 64).
+  std::uint64_t interior_mask_ = 0;
+  bool mask_ready_ = false;
+  bool sent_step_ = false;
+  bool asynchronous_ = false;  // params_.asynchronous
+  bool radius_only_ = false;
+  bool layout_round_ = false;
+  core::UpdateRule update_ = core::UpdateRule::uniform_neighbour;  // params_.update
+  double h_ = 0;
+  std::unique_ptr<KrylovState> krylov_;  // Newton–Krylov mode only
+  std::unique_ptr<FloodState> flood_;    // Termination::radius_flood only
 
   // Depth phase: the estimate, the depth messages not yet acknowledged, the neighbour told it is the
   // parent at depth_ (deg: none), and on the boundary the `settled` ring (quiet: every own message
@@ -251,27 +278,19 @@ private:
   std::uint32_t ds_parent_ = unknown;
   std::uint32_t ds_deficit_ = 0;
   bool ds_polygon_ = false;
-  std::uint32_t interior_nbrs_ = 0;  // known at the end of the set-up
 
   // Shape and height (after the wave).
   bool shape_known_ = false;
   bool polygon_ = false;
   bool height_sent_ = false;
 
-  // Rounds.
-  std::uint32_t round_ = 0;
-  std::uint32_t step_ = 0;
-  std::uint32_t round_end_step_ = 0;
-  std::uint32_t round_start_step_ = 0;
+  // Rounds (the hot part is above).
   // Asynchronous mode: the number of radius messages received per round (by parity).
   std::array<std::uint32_t, 2> arrivals_{};
-  bool sent_step_ = false;
-  std::unique_ptr<KrylovState> krylov_;  // Newton–Krylov mode only
   bool placed_this_round_ = false;
   bool checked_this_round_ = false;
   bool reported_ = false;
   bool reports_ok_ = true;
-  double h_ = 0;
   // The anchors' records by parity: [0] anchor a (or the first neighbour's parent), [1] anchor b.
   AnchorSlot anchors_[2][2];
   core::PlacedCircle placed_;
@@ -280,13 +299,10 @@ private:
   // Radius-only termination (docs/radius-only.md): whether this round's layout was asked for (by a
   // Verdict::layout), the step whose radii the end-of-round exchange sent, the round's test outcome
   // and the current gap tolerance (halved by every failed exact check, at every node alike).
-  bool radius_only_ = false;
-  bool layout_round_ = false;
   std::uint32_t final_sent_ = unknown;
   bool radius_ok_ = false;
   double gap_ = 0;
   std::uint32_t height_ = 0;  // the largest wave of the subtree heard so far, then of K (HeightMsg)
-  std::unique_ptr<FloodState> flood_;  // Termination::radius_flood only
 };
 
 }  // namespace laguerre::protocols::detail

@@ -94,7 +94,7 @@ private:
 };
 
 PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingParams params)
-    : rt_(&runtime), params_(params), know_(std::move(knowledge)), deg_(know_.neighbours.size()) {
+    : rt_(&runtime), deg_(knowledge.neighbours.size()), know_(std::move(knowledge)), params_(params) {
   const std::string who = "Node " + std::to_string(know_.id);
   // Checks the list (throws); kept for the lookup only at high degrees, where a scan would be slow.
   sorted_ids_ = detail::sorted_neighbours(know_.id, know_.neighbours);
@@ -153,6 +153,8 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
     if (!know_.faces.empty() && !know_.faces[i].empty()) own.g_face[i] = &wedges_[k++].walk;
 
   own_ = std::make_unique<detail::PackingAgent>(*this, 0, std::move(own));
+  own_tags_ = own_->radius_tag_data();
+  own_radius_ = own_->radius_data();
   // Hosted face vertices: neighbours = the face's walk from the host (docs/protocol.md, "Face vertices").
   for (Wedge& w : wedges_) {
     if (w.host != know_.id) continue;
@@ -311,6 +313,11 @@ void PackingNode::receive(NodeId from, std::span<const std::byte> bytes) {
     const DecodeStatus s = decode(bytes, r);
     ++counters_.decode[static_cast<std::size_t>(s)];
     if (s == DecodeStatus::ok) handle_relay(i, r);
+  } else if (bytes.size() >= 2 && bytes[1] == static_cast<std::byte>(MessageType::radius)) {
+    RadiusMsg m;  // the hottest message, read in place: the statuses of decoding it as a PackingHop
+    const DecodeStatus s = decode(bytes, m);
+    ++counters_.decode[static_cast<std::size_t>(s)];
+    if (s == DecodeStatus::ok) own_->receive(own_->k_of_g(i), m);
   } else {
     PackingMessage m;  // PackingHop less the relay: the same statuses as decoding a PackingHop
     const DecodeStatus s = decode(bytes, m);
@@ -342,8 +349,14 @@ void PackingNode::on_failure(NodeId suspect) {
 }
 
 void PackingNode::prefetch() const {
+  // Reads this object only (its first lines were prefetched an event or two earlier), never the
+  // agent's: a demand load there would stall on the very miss the hint is for.
   __builtin_prefetch(know_.neighbours.data());
-  own_->prefetch();
+  const char* agent = reinterpret_cast<const char*>(own_.get());
+  __builtin_prefetch(agent);
+  __builtin_prefetch(agent + 64);
+  __builtin_prefetch(own_tags_);
+  __builtin_prefetch(own_radius_);
 }
 
 bool PackingNode::is_final() const { return failed_ || own_->phase() == PackingPhase::finished; }

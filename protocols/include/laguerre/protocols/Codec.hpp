@@ -512,6 +512,9 @@ std::vector<std::byte> encode(const M& m) {
 DecodeStatus decode(std::span<const std::byte> bytes, Message& out);
 /// (As above, for a PackingMessage.)
 DecodeStatus decode(std::span<const std::byte> bytes, PackingMessage& out);
+/// (As above, for the one-message set {RadiusMsg}: the receive path's fast case, read in place with
+/// no variant; a message of any other type is `foreign_type`.)
+DecodeStatus decode(std::span<const std::byte> bytes, RadiusMsg& out);
 /// (As above, for a PackingHop.)
 DecodeStatus decode(std::span<const std::byte> bytes, PackingHop& out);
 /// (As above, for a LinkMessage.)

@@ -245,24 +245,29 @@ private:
   static constexpr std::size_t sorted_from = 17;  // degree from which index_of searches sorted_ids_
 
   // What a node holds (docs/protocol.md, "Node state"): O(degree) in a few arrays; the polygon-face,
-  // lossy-link and acceleration state only in the runs that need it.
+  // lossy-link and acceleration state only in the runs that need it. Order: everything a delivered
+  // message reads or writes in a synchronous run (on_message, receive, drain, the agents' sends and
+  // the hot counters) lies in the object's first four cache lines, which the host prefetches
+  // (sim::SimHost::prefetch); the rest follows.
   Runtime* rt_;  // the host's runtime, or the reliability layer's
-  PackingParams params_;  // the agents read it from here
-  LocalKnowledge know_;   // its `faces` moved into wedges_
+  std::unique_ptr<ReliableNode> link_;                        // lossy mode: the layer under the protocol
+  std::unique_ptr<detail::PackingAgent> own_;                 // agent 0: the node's own vertex
   std::size_t deg_ = 0;
+  Time finished_at_ = -1;
+  bool failed_ = false;
+  std::vector<Local> local_;                                  // FIFO, emptied by drain()
+  std::vector<std::byte> scratch_;                            // the agents' encoding buffer
+  const void* own_tags_ = nullptr;    // the own agent's radius tags and radii (for prefetch)
+  const void* own_radius_ = nullptr;
+  LocalKnowledge know_;   // its `faces` moved into wedges_
+  PackingCounters counters_;  // the protocol's (on lossy links, received/decode count frame payloads)
+  PackingParams params_;  // the agents read it from here
   std::vector<std::pair<NodeId, std::uint32_t>> sorted_ids_;  // (id, index) for lookup; only past sorted_from
   std::vector<Wedge> wedges_;                                 // polygon faces at this node
-  std::unique_ptr<detail::PackingAgent> own_;                 // agent 0: the node's own vertex
   std::vector<std::unique_ptr<detail::PackingAgent>> faces_;  // agents 1, 2, …: hosted face vertices
-  std::vector<Local> local_;                                  // FIFO, emptied by drain()
   std::vector<std::byte> local_bytes_;                        // their bytes (see Local)
-  std::vector<std::byte> scratch_;                            // the agents' encoding buffer
   std::vector<std::byte> relay_buffer_;
-  std::unique_ptr<ReliableNode> link_;                        // lossy mode: the layer under the protocol
-  bool failed_ = false;
   NodeId suspect_ = 0;
-  Time finished_at_ = -1;
-  PackingCounters counters_;  // the protocol's (on lossy links, received/decode count frame payloads)
 };
 
 }  // namespace laguerre::protocols
