@@ -5,7 +5,7 @@
 # (incomplete-Cholesky conjugate gradients), on random Delaunay triangulations and uniform random
 # triangulations, stopped at LPD.
 #   tools/bench/newton.sh [--huge] [--solvers "lu cholesky pcg"] [--families "delaunay uniform-triangulation"]
-#                         [--layouts "frames"] [--max-steps K] [--time-limit S] [--blas-dir DIR] [SIZES…]
+#                         [--layouts "frames"] [--max-steps K] [--time-limit S] [--blas-dir DIR] [--seed S] [SIZES…]
 # Defaults: sizes 10000 100000; --huge adds 1000000 (the lu solver is skipped there: ~40 s per step).
 # Per row: steps as iterations/improving Newton steps (an iteration whose Newton step cannot improve is
 # a plain sweep; capped at --max-steps, default 60), status (converged / iteration_cap / precision_loss, never hidden), vertices
@@ -23,6 +23,7 @@
 # libopenblas0-pthread (`apt-get download libopenblas0-pthread && dpkg -x …`: its libblas.so.3 then
 # serves CHOLMOD without changing the system's libblas alternative); the header names the libblas
 # the program loads.
+# --seed S: the generator seed of the graphs (default 42; the README's 10^6 table uses 1).
 # Inputs are cached in $LAGUERRE_BENCH_CACHE (default /tmp/laguerre-bench-newton): a 10^6 Delaunay
 # triangulation takes about a minute to generate. OPENBLAS_NUM_THREADS and OMP_NUM_THREADS default to 1
 # (a shared 2-core machine: spinning BLAS threads cost more than they bring here).
@@ -31,7 +32,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 
 solvers="lu cholesky pcg" families="delaunay uniform-triangulation" layouts=frames max_steps=60 huge=0 sizes=()
-time_limit=() blas_dir=""
+time_limit=() blas_dir="" seed=42
 while [ $# -gt 0 ]; do
   case "$1" in
     --huge) huge=1; shift ;;
@@ -41,6 +42,7 @@ while [ $# -gt 0 ]; do
     --max-steps) max_steps=$2; shift 2 ;;
     --time-limit) time_limit=(--time-limit "$2"); shift 2 ;;
     --blas-dir) blas_dir=$2; shift 2 ;;
+    --seed) seed=$2; shift 2 ;;
     -h|--help) awk 'NR > 1 && /^#/ {print; next} NR > 1 {exit}' "$0"; exit 0 ;;
     *) sizes+=("$1"); shift ;;
   esac
@@ -74,8 +76,8 @@ for family in $families; do
     # Delaunay with its coordinates (the embedding is read from them); the uniform family has none, and
     # its edge list is embedded by Boyer–Myrvold when it is read, minutes at 10^6 (in wall_s, not pack_s).
     format=edges; [ "$family" = delaunay ] && format=coords
-    graph=$cache/$family-$n-seed42.$format
-    [ -s "$graph" ] || "$laguerre" generate "$family" -n "$n" --seed 42 --format "$format" -o "$graph" --force >/dev/null 2>&1
+    graph=$cache/$family-$n-seed$seed.$format
+    [ -s "$graph" ] || "$laguerre" generate "$family" -n "$n" --seed "$seed" --format "$format" -o "$graph" --force >/dev/null 2>&1
     for solver in $solvers; do
      for layout in $layouts; do
       if [ "$solver" = lu ] && [ "$n" -ge 1000000 ]; then continue; fi
@@ -129,3 +131,4 @@ for (family, n, layout), t in sorted(sides.items(), key=lambda x: (x[0][0], int(
     if "lu" in t:
         print(f"{family:<22} {n:>8} {layout:<7} " + "  ".join(f"lu/{s} = {t['lu'] / v:5.2f}" for s, v in t.items() if s != "lu" and v > 0))
 PY
+echo "# end $(date -u '+%H:%M UTC'), load:$(uptime | sed 's/.*load average://')"
