@@ -178,7 +178,7 @@ PackingNode::PackingNode(Runtime& runtime, LocalKnowledge knowledge, PackingPara
 PackingNode::~PackingNode() = default;
 
 std::size_t PackingNode::index_of(NodeId id) const {
-  if (!sorted_ids_.empty()) return detail::neighbour_index(sorted_ids_, id);
+  if (deg_ >= sorted_from) return detail::neighbour_index(sorted_ids_, id);  // sorted_ids_ is kept
   std::size_t i = 0;
   while (i < deg_ && know_.neighbours[i] != id) ++i;
   return i;
@@ -261,7 +261,14 @@ void PackingNode::deliver_payload(std::size_t agent, std::size_t from_index, std
 void PackingNode::drain() {
   // Local deliveries between this node's agents, after the callback that produced them (never
   // re-entrant); they may produce more, delivered in turn. An abandoned run delivers nothing more.
-  if (failed_) local_.clear();
+  if (failed_) {
+    local_.clear();
+    local_bytes_.clear();
+  }
+  if (local_.empty()) {  // the usual case: nothing to deliver, local_bytes_ is empty (not even read)
+    if (finished_at_ < 0 && is_final()) finished_at_ = rt_->now();
+    return;
+  }
   for (std::size_t next = 0; next < local_.size(); ++next) {
     const Local l = local_[next];  // receive() may append to local_ and local_bytes_
     PackingMessage m;              // decoded before receive() can move local_bytes_
