@@ -9,12 +9,13 @@
 
 #include "laguerre/core/diagrams/SitesFile.hpp"
 #include "laguerre/core/diagrams/VoronoiDiagram.hpp"
+#include "../../support/Scratch.hpp"
 
 namespace laguerre::core {
 namespace {
 
 std::string write_temp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + "/" + name;
+  const std::string path = laguerre::testing::scratch_path(name);
   std::ofstream(path) << text;
   return path;
 }
@@ -76,12 +77,12 @@ TEST(SitesFile, AdmissibleRange) {
 
 TEST(SitesFile, MissingFileAndDirectory) {
   try {
-    read_site_rows(::testing::TempDir(), "x y", "Voronoi diagram");
+    read_site_rows(laguerre::testing::scratch_folder().string(), "x y", "Voronoi diagram");
     FAIL() << "read a directory";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("is a directory; expected a sites file."), std::string::npos) << e.what();
   }
-  EXPECT_THROW(read_site_rows(::testing::TempDir() + "/no-such-sites.txt", "x y", "Voronoi diagram"), InputError);
+  EXPECT_THROW(read_site_rows(laguerre::testing::scratch_path("no-such-sites.txt"), "x y", "Voronoi diagram"), InputError);
 }
 
 TEST(SitesFile, UnrepresentableVerticesAreNeverValid) {

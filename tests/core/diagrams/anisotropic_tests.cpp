@@ -14,6 +14,7 @@
 #include "laguerre/core/diagrams/AnisotropicDiagram.hpp"
 #include "laguerre/core/diagrams/MinimizationDiagram.hpp"
 #include "laguerre/core/diagrams/MobiusDiagram.hpp"
+#include "../../support/Scratch.hpp"
 
 namespace laguerre::core {
 namespace {
@@ -269,7 +270,7 @@ TEST(Anisotropic, DegenerateInputs) {
 }
 
 TEST(Anisotropic, ReaderReportsFileAndLine) {
-  const std::string path = ::testing::TempDir() + "/anisotropic-bad.txt";
+  const std::string path = laguerre::testing::scratch_path("anisotropic-bad.txt");
   std::ofstream(path) << "# x y a b c\n0 0 1 0 1\n\n1 1 1 2 1\n";
   try {
     read_anisotropic_sites(path);

@@ -13,6 +13,7 @@
 
 #include "laguerre/core/diagrams/ApolloniusDiagram.hpp"
 #include "laguerre/core/diagrams/MinimizationDiagram.hpp"
+#include "../../support/Scratch.hpp"
 
 namespace laguerre::core {
 namespace {
@@ -154,7 +155,7 @@ TEST(Apollonius, AgreesWithRasterOracle) {
 }
 
 TEST(Apollonius, ReaderReportsFileAndLine) {
-  const std::string path = ::testing::TempDir() + "/apollonius-bad.txt";
+  const std::string path = laguerre::testing::scratch_path("apollonius-bad.txt");
   {
     std::ofstream out(path);
     out << "# x y w\n0 0 1\n1 2 x\n";

@@ -11,6 +11,7 @@
 #include <set>
 
 #include "laguerre/core/diagrams/Recognition.hpp"
+#include "../../support/Scratch.hpp"
 
 namespace laguerre::core {
 namespace {
@@ -42,7 +43,7 @@ std::set<std::pair<SiteIndex, SiteIndex>> adjacency(const CellComplex& cx, const
 }
 
 std::string write_temp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + "/" + name;
+  const std::string path = laguerre::testing::scratch_path(name);
   std::ofstream(path) << text;
   return path;
 }

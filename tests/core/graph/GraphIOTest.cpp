@@ -11,6 +11,7 @@
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "GraphTestSupport.hpp"
+#include "../../support/Scratch.hpp"
 
 using namespace laguerre::core;
 using namespace laguerre::core::test;
@@ -341,7 +342,7 @@ TEST(GraphIO, PlanarCodeRoundTripsSeveralGraphsThroughAFile) {
   graphs.push_back(k4_drawing().graph);
   const std::string code = write_planar_code(graphs);
   EXPECT_EQ(code.substr(0, 18), ">>planar_code le<<");
-  const std::string path = testing::TempDir() + "laguerre_graph_io_roundtrip.pc";
+  const std::string path = laguerre::testing::scratch_path("laguerre_graph_io_roundtrip.pc");
   {
     std::ofstream out(path, std::ios::binary);
     out << code;

@@ -10,6 +10,7 @@
 #include "laguerre/core/graph/GraphKind.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "GraphTestSupport.hpp"
+#include "../../support/Scratch.hpp"
 
 using namespace laguerre::core;
 using namespace laguerre::core::test;
@@ -174,7 +175,7 @@ TEST(GraphMLDot, DeepNestingIsAnErrorNotACrash) {
   for (int i = 0; i < 50000; ++i) deep += "<a>\n";
   for (int i = 0; i < 50000; ++i) deep += "</a>";
   deep += "</graph></graphml>\n";
-  const std::string path = ::testing::TempDir() + "deep.graphml";
+  const std::string path = laguerre::testing::scratch_path("deep.graphml");
   std::ofstream(path, std::ios::binary) << deep;
   const auto e = expect_input_error([&] { read_graphs(path); });
   // <graphml> is level 1, <graph> 2, the first <a> (line 4) 3: the first one too deep is on line 2 + limit.

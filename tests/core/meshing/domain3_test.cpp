@@ -2,6 +2,7 @@
 // surface is refused with the file, line and rule, point location is exact on the boundary.
 #include "laguerre/core/meshing/Domain3.hpp"
 #include "laguerre/core/meshing/Medit.hpp"
+#include "../../support/Scratch.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +15,7 @@ namespace {
 const std::string domains = std::string(LAGUERRE_TEST_DATA) + "/../../scenarios/domains/";
 
 std::string write(const std::string& name, const std::string& text) {
-  const auto dir = std::filesystem::temp_directory_path() / "laguerre_domain3_test";
+  const auto dir = laguerre::testing::scratch_folder() / "laguerre_domain3_test";
   std::filesystem::create_directories(dir);
   const std::string path = (dir / name).string();
   std::ofstream(path) << text;
@@ -126,7 +127,7 @@ TEST(PolyhedralDomain, MeditSurfacesAreReadAndCheckedToo) {
   surface.point_refs.assign(8, 0);
   surface.triangles = cube.triangles();
   surface.triangle_refs.assign(12, 1);
-  const auto dir = std::filesystem::temp_directory_path() / "laguerre_domain3_test";
+  const auto dir = laguerre::testing::scratch_folder() / "laguerre_domain3_test";
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "cube.mesh").string();
   write_medit_mesh(path, surface);

@@ -1,5 +1,6 @@
 // Domains to mesh: validation rules, exact point location, area, and the domain file format.
 #include "laguerre/core/meshing/Domain.hpp"
+#include "../../support/Scratch.hpp"
 
 #include <gtest/gtest.h>
 
@@ -132,7 +133,7 @@ TEST(Domain, RejectsInvalidDomainsWithReasons) {
 }
 
 TEST(Domain, ReadsTheFileFormatAndReportsLines) {
-  const auto dir = std::filesystem::temp_directory_path() / "laguerre-domain-test";
+  const auto dir = laguerre::testing::scratch_folder() / "laguerre-domain-test";
   std::filesystem::create_directories(dir);
   const std::string good = (dir / "good.txt").string(), bad = (dir / "bad.txt").string();
   {

@@ -4,6 +4,7 @@
 #include "laguerre/core/meshing/Medit.hpp"
 #include "laguerre/core/meshing/Metric3.hpp"
 #include "laguerre/core/meshing/MetricField.hpp"
+#include "../../support/Scratch.hpp"
 
 #include <gtest/gtest.h>
 
@@ -167,7 +168,7 @@ TEST(MetricField3, BadSpecificationsAreRejected) {
 
 TEST(MetricField3, BackgroundTetMeshInterpolatesLinearlyAndRoundTrips) {
   // One tetrahedron with a metric per vertex; inside, the field is the barycentric blend.
-  const auto dir = std::filesystem::temp_directory_path() / "laguerre_metric3_test";
+  const auto dir = laguerre::testing::scratch_folder() / "laguerre_metric3_test";
   std::filesystem::create_directories(dir);
   TetMesh mesh;
   mesh.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};

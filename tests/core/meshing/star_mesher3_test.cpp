@@ -8,6 +8,7 @@
 #include "laguerre/core/meshing/StarMesher3.hpp"
 
 #include "../../../core/src/meshing/detail/LocalDelaunay3.hpp"
+#include "../../support/Scratch.hpp"
 
 #include <gtest/gtest.h>
 
@@ -224,7 +225,7 @@ TEST(StarMesher3, DeterministicAndRoundTripsThroughMedit) {
   other.seed = 7;
   const StarMesh3Result c = mesh_with_stars(cube, *field, other);
   EXPECT_TRUE(c.converged) << c.status;
-  const auto dir = std::filesystem::temp_directory_path() / "laguerre_star3_test";
+  const auto dir = laguerre::testing::scratch_folder() / "laguerre_star3_test";
   std::filesystem::create_directories(dir);
   write_medit_mesh((dir / "cube.mesh").string(), a.mesh);
   write_medit_sol((dir / "cube.sol").string(), a.metrics);

@@ -15,6 +15,7 @@
 #include "laguerre/core/graph/GraphIO.hpp"
 #include "laguerre/scenarios/ScenarioLoader.hpp"
 #include "laguerre/scenarios/Topology.hpp"
+#include "../../support/Scratch.hpp"
 
 namespace laguerre::scenarios {
 namespace {
@@ -53,7 +54,7 @@ TEST(OuterRule, LargestFaceGoesOutside) {
 
 TEST(OuterRule, FileTopologyPuncturesASphereOnlyWhenAsked) {
   const core::PlanarGraph sphere = uniform_triangulation(30, 7);
-  const std::string path = (std::filesystem::temp_directory_path() / "laguerre-outer-rule-sphere.edges").string();
+  const std::string path = (laguerre::testing::scratch_folder() / "laguerre-outer-rule-sphere.edges").string();
   std::ofstream(path) << core::write_edge_list(sphere);
   TopologyParams params;
   params.set("path", path);
