@@ -109,15 +109,13 @@ int run_pack(const PackArgs& a) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;  // all threads of the process
 
-  // Every LPD/GLPD decision is an exact predicate on the stored doubles; they are "exact decisions on
-  // representable coordinates" when those doubles carry every circle (docs/precision.md).
+  // Every LPD/GLPD decision is an exact predicate on the stored coordinates (doubles, or the binary128
+  // circles a binary128 layout keeps); they are "exact decisions on representable coordinates" when
+  // those coordinates carry every circle (docs/precision.md).
   const bool exact_decisions = r.layout.precision == core::Precision::ok || r.layout.precision == core::Precision::degraded;
-  // The significand a node would need for every circle to span 2^20 ulps (Layout::degraded_resolution):
-  // p bits divide binary64's ulp by 2^(p − 53).
-  const int bits_needed =
-      r.layout.resolution > 0
-          ? std::max(53, static_cast<int>(std::ceil(53 + std::log2(core::Layout::degraded_resolution / r.layout.resolution))))
-          : 0;
+  // The significand a node would need for every circle to span 2^20 ulps (Layout::degraded_resolution).
+  const int bits_needed = core::significand_bits_needed(r.layout);
+  const int bytes = core::bytes_per_coordinate(r.layout);
   nlohmann::json doc;
   doc["format"] = "laguerre-embedding";
   doc["version"] = 1;
@@ -147,7 +145,7 @@ int run_pack(const PackArgs& a) {
                                    {"resolution", r.layout.resolution},
                                    {"layout", a.layout_method},
                                    {"arithmetic", a.layout_arithmetic},
-                                   {"bytes_per_coordinate", 8},
+                                   {"bytes_per_coordinate", bytes},
                                    {"significand_bits_needed", bits_needed}}},
                     {"root", r.layout.root == core::none ? nlohmann::json() : nlohmann::json(g.id(r.layout.root))},
                     {"seconds", seconds},
@@ -205,7 +203,7 @@ int run_pack(const PackArgs& a) {
     os << "             --time-limit " << a.time_limit << " s reached before the stop rule held (the last layout is checked and written)\n";
   else if (r.status == core::PackStatus::precision_loss)
     os << "             the layout is " << core::name_of(core::precision_names, r.layout.precision)
-       << " in doubles (" << (r.layout.precision == core::Precision::collapsed
+       << (bytes == 16 ? " in binary128 (" : " in doubles (") << (r.layout.precision == core::Precision::collapsed
                                   ? "a circle spans fewer than 16 units in the last place of its coordinates"
                                   : "NaN, infinite or non-positive radius")
        << "): nothing is claimed\n";
@@ -230,12 +228,14 @@ int run_pack(const PackArgs& a) {
      << "tangency     max error " << r.max_tangency_error << " of the smaller radius\n"
      << "radii        smallest " << r.layout.smallest_radius << '\n'
      << "precision    " << core::name_of(core::precision_names, r.layout.precision) << ": every circle spans ≥ "
-     << r.layout.resolution << " units in the last place of its coordinates (8-byte doubles; layout " << a.layout_method
+     << r.layout.resolution << " units in the last place of its coordinates ("
+     << (bytes == 16 ? "16-byte binary128, on which LPD was decided" : "8-byte doubles") << "; layout " << a.layout_method
      << ", " << a.layout_arithmetic << "); decisions "
      << (exact_decisions ? "exact on representable coordinates" : "exact on the stored numbers, which do not carry the packing")
      << '\n';
-  if (bits_needed > 53)
-    os << "             coordinates with a " << bits_needed << "-bit significand would carry every circle to 2^-20 (binary128 has 113)\n";
+  if (bits_needed > (bytes == 16 ? 113 : 53))
+    os << "             coordinates with a " << bits_needed << "-bit significand would carry every circle to 2^-20"
+       << (bytes == 16 ? "\n" : " (binary128 has 113: --layout-arithmetic binary128)\n");
   if (!a.json_stdout) os << "wrote        " << stem << ".json\n";
   for (const auto& p : pictures) os << "wrote        " << p << '\n';
   return r.status == core::PackStatus::converged ? 0 : 3;

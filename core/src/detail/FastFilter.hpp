@@ -120,9 +120,13 @@ inline std::optional<Sign> certified_difference(double l, double r) {
 /// product adds at most 2^-1075 times the largest later factor (≤ 2^9 on the scaled leaves): the
 /// 1e-300 term. For d, Shewchuk's orient2d bound (certified_difference), accepted only when the products
 /// are far from underflow. Returns nullopt when either sign is not certified (the exact stages decide).
-inline std::optional<Sign> certified_power_side(const Circle& u, const Circle& a, const Circle& b, const Circle& t) {
-  double ax = a.x - u.x, ay = a.y - u.y, bx = b.x - u.x, by = b.y - u.y, tx = t.x - u.x, ty = t.y - u.y;
-  double ru = u.r, ra = a.r, rb = b.r, rt = t.r;
+///
+/// `certified_power_side_leaves` is the same stage on leaves given directly (A, B, T, radii), each
+/// within a relative 2^-53 (1 + 2^-59) of its exact value: what a double difference is, and what a
+/// binary128 difference rounded to doubles is (FastFilter128.hpp). The 13-rounding count above already
+/// counts one rounding per leaf (radii included), and 2e-15 > 13·2^-53·(1 + 2^-59) + the rounding of M.
+inline std::optional<Sign> certified_power_side_leaves(double ax, double ay, double bx, double by, double tx, double ty,
+                                                       double ru, double ra, double rb, double rt) {
   double m = 0;
   for (double v : {ax, ay, bx, by, tx, ty, ru, ra, rb, rt}) m = std::fmax(m, std::fabs(v));
   if (!(m > 0) || !std::isfinite(m)) return std::nullopt;  // NaN, infinite or all zero: let the exact stages decide
@@ -147,6 +151,12 @@ inline std::optional<Sign> certified_power_side(const Circle& u, const Circle& a
   else if (big_e < -bound) se = Sign::negative;
   else return std::nullopt;
   return static_cast<Sign>(static_cast<int>(se) * static_cast<int>(*sd));
+}
+
+/// See certified_power_side_leaves: the leaves are the double differences of the inputs.
+inline std::optional<Sign> certified_power_side(const Circle& u, const Circle& a, const Circle& b, const Circle& t) {
+  return certified_power_side_leaves(a.x - u.x, a.y - u.y, b.x - u.x, b.y - u.y, t.x - u.x, t.y - u.y, u.r, a.r, b.r,
+                                     t.r);
 }
 
 }  // namespace laguerre::core::detail

@@ -5,6 +5,7 @@
 #include <deque>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <stdexcept>
 
@@ -463,9 +464,15 @@ Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool fram
       out.wave[w] = round;
       placed_now.push_back(w);
       if (stop_when_collapsed && !stopped) {
-        const Circle c{static_cast<double>(at[w].circle.x), static_cast<double>(at[w].circle.y),
-                       static_cast<double>(at[w].circle.r)};
-        stopped = circle_resolution(c) < Layout::collapsed_resolution;
+        if constexpr (std::is_same_v<T, Quad>) {  // collapsed in the binary128 circles it keeps
+          const Circle128 c{at[w].circle.x.backend().value(), at[w].circle.y.backend().value(),
+                            at[w].circle.r.backend().value()};
+          stopped = circle_resolution(c) < Layout::collapsed_resolution;
+        } else {
+          const Circle c{static_cast<double>(at[w].circle.x), static_cast<double>(at[w].circle.y),
+                         static_cast<double>(at[w].circle.r)};
+          stopped = circle_resolution(c) < Layout::collapsed_resolution;
+        }
       }
     }
     if (stopped) break;
@@ -488,6 +495,12 @@ Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool fram
     out.centre[v] = {static_cast<double>(at[v].centre.re), static_cast<double>(at[v].centre.im)};
     out.circles[v] = {static_cast<double>(at[v].circle.x), static_cast<double>(at[v].circle.y), static_cast<double>(at[v].circle.r)};
   }
+  if constexpr (std::is_same_v<T, Quad>) {  // keep the binary128 circles themselves
+    out.circles128.resize(n);
+    for (Vertex v = 0; v < n; ++v)
+      out.circles128[v] = {at[v].circle.x.backend().value(), at[v].circle.y.backend().value(),
+                           at[v].circle.r.backend().value()};
+  }
   return out;
 }
 }  // namespace
@@ -508,17 +521,42 @@ Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root, LayoutMetho
   out.arithmetic = arithmetic;
   out.smallest_radius = std::numeric_limits<double>::infinity();
   out.resolution = std::numeric_limits<double>::infinity();
+  const bool quad = !out.circles128.empty();  // a binary128 layout: its resolution in binary128 ulps
   for (std::size_t v = 0; v < out.circles.size(); ++v) {
     if (!out.complete && out.wave[v] == none) continue;  // not placed
     const Circle& c = out.circles[v];
     out.smallest_radius = std::min(out.smallest_radius, c.r);
-    out.resolution = std::min(out.resolution, circle_resolution(c));
+    out.resolution = std::min(out.resolution, quad ? circle_resolution(out.circles128[v]) : circle_resolution(c));
   }
   out.precision = out.resolution == 0                            ? Precision::unrepresentable
                   : out.resolution < Layout::collapsed_resolution ? Precision::collapsed
                   : out.resolution < Layout::degraded_resolution  ? Precision::degraded
                                                                   : Precision::ok;
   return out;
+}
+
+double circle_resolution(const Circle128& c) {
+  auto finite = [](__float128 q) { return q - q == 0; };
+  if (!finite(c.x) || !finite(c.y) || !finite(c.r) || !(c.r > 0)) return 0;
+  const __float128 m = std::max({fabsq(c.x), fabsq(c.y), c.r});
+  int e = 0;
+  frexpq(m, &e);  // m in [2^(e−1), 2^e): its last unit is 2^(e − 113)
+  return static_cast<double>(ldexpq(c.r, 113 - e));
+}
+
+int significand_bits_needed(const Layout& layout) {
+  const int p = layout.circles128.empty() ? 53 : 113;
+  if (!(layout.resolution > 0)) return 0;
+  return std::max(p, static_cast<int>(std::ceil(p + std::log2(Layout::degraded_resolution / layout.resolution))));
+}
+
+int bytes_per_coordinate(const Layout& layout) { return layout.circles128.empty() ? 8 : 16; }
+
+double tangency_error(const CircleEmbedding128& c, Vertex u, Vertex v) {
+  const __float128 dx = c[u].x - c[v].x, dy = c[u].y - c[v].y;
+  const __float128 d = sqrtq(dx * dx + dy * dy);
+  const __float128 e = fabsq(d - (c[u].r + c[v].r)) / std::min(c[u].r, c[v].r);
+  return static_cast<double>(e);
 }
 
 double tangency_error(const CircleEmbedding& c, Vertex u, Vertex v) {

@@ -34,7 +34,9 @@ std::string_view to_string(PackStatus status) {
   return "?";
 }
 
-double max_tangency_error(const PlanarGraph& g, const CircleEmbedding& circles) {
+namespace {
+template <class Embedding>
+double max_tangency_error_t(const PlanarGraph& g, const Embedding& circles) {
   double err = 0;
   for (Dart d = 0; d < g.num_darts(); ++d)
     if (g.tail(d) < g.head(d)) {
@@ -43,6 +45,12 @@ double max_tangency_error(const PlanarGraph& g, const CircleEmbedding& circles) 
       err = std::max(err, e);
     }
   return err;
+}
+}  // namespace
+
+double max_tangency_error(const PlanarGraph& g, const CircleEmbedding& circles) { return max_tangency_error_t(g, circles); }
+double max_tangency_error(const PlanarGraph& g, const CircleEmbedding128& circles) {
+  return max_tangency_error_t(g, circles);
 }
 
 PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* visitor) {
@@ -77,6 +85,11 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
 
   // Termination::radius_only (docs/radius-only.md): the radius-only test gates the layout; the exact
   // check on the layout still decides. PackingAgent does the same, round by round.
+  // The checks decide on the binary128 circles when the layout keeps them, else on the doubles.
+  auto check_layout = [&] { return result.circles128.empty() ? check_all(g, result.circles) : check_all(g, result.circles128); };
+  auto tangency = [&] {
+    return result.circles128.empty() ? max_tangency_error(g, result.circles) : max_tangency_error(g, result.circles128);
+  };
   const bool radius_only = options.termination != Termination::layout && options.stop == StopRule::lpd;
   double gap = options.radius_only_gap;
   auto lay_out_and_check = [&](int iteration, bool final) {
@@ -89,6 +102,8 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     const bool may_stop = !final && options.stop != StopRule::angle && options.acceleration != Acceleration::newton_krylov;
     result.layout = lay_out(k, result.radii, root, options.layout_method, options.layout_arithmetic, may_stop);
     result.circles.assign(result.layout.circles.begin(), result.layout.circles.begin() + static_cast<long>(n));
+    if (result.layout.circles128.empty()) result.circles128.clear();
+    else result.circles128.assign(result.layout.circles128.begin(), result.layout.circles128.begin() + static_cast<long>(n));
     lap(phases.layout);
     result.angle_error = std::isnan(known_angle_error) ? angle_error(k, result.radii) : known_angle_error;
     // A collapsed or unrepresentable layout (Precision) carries no claim: mid-run (Newton's first
@@ -105,14 +120,14 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     const bool want_angle = options.stop == StopRule::angle || options.track_all;
     bool lpd = false, exact = false, angle = false;
     if (want_lpd || (!skip && options.stop == StopRule::cap)) {
-      result.local = check_all(g, result.circles);
+      result.local = check_layout();
       result.local_ok = 0;
       for (LocalCondition c : result.local) result.local_ok += c == LocalCondition::holds;
       lpd = result.local_ok == n;
       if (lpd && result.first_lpd < 0) result.first_lpd = iteration;
     }
     if (want_exact) {
-      result.max_tangency_error = max_tangency_error(g, result.circles);
+      result.max_tangency_error = tangency();
       exact = result.max_tangency_error <= options.tangency_tolerance;
       if (exact && result.first_exact < 0) result.first_exact = iteration;
     }
@@ -256,11 +271,11 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     result.status = PackStatus::precision_loss;
   // Final statistics that the run may not have tracked.
   if (result.local.empty()) {
-    result.local = check_all(g, result.circles);
+    result.local = check_layout();
     result.local_ok = 0;
     for (LocalCondition c : result.local) result.local_ok += c == LocalCondition::holds;
   }
-  result.max_tangency_error = max_tangency_error(g, result.circles);
+  result.max_tangency_error = tangency();
   result.face_circles.assign(result.layout.circles.begin() + static_cast<long>(n), result.layout.circles.end());
   lap(phases.final);
   return result;

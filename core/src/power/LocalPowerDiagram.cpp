@@ -4,6 +4,7 @@
 
 #include <cassert>
 
+#include "../detail/FastFilter128.hpp"
 #include "PowerDetail.hpp"
 
 namespace laguerre::core {
@@ -34,12 +35,17 @@ namespace {
 // y(w) > y(v) decides the sign of the exact difference, so the split is exact.
 // ---------------------------------------------------------------------------------------------
 
-bool upper(const Circle& v, const Circle& w) { return w.y > v.y || (w.y == v.y && w.x > v.x); }
+// Written once over the coordinate type: C is Circle or Circle128 (binary128 coordinates, compared
+// natively and exactly), P the matching point type.
+template <class C>
+bool upper(const C& v, const C& w) { return w.y > v.y || (w.y == v.y && w.x > v.x); }
 bool upper(Point2 a, Point2 b) { return b.y > a.y || (b.y == a.y && b.x > a.x); }
+bool upper(Point128 a, Point128 b) { return b.y > a.y || (b.y == a.y && b.x > a.x); }
 
 // angle(p(a) − p(v)) < angle(p(b) − p(v)) with angles in [0, 2π), for non-zero directions. Within
 // one half the angles differ by less than π, so the orientation decides; equal angles are not less.
-bool angle_less(const Circle& v, const Circle& a, const Circle& b) {
+template <class C>
+bool angle_less(const C& v, const C& a, const C& b) {
   const bool ua = upper(v, a), ub = upper(v, b);
   if (ua != ub) return ua;
   return orientation(centre(v), centre(a), centre(b)) == Sign::positive;
@@ -108,13 +114,17 @@ bool angle_less(const Circle& v, const Circle& a, const Circle& b) {
 bool representable(const Circle& c) {
   return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.r) && c.r >= 0;
 }
+bool representable(const Circle128& c) {
+  return detail::finite128(c.x) && detail::finite128(c.y) && detail::finite128(c.r) && c.r >= 0;
+}
 
-LocalCondition lpd_core(const Circle& v, std::span<const Circle> w, bool boundary, bool perturbed,
-                        std::uint64_t pv, std::span<const std::uint64_t> pw) {
+template <class C>
+LocalCondition lpd_core(const C& v, std::span<const C> w, bool boundary, bool perturbed, std::uint64_t pv,
+                        std::span<const std::uint64_t> pw) {
   const std::size_t n = w.size();
   // Non-finite inputs have no exact value: nothing can be decided (and exact arithmetic would abort).
   if (!representable(v)) return LocalCondition::unrepresentable;
-  for (const Circle& c : w)
+  for (const C& c : w)
     if (!representable(c)) return LocalCondition::unrepresentable;
   if (n == 0) return LocalCondition::holds;
   auto prio = [&](std::size_t i) { return perturbed ? pw[i] : std::uint64_t{0}; };
@@ -123,13 +133,13 @@ LocalCondition lpd_core(const Circle& v, std::span<const Circle> w, bool boundar
     if (detail::compare_power_sos(v, w[i], perturbed, pv, prio(i)) == Sign::positive)
       return LocalCondition::site_outside_cell;
   if (boundary && n == 1) return LocalCondition::holds;  // a half-plane: one edge, nothing to order
-  const Point2 pv_ = centre(v);
+  const auto pv_ = centre(v);
   // (2) strict left turns between consecutive normals; (3) winding.
   const std::size_t pairs = boundary ? n - 1 : n;
   std::size_t k = 0;
   for (std::size_t i = 0; i < pairs; ++i) {
-    const Circle& a = w[i];
-    const Circle& b = w[(i + 1) % n];
+    const C& a = w[i];
+    const C& b = w[(i + 1) % n];
     if (orientation(pv_, centre(a), centre(b)) != Sign::positive) return LocalCondition::neighbour_order;
     if (!upper(v, a) && upper(v, b)) ++k;
   }
@@ -163,15 +173,16 @@ LocalCondition lpd_core(const Circle& v, std::span<const Circle> w, bool boundar
 }
 
 // Counter-clockwise neighbours of v in g, starting at lpd_first_dart.
-template <class Buffer>
-void collect_neighbours(const PlanarGraph& g, const CircleEmbedding& phi, Vertex v, Buffer& out) {
+template <class Embedding, class Buffer>
+void collect_neighbours(const PlanarGraph& g, const Embedding& phi, Vertex v, Buffer& out) {
   const std::uint32_t deg = g.degree(v);
   Dart d = lpd_first_dart(g, v);
   for (std::uint32_t i = 0; i < deg; ++i, d = g.next_ccw(d)) out.push_back(phi[g.head(d)]);
 }
 
 // The face walk to the left of d, starting at tail(d): circles and ids.
-void collect_face(const PlanarGraph& g, const CircleEmbedding& phi, Dart d, SmallBuffer<Circle>& circles,
+template <class C>
+void collect_face(const PlanarGraph& g, const std::vector<C>& phi, Dart d, SmallBuffer<C>& circles,
                   SmallBuffer<std::uint64_t>& ids) {
   circles.clear();
   ids.clear();
@@ -194,6 +205,10 @@ LocalCondition check_lpd_at(const Circle& v, std::span<const Circle> ccw_neighbo
   return lpd_core(v, ccw_neighbours, boundary, false, 0, {});
 }
 
+LocalCondition check_lpd_at(const Circle128& v, std::span<const Circle128> ccw_neighbours, bool boundary) {
+  return lpd_core(v, ccw_neighbours, boundary, false, 0, {});
+}
+
 LocalCondition check_lpd_at_perturbed(const Circle& v, std::uint64_t v_priority, std::span<const Circle> ccw_neighbours,
                                       std::span<const std::uint64_t> priorities, bool boundary) {
   assert(priorities.size() == ccw_neighbours.size());
@@ -212,39 +227,43 @@ Dart lpd_first_dart(const PlanarGraph& g, Vertex v) {
   return first;  // unreachable for a boundary vertex
 }
 
-LocalCondition check_lpd(const PlanarGraph& g, const CircleEmbedding& phi, Vertex v) {
-  SmallBuffer<Circle> nb;
+namespace {
+template <class C>
+LocalCondition check_lpd_t(const PlanarGraph& g, const std::vector<C>& phi, Vertex v) {
+  SmallBuffer<C> nb;
   collect_neighbours(g, phi, v, nb);
-  return check_lpd_at(phi[v], nb.span(), g.is_boundary(v));
+  return lpd_core(phi[v], nb.span(), g.is_boundary(v), false, 0, {});
 }
 
-bool is_strictly_convex(std::span<const Circle> q) {
+template <class C>
+bool is_strictly_convex_t(std::span<const C> q) {
   // Every corner a strict left turn (each edge direction turns by (0, π)); then, as in lpd_core, the
   // number of lower→upper transitions of the edge directions is the turning number, which must be 1.
   const std::size_t m = q.size();
   if (m < 3) return false;
   std::size_t k = 0;
   for (std::size_t j = 0; j < m; ++j) {
-    const Point2 a = centre(q[j]), b = centre(q[(j + 1) % m]), c = centre(q[(j + 2) % m]);
+    const auto a = centre(q[j]), b = centre(q[(j + 1) % m]), c = centre(q[(j + 2) % m]);
     if (orientation(a, b, c) != Sign::positive) return false;
     if (!upper(a, b) && upper(b, c)) ++k;
   }
   return k == 1;
 }
 
-LocalCondition check_glpd(const PlanarGraph& g, const CircleEmbedding& phi, Vertex v) {
+template <class C>
+LocalCondition check_glpd_t(const PlanarGraph& g, const std::vector<C>& phi, Vertex v) {
   const std::uint32_t deg = g.degree(v);
   if (deg == 0) return LocalCondition::holds;
   const Dart first = g.first_dart(v);
-  SmallBuffer<Circle> fc;
+  SmallBuffer<C> fc;
   SmallBuffer<std::uint64_t> fid;
   // 1. The inner faces around v are strictly convex (triangles: counter-clockwise).
   for (Dart d = first; d < first + deg; ++d) {
     if (g.face_of(d) == g.outer_face()) continue;
     collect_face(g, phi, d, fc, fid);
-    for (const Circle& c : fc.span())
+    for (const C& c : fc.span())
       if (!representable(c)) return LocalCondition::unrepresentable;
-    if (!is_strictly_convex(fc.span())) return LocalCondition::face_not_convex;
+    if (!is_strictly_convex_t(fc.span())) return LocalCondition::face_not_convex;
   }
   // 2. LPD(v) in G(φ), perturbed. v's neighbours in G(φ): after each dart v→u_i whose left face f is
   //    a non-triangle inner face, the diagonals of f at v, which lie in the wedge (u_i, u_{i+1}) and
@@ -252,7 +271,7 @@ LocalCondition check_glpd(const PlanarGraph& g, const CircleEmbedding& phi, Vert
   //    triangle of the (unique, perturbed) regular triangulation on edge v f_j has apex f_c; v f_c is
   //    a diagonal unless c = m − 1, and the fan continues from it. This is the same triangulation as
   //    `regular_triangulation_diagonals` computes from any starting corner.
-  SmallBuffer<Circle> nb;
+  SmallBuffer<C> nb;
   SmallBuffer<std::uint64_t> nid;
   Dart d = lpd_first_dart(g, v);
   for (std::uint32_t i = 0; i < deg; ++i, d = g.next_ccw(d)) {
@@ -274,9 +293,9 @@ LocalCondition check_glpd(const PlanarGraph& g, const CircleEmbedding& phi, Vert
   // 3. The local cell in G (g-neighbours only, exact, closed) meets no edge [f_i, f_{i+1}],
   //    1 ≤ i ≤ m − 2, of a non-triangle face f = (v, f1 … f_{m−1}): it may cross ∂f only on the two
   //    edges at v. Triangle faces are exempt (thesis, after Theorem 5.2.4).
-  SmallBuffer<Circle> gn;
+  SmallBuffer<C> gn;
   for (Dart e = first; e < first + deg; ++e) gn.push_back(phi[g.head(e)]);
-  const std::span<const Circle> others = gn.span();
+  const std::span<const C> others = gn.span();
   for (Dart e = first; e < first + deg; ++e) {
     if (!is_inner_polygon(g, e)) continue;
     collect_face(g, phi, e, fc, fid);
@@ -287,19 +306,33 @@ LocalCondition check_glpd(const PlanarGraph& g, const CircleEmbedding& phi, Vert
   return LocalCondition::holds;
 }
 
-LocalCondition check_local(const PlanarGraph& g, const CircleEmbedding& phi, Vertex v) {
+template <class C>
+LocalCondition check_local_t(const PlanarGraph& g, const std::vector<C>& phi, Vertex v) {
   const bool triangulated =
       g.outer_face() == none ||
       2 * g.num_edges() - g.face_size(g.outer_face()) == 3 * (g.num_faces() - 1);
-  return triangulated ? check_lpd(g, phi, v) : check_glpd(g, phi, v);
+  return triangulated ? check_lpd_t(g, phi, v) : check_glpd_t(g, phi, v);
 }
 
-std::vector<LocalCondition> check_all(const PlanarGraph& g, const CircleEmbedding& phi) {
+template <class C>
+std::vector<LocalCondition> check_all_t(const PlanarGraph& g, const std::vector<C>& phi) {
   const bool triangulated = g.inner_faces_are_triangles();
   std::vector<LocalCondition> out(g.num_vertices());
-  for (Vertex v = 0; v < g.num_vertices(); ++v) out[v] = triangulated ? check_lpd(g, phi, v) : check_glpd(g, phi, v);
+  for (Vertex v = 0; v < g.num_vertices(); ++v) out[v] = triangulated ? check_lpd_t(g, phi, v) : check_glpd_t(g, phi, v);
   return out;
 }
+}  // namespace
+
+LocalCondition check_lpd(const PlanarGraph& g, const CircleEmbedding& phi, Vertex v) { return check_lpd_t(g, phi, v); }
+LocalCondition check_lpd(const PlanarGraph& g, const CircleEmbedding128& phi, Vertex v) { return check_lpd_t(g, phi, v); }
+bool is_strictly_convex(std::span<const Circle> q) { return is_strictly_convex_t(q); }
+bool is_strictly_convex(std::span<const Circle128> q) { return is_strictly_convex_t(q); }
+LocalCondition check_glpd(const PlanarGraph& g, const CircleEmbedding& phi, Vertex v) { return check_glpd_t(g, phi, v); }
+LocalCondition check_glpd(const PlanarGraph& g, const CircleEmbedding128& phi, Vertex v) { return check_glpd_t(g, phi, v); }
+LocalCondition check_local(const PlanarGraph& g, const CircleEmbedding& phi, Vertex v) { return check_local_t(g, phi, v); }
+LocalCondition check_local(const PlanarGraph& g, const CircleEmbedding128& phi, Vertex v) { return check_local_t(g, phi, v); }
+std::vector<LocalCondition> check_all(const PlanarGraph& g, const CircleEmbedding& phi) { return check_all_t(g, phi); }
+std::vector<LocalCondition> check_all(const PlanarGraph& g, const CircleEmbedding128& phi) { return check_all_t(g, phi); }
 
 std::vector<Point2> local_cell_polygon(const PlanarGraph& g, const CircleEmbedding& phi, Vertex v,
                                        double box_half_width) {

@@ -61,7 +61,9 @@ inline Sign times(Sign a, Sign b) { return static_cast<Sign>(static_cast<int>(a)
 /// the smaller id dominates. With pow(q, u) = |q|² − 2 q·p(u) + z(u) the expression gains
 /// ε_a − ε_b, whose sign is that of the dominant term: positive iff id(a) < id(b). `pa`/`pb` are the
 /// ids; with `perturbed` false this is the exact predicate. Never zero when perturbed and pa ≠ pb.
-inline Sign compare_power_sos(const Circle& a, const Circle& b, bool perturbed, std::uint64_t pa, std::uint64_t pb) {
+/// C is Circle or Circle128 (the same predicates on binary128 coordinates).
+template <class C>
+Sign compare_power_sos(const C& a, const C& b, bool perturbed, std::uint64_t pa, std::uint64_t pb) {
   const Sign s = compare_power(centre(a), a, b);
   if (s != Sign::zero || !perturbed || pa == pb) return s;
   return pa < pb ? Sign::positive : Sign::negative;
@@ -79,8 +81,8 @@ inline Sign compare_power_sos(const Circle& a, const Circle& b, bool perturbed, 
 /// zero for distinct ids.
 /// Precondition: centres of u, a, b not collinear (returns Sign::zero otherwise, as the exact one).
 /// Cost: one degree-4 predicate; in the degenerate case up to four orientations.
-inline Sign power_side_sos(const Circle& u, const Circle& a, const Circle& b, const Circle& t,
-                           const std::uint64_t* pr) {
+template <class C>
+Sign power_side_sos(const C& u, const C& a, const C& b, const C& t, const std::uint64_t* pr) {
   const Sign exact = radical_centre_power_side(u, a, b, t);
   if (exact != Sign::zero || pr == nullptr) return exact;
   const Sign o = orientation(centre(u), centre(a), centre(b));
@@ -106,8 +108,9 @@ inline Sign power_side_sos(const Circle& u, const Circle& a, const Circle& b, co
 /// below the plane through â, b̂, ĉ. "t below plane(a, b, c)" is a strict total order on the
 /// candidates (the angle at which the rotating plane meets them), and never a tie after the
 /// perturbation, so one linear scan finds it. Cost: hi − lo power tests.
-inline std::uint32_t lower_hull_apex(std::span<const Circle> poly, std::span<const std::uint64_t> pr, std::uint32_t a,
-                                     std::uint32_t b, std::uint32_t lo, std::uint32_t hi) {
+template <class C>
+std::uint32_t lower_hull_apex(std::span<const C> poly, std::span<const std::uint64_t> pr, std::uint32_t a,
+                              std::uint32_t b, std::uint32_t lo, std::uint32_t hi) {
   std::uint32_t c = lo;
   for (std::uint32_t t = lo + 1; t <= hi; ++t) {
     const std::uint64_t ids[4] = {pr[a], pr[b], pr[c], pr[t]};

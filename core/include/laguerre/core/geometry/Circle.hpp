@@ -24,4 +24,24 @@ inline double power(double qx, double qy, const Circle& c) {
 /// A circle per vertex, indexed by core::Vertex: the map φ = (p, σ) of thesis §5.2.
 using CircleEmbedding = std::vector<Circle>;
 
+/// IEEE binary128 (GCC's and Clang's __float128 on x86-64): 113-bit significand, exponents down to
+/// 2^-16382. The coordinates of a layout computed in LayoutArithmetic::binary128 (docs/precision.md).
+__extension__ typedef __float128 Float128;
+
+/// A circle with binary128 coordinates: 16 bytes per coordinate. The exact predicates of
+/// Predicates.hpp take it as they take Circle, as the exact rationals its numbers are.
+struct Circle128 {
+  Float128 x = 0;  ///< centre abscissa
+  Float128 y = 0;  ///< centre ordinate
+  Float128 r = 0;  ///< radius
+};
+
+/// A binary128 circle per vertex, indexed by core::Vertex.
+using CircleEmbedding128 = std::vector<Circle128>;
+
+/// The circle rounded to doubles (each coordinate to nearest).
+inline Circle to_double(const Circle128& c) {
+  return {static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.r)};
+}
+
 }  // namespace laguerre::core

@@ -10,6 +10,17 @@
 /// Circle radii enter squared *exactly*, so a power comparison is exact for the stored (x, y, r).
 /// Results are enum results, never errors; degenerate inputs give Sign::zero and each predicate says
 /// what that means.
+///
+/// Binary128 inputs (Circle128, Point128: the coordinates of a LayoutArithmetic::binary128 layout) are
+/// decided the same way, on their exact values: the double filters read the differences computed in
+/// binary128 and rounded to doubles, with that rounding in their error bounds; the interval stage
+/// encloses each number by the sum of its three-double split (x = hi + mid + lo, every part exact);
+/// the exact stage sums those parts exactly. Range of the exact stage for binary128: every number 0
+/// or of magnitude in [2^-960, 2^1023) (below, the split's last part would be a subnormal double);
+/// outside it, or for a NaN or infinity, std::domain_error names the predicate.
+
+#include <concepts>
+#include <cstddef>
 
 #include "laguerre/core/geometry/Circle.hpp"
 
@@ -26,6 +37,15 @@ struct Point2 {
 
 /// Centre of a circle as a point.
 inline Point2 centre(const Circle& c) { return {c.x, c.y}; }
+
+/// A point of the plane given by binary128 coordinates.
+struct Point128 {
+  Float128 x = 0;  ///< abscissa
+  Float128 y = 0;  ///< ordinate
+};
+
+/// Centre of a binary128 circle as a point.
+inline Point128 centre(const Circle128& c) { return {c.x, c.y}; }
 
 /// Orientation of (a, b, c): positive if counter-clockwise (left turn), negative if clockwise, zero if
 /// collinear (including coincident points). Degree 2.
@@ -52,9 +72,37 @@ Sign radical_centre_power_side(const Circle& u, const Circle& a, const Circle& b
 /// Degree 6.
 Sign radical_centre_outside_unit_disc(const Circle& u, const Circle& a, const Circle& b);
 
+/// Binary128 point types (templates constrained to them: a braced list such as {0, 0} deduces no
+/// template argument, so calls written with braces keep meaning the double predicates).
+template <class P>
+concept Binary128Point = std::same_as<P, Point128>;
+/// See Binary128Point.
+template <class C>
+concept Binary128Circle = std::same_as<C, Circle128>;
+
+/// The predicates above on binary128 inputs, with the same meanings and the exact signs (file comment).
+template <Binary128Point P>
+Sign orientation(P a, P b, P c);
+/// See compare_power.
+template <Binary128Point P>
+Sign compare_power(P q, const Circle128& a, const Circle128& b);
+/// See compare_distance.
+template <Binary128Point P>
+Sign compare_distance(P q, P a, P b);
+/// See radical_centre_power_side (Circle): same stages, the double stage on the binary128
+/// differences rounded to doubles.
+template <Binary128Circle C>
+Sign radical_centre_power_side(const C& u, const C& a, const C& b, const C& t);
+/// See radical_centre_outside_unit_disc (Circle).
+template <Binary128Circle C>
+Sign radical_centre_outside_unit_disc(const C& u, const C& a, const C& b);
+
 /// Whether the closed segment [s0, s1] meets the closed power cell of `site` among `others`
 /// (the set {x : pow(x, site) ≤ pow(x, o) for all o}). Exact. Cost O(|others|) filtered predicates.
 bool segment_meets_power_cell(Point2 s0, Point2 s1, const Circle& site, const Circle* others, std::size_t count);
+/// See segment_meets_power_cell (Circle): on binary128 inputs.
+template <Binary128Point P>
+bool segment_meets_power_cell(P s0, P s1, const Circle128& site, const Circle128* others, std::size_t count);
 
 /// Compass routing comparison at v towards t: sign of angle(a − v, t − v) − angle(b − v, t − v), the
 /// unsigned angles in [0, π]. Negative when a deviates strictly less from the direction of t.

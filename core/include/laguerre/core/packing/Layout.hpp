@@ -23,12 +23,14 @@ enum class Precision {
   unrepresentable  ///< a NaN, an infinity or a non-positive radius
 };
 
-/// The arithmetic the layout wave computes in. The circles are stored as doubles either way.
+/// The arithmetic the layout wave computes in. The circles are stored as doubles either way; binary128
+/// layouts also keep their binary128 circles (Layout::circles128), on which the checks then decide.
 /// Names: `layout_arithmetic_names` (PackingNames.hpp).
 enum class LayoutArithmetic {
   binary64,  ///< doubles: what a network node computes (Placement.hpp), bit for bit
   binary128  ///< IEEE quadruple (113-bit significand, float128 in software, ~10x slower): the wave's
-             ///< rounding is 2^60 times smaller, then each circle is rounded once to doubles
+             ///< rounding is 2^60 times smaller; the circles are kept in binary128 (16 bytes per
+             ///< coordinate) and also rounded once to doubles
 };
 
 /// How the layout wave computes each placement (docs/precision.md). Both place the same vertices in
@@ -55,14 +57,17 @@ struct Layout {
   static constexpr double degraded_resolution = 1 << 20;  ///< below: Precision::degraded (~1e-6 relative rounding)
   static constexpr double collapsed_resolution = 1 << 4;   ///< below: Precision::collapsed
 
-  CircleEmbedding circles;                  ///< Euclidean circle per vertex of the complex
+  CircleEmbedding circles;                  ///< Euclidean circle per vertex of the complex (doubles)
+  CircleEmbedding128 circles128;            ///< the same circles in binary128 when `arithmetic` is binary128
+                                            ///< (empty otherwise): what precision and the checks read then
   std::vector<std::complex<double>> centre; ///< hyperbolic centre (interior) or ideal point (boundary)
   std::vector<std::uint32_t> wave;          ///< round of the layout wave in which each vertex was placed
   std::vector<Vertex> parent;               ///< the anchor each vertex was placed from (spanning tree)
   Vertex root = none;                       ///< root vertex (none if the complex has no interior vertex)
   Precision precision = Precision::ok;      ///< see Precision
   double smallest_radius = 0;               ///< min Euclidean radius
-  double resolution = 0;                    ///< min over circles of circle_resolution (0: unrepresentable)
+  double resolution = 0;                    ///< min over circles of circle_resolution (0: unrepresentable), of
+                                            ///< circles128 when kept (ulps of the binary128 coordinates)
   LayoutMethod method = LayoutMethod::wave;                  ///< how the wave placed the circles
   LayoutArithmetic arithmetic = LayoutArithmetic::binary64;  ///< what the wave computed in
   bool complete = true;  ///< false: stopped after the round that placed the first collapsed circle
@@ -98,7 +103,21 @@ Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root, LayoutMetho
 /// its radius spans (0 if a coordinate is not finite or r ≤ 0).
 double circle_resolution(const Circle& c);
 
+/// r / ulp(max(|x|, |y|, r)) in units of the binary128 coordinates (ulp = 2^(e − 113) for a largest
+/// coordinate in [2^(e−1), 2^e)); 0 if a coordinate is not finite or r ≤ 0.
+double circle_resolution(const Circle128& c);
+
+/// The significand (bits) a node needs for every circle of `layout` to span Layout::degraded_resolution
+/// ulps of its coordinates: p − log2(resolution / 2^20), at least p, p = 113 if the layout keeps
+/// binary128 circles and 53 otherwise (0 if the layout is unrepresentable).
+int significand_bits_needed(const Layout& layout);
+
+/// Bytes per stored coordinate of a layout: 16 when it keeps binary128 circles, 8 otherwise.
+int bytes_per_coordinate(const Layout& layout);
+
 /// Tangency error of edge u–v in a layout: | |p(u) − p(v)| − (σ(u) + σ(v)) | / min(σ(u), σ(v)).
 double tangency_error(const CircleEmbedding& c, Vertex u, Vertex v);
+/// tangency_error on binary128 circles, computed in binary128 (rounded to a double at the end).
+double tangency_error(const CircleEmbedding128& c, Vertex u, Vertex v);
 
 }  // namespace laguerre::core

@@ -95,7 +95,10 @@ struct PackResult {
   long long tree_sums = 0;   ///< Acceleration::newton_krylov: sums over the layout tree
   double angle_error = 0;   ///< max |θ − 2π| at the end
   double max_tangency_error = 0;  ///< max tangency error over G's edges at the end
-  CircleEmbedding circles;        ///< φ on G's vertices (indexed by Vertex of G)
+  CircleEmbedding circles;        ///< φ on G's vertices (indexed by Vertex of G), in doubles
+  CircleEmbedding128 circles128;  ///< φ on G's vertices in binary128 when the layout keeps them
+                                  ///< (LayoutArithmetic::binary128; empty otherwise): then LPD/GLPD, the
+                                  ///< tangency errors and the precision status are decided on these
   CircleEmbedding face_circles;   ///< circles of the face vertices (3-connected graphs), per face vertex
   std::vector<LocalCondition> local;  ///< LPD/GLPD outcome per vertex of G at the end
   std::size_t local_ok = 0;           ///< number of vertices where it holds
@@ -130,5 +133,7 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options = {}, PackVisit
 
 /// Largest tangency error over the edges of G in a layout (see tangency_error).
 double max_tangency_error(const PlanarGraph& g, const CircleEmbedding& circles);
+/// max_tangency_error on binary128 circles.
+double max_tangency_error(const PlanarGraph& g, const CircleEmbedding128& circles);
 
 }  // namespace laguerre::core

@@ -13,6 +13,10 @@
 /// the stored doubles; no floating-point rounding enters an outcome. Only `local_cell_polygon`
 /// (pictures) computes in doubles.
 ///
+/// Binary128. The checks also take circles with binary128 coordinates (Circle128, the coordinates of a
+/// LayoutArithmetic::binary128 layout): the same code, templated on the circle type, decided by the
+/// same exact predicates on those numbers' exact values.
+///
 /// Degenerate inputs. LPD is decided on the embedding as stored: an edge of zero length (three
 /// bisectors through one point) is *not* an adjacency. GLPD is decided, as Def. 5.2.3 prescribes, on
 /// an infinitesimally perturbed embedding ("Simulation of Simplicity"): the lifted height
@@ -62,6 +66,8 @@ std::string_view to_string(LocalCondition c);
 /// Cell(v) ∩ Cell(wn) ∩ Cell(w1) on the outer-face side is empty or strictly outside the unit disc.
 /// Cost: 4·deg filtered predicates, no heap allocation.
 LocalCondition check_lpd_at(const Circle& v, std::span<const Circle> ccw_neighbours, bool boundary);
+/// check_lpd_at on binary128 circles.
+LocalCondition check_lpd_at(const Circle128& v, std::span<const Circle128> ccw_neighbours, bool boundary);
 
 /// As `check_lpd_at`, decided on the symbolically perturbed embedding (see the file comment):
 /// `v_priority` and `priorities[i]` are the user ids of v and of `ccw_neighbours[i]` (distinct).
@@ -78,6 +84,8 @@ Dart lpd_first_dart(const PlanarGraph& g, Vertex v);
 
 /// LPD(v, φ) in g, a triangulated disc (every inner face a triangle). O(deg v) predicates.
 LocalCondition check_lpd(const PlanarGraph& g, const CircleEmbedding& phi, Vertex v);
+/// check_lpd on binary128 circles.
+LocalCondition check_lpd(const PlanarGraph& g, const CircleEmbedding128& phi, Vertex v);
 
 /// GLPD(v, φ) (Def. 5.2.4) in g, a 3-connected planar graph: the inner faces incident to v are
 /// strictly convex (else `face_not_convex`); LPD(v) holds in G(φ) on the perturbed embedding (else the
@@ -86,18 +94,26 @@ LocalCondition check_lpd(const PlanarGraph& g, const CircleEmbedding& phi, Verte
 /// i.e. it crosses ∂f only along [wn v] and [v w1] (else `cell_crosses_face`).
 /// Cost: O(Σ over incident faces f of |f|·(deg v + |f|)) predicates.
 LocalCondition check_glpd(const PlanarGraph& g, const CircleEmbedding& phi, Vertex v);
+/// check_glpd on binary128 circles.
+LocalCondition check_glpd(const PlanarGraph& g, const CircleEmbedding128& phi, Vertex v);
 
 /// `check_lpd` if every inner face of g is a triangle, `check_glpd` otherwise. The dispatch is O(1):
 /// in a simple graph every inner face has at least 3 sides, so all are triangles iff
 /// 2·E − |outer| = 3·(F − 1).
 LocalCondition check_local(const PlanarGraph& g, const CircleEmbedding& phi, Vertex v);
+/// check_local on binary128 circles.
+LocalCondition check_local(const PlanarGraph& g, const CircleEmbedding128& phi, Vertex v);
 
 /// `check_local` at every vertex, indexed by Vertex.
 std::vector<LocalCondition> check_all(const PlanarGraph& g, const CircleEmbedding& phi);
+/// check_all on binary128 circles.
+std::vector<LocalCondition> check_all(const PlanarGraph& g, const CircleEmbedding128& phi);
 
 /// Whether the closed polygon `ccw_polygon` (at least 3 centres) is strictly convex and
 /// counter-clockwise: every corner a strict left turn and the boundary winding exactly once. Exact.
 bool is_strictly_convex(std::span<const Circle> ccw_polygon);
+/// is_strictly_convex on binary128 centres.
+bool is_strictly_convex(std::span<const Circle128> ccw_polygon);
 
 /// Diagonals of the regular triangulation (dual of the power diagram) of the circles of a strictly
 /// convex counter-clockwise polygon, on the perturbed embedding with `priorities` (distinct user ids,
