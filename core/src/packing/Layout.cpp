@@ -535,7 +535,8 @@ Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root, LayoutMetho
   return out;
 }
 
-double circle_resolution(const Circle128& c) {
+template <Binary128Circle C>
+double circle_resolution(const C& c) {
   auto finite = [](__float128 q) { return q - q == 0; };
   if (!finite(c.x) || !finite(c.y) || !finite(c.r) || !(c.r > 0)) return 0;
   const __float128 m = std::max({fabsq(c.x), fabsq(c.y), c.r});
@@ -543,6 +544,8 @@ double circle_resolution(const Circle128& c) {
   frexpq(m, &e);  // m in [2^(e−1), 2^e): its last unit is 2^(e − 113)
   return static_cast<double>(ldexpq(c.r, 113 - e));
 }
+
+template double circle_resolution<Circle128>(const Circle128&);
 
 int significand_bits_needed(const Layout& layout) {
   const int p = layout.circles128.empty() ? 53 : 113;

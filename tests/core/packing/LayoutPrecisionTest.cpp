@@ -59,6 +59,10 @@ PlanarGraph nested_chain(int length) {
 
 TEST(LayoutPrecision, ResolutionCountsUnitsInTheLastPlace) {
   EXPECT_EQ(circle_resolution({0, 0, 0.25}), std::ldexp(1.0, 52));          // ulp(0.25) = 2^-54
+  // In binary128 the last unit is 2^60 times smaller: ulp(0.25) = 2^-114, ulp(0.5) = 2^-113.
+  EXPECT_EQ(circle_resolution(Circle128{0, 0, 0.25}), std::ldexp(1.0, 112));
+  EXPECT_EQ(circle_resolution(Circle128{0.5, 0, std::ldexp(1.0, -60)}), std::ldexp(1.0, 53));
+  EXPECT_EQ(circle_resolution(Circle128{-0.75, 0.5, 0}), 0.0);
   EXPECT_EQ(circle_resolution({0.5, 0, std::ldexp(1.0, -60)}), std::ldexp(1.0, -7));  // ulp(0.5) = 2^-53
   EXPECT_EQ(circle_resolution({-0.75, 0.5, 0}), 0.0);
   EXPECT_EQ(circle_resolution({NAN, 0, 0.1}), 0.0);
@@ -140,6 +144,40 @@ TEST(LayoutPrecision, CirclesBelowTheDoublesResolutionAreNeverClaimed) {
   const PackResult r = pack(nested_chain(12), opt);
   EXPECT_EQ(r.status, PackStatus::converged);
   EXPECT_NE(r.layout.precision, Precision::collapsed);
+}
+
+TEST(LayoutPrecision, Binary128KeepsTheCirclesThatDoublesCollapseAndDecidesOnThem) {
+  // The same 45 nested circles laid out in binary128: the circles are kept in binary128, where the
+  // smallest (< 1e-18 near 0.3) still span ~10^16 ulps; precision, LPD and the tangency error are
+  // decided on them, and the run converges where binary64 ends precision_loss (above).
+  const PlanarGraph g = nested_chain(45);
+  PackOptions opt;
+  opt.acceleration = Acceleration::newton;
+  opt.stop = StopRule::angle;
+  opt.angle_epsilon = 1e-12;
+  opt.max_iterations = 80;
+  opt.layout_method = LayoutMethod::frames;
+  opt.layout_arithmetic = LayoutArithmetic::binary128;
+  opt.root = RootRule::smallest_id;
+  const PackResult r = pack(g, opt);
+  ASSERT_EQ(r.circles128.size(), g.num_vertices());
+  EXPECT_EQ(bytes_per_coordinate(r.layout), 16);
+  EXPECT_LT(r.layout.smallest_radius, 1e-18);
+  EXPECT_GE(r.layout.resolution, Layout::degraded_resolution);
+  EXPECT_EQ(r.layout.precision, Precision::ok);
+  EXPECT_EQ(significand_bits_needed(r.layout), 113);
+  EXPECT_EQ(r.status, PackStatus::converged);
+  EXPECT_EQ(r.local_ok, g.num_vertices());  // LPD on the binary128 circles
+  EXPECT_LT(r.max_tangency_error, 1e-6);    // measured in binary128
+  // The kept circles round to the stored doubles, on which LPD does not hold everywhere (collapsed).
+  std::size_t double_ok = 0;
+  for (Vertex v = 0; v < g.num_vertices(); ++v) {
+    const Circle d = to_double(r.circles128[v]);
+    EXPECT_EQ(d.x, r.circles[v].x);
+    EXPECT_EQ(d.r, r.circles[v].r);
+    double_ok += check_lpd(g, r.circles, v) == LocalCondition::holds;
+  }
+  EXPECT_LT(double_ok, g.num_vertices());
 }
 
 namespace {

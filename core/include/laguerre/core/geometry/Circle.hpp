@@ -3,6 +3,7 @@
 /// Euclidean circles and the circle embedding φ = (p, σ) of a graph.
 
 #include <cmath>
+#include <concepts>
 #include <vector>
 
 namespace laguerre::core {
@@ -35,6 +36,11 @@ struct Circle128 {
   Float128 y = 0;  ///< centre ordinate
   Float128 r = 0;  ///< radius
 };
+
+/// The binary128 circle type, for overloads written as constrained templates: a braced list such as
+/// {0, 0, 1} deduces no template argument, so calls written with braces keep meaning the Circle ones.
+template <class C>
+concept Binary128Circle = std::same_as<C, Circle128>;
 
 /// A binary128 circle per vertex, indexed by core::Vertex.
 using CircleEmbedding128 = std::vector<Circle128>;

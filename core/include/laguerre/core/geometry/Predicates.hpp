@@ -76,9 +76,6 @@ Sign radical_centre_outside_unit_disc(const Circle& u, const Circle& a, const Ci
 /// template argument, so calls written with braces keep meaning the double predicates).
 template <class P>
 concept Binary128Point = std::same_as<P, Point128>;
-/// See Binary128Point.
-template <class C>
-concept Binary128Circle = std::same_as<C, Circle128>;
 
 /// The predicates above on binary128 inputs, with the same meanings and the exact signs (file comment).
 template <Binary128Point P>

@@ -105,7 +105,8 @@ double circle_resolution(const Circle& c);
 
 /// r / ulp(max(|x|, |y|, r)) in units of the binary128 coordinates (ulp = 2^(e − 113) for a largest
 /// coordinate in [2^(e−1), 2^e)); 0 if a coordinate is not finite or r ≤ 0.
-double circle_resolution(const Circle128& c);
+template <Binary128Circle C>
+double circle_resolution(const C& c);
 
 /// The significand (bits) a node needs for every circle of `layout` to span Layout::degraded_resolution
 /// ulps of its coordinates: p − log2(resolution / 2^20), at least p, p = 113 if the layout keeps
