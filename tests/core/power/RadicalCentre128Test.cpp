@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "laguerre/core/geometry/Predicates.hpp"
+#include "RadicalCentreOracle.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
 
 using namespace laguerre::core;
@@ -26,7 +27,7 @@ using namespace laguerre::core;
 namespace {
 
 __extension__ typedef unsigned __int128 U128;
-using Q = boost::multiprecision::cpp_rational;
+using namespace laguerre::testing::oracle;  // Q, QCircle, sign, power, the oracle
 using I = boost::multiprecision::cpp_int;
 
 Q exact(Float128 x) {  // decoded from the IEEE binary128 bits: sign, 15-bit exponent, 112-bit fraction
@@ -47,38 +48,19 @@ Q exact(Float128 x) {  // decoded from the IEEE binary128 bits: sign, 15-bit exp
   return negative ? Q(-q) : q;
 }
 
-int sign(const Q& q) { return q > 0 ? 1 : q < 0 ? -1 : 0; }
-
-struct QCircle {
-  Q x, y, r2;
-  explicit QCircle(const Circle128& c) : x(exact(c.x)), y(exact(c.y)), r2(exact(c.r) * exact(c.r)) {}
-};
-
-Q lifted(const QCircle& c) { return c.x * c.x + c.y * c.y - c.r2; }
+// The oracle of RadicalCentreOracle.hpp on Circle128 circles, converted exactly.
+QCircle rational(const Circle128& c) { return {exact(c.x), exact(c.y), exact(c.r) * exact(c.r)}; }
 
 bool oracle_centre(const Circle128& u, const Circle128& a, const Circle128& b, Q& cx, Q& cy) {
-  const QCircle qu(u), qa(a), qb(b);
-  const Q a11 = 2 * (qa.x - qu.x), a12 = 2 * (qa.y - qu.y), a21 = 2 * (qb.x - qu.x), a22 = 2 * (qb.y - qu.y);
-  const Q r1 = lifted(qa) - lifted(qu), r2 = lifted(qb) - lifted(qu);
-  const Q det = a11 * a22 - a12 * a21;
-  if (det == 0) return false;
-  cx = (r1 * a22 - a12 * r2) / det;
-  cy = (a11 * r2 - r1 * a21) / det;
-  return true;
+  return radical_centre(rational(u), rational(a), rational(b), cx, cy);
 }
 
-Q power(const Q& cx, const Q& cy, const QCircle& s) { return (cx - s.x) * (cx - s.x) + (cy - s.y) * (cy - s.y) - s.r2; }
-
 int oracle_power_side(const Circle128& u, const Circle128& a, const Circle128& b, const Circle128& t) {
-  Q cx, cy;
-  if (!oracle_centre(u, a, b, cx, cy)) return 0;
-  return sign(power(cx, cy, QCircle(t)) - power(cx, cy, QCircle(u)));
+  return power_side(rational(u), rational(a), rational(b), rational(t));
 }
 
 int oracle_outside(const Circle128& u, const Circle128& a, const Circle128& b) {
-  Q cx, cy;
-  if (!oracle_centre(u, a, b, cx, cy)) return 0;
-  return sign(cx * cx + cy * cy - 1);
+  return outside_unit_disc(rational(u), rational(a), rational(b));
 }
 
 Float128 ulps(Float128 x, int k) {  // a positive x moved by k binary128 units in the last place
@@ -119,7 +101,7 @@ TEST(RadicalCentrePredicates128, PowerSideMatchesTheExactOracleOnNearTies) {
       Q cx, cy;
       if (!oracle_centre(u, a, b, cx, cy)) continue;
       Circle128 t = circle();
-      const Q r2 = (cx - exact(t.x)) * (cx - exact(t.x)) + (cy - exact(t.y)) * (cy - exact(t.y)) - power(cx, cy, QCircle(u));
+      const Q r2 = (cx - exact(t.x)) * (cx - exact(t.x)) + (cy - exact(t.y)) * (cy - exact(t.y)) - power(cx, cy, rational(u));
       if (!(r2 > 0)) continue;
       const Float128 r = sqrt128(to_quad(r2));
       for (int k = -3; k <= 3; ++k) {

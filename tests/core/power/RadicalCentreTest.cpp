@@ -17,12 +17,13 @@
 #include <random>
 
 #include "laguerre/core/geometry/Predicates.hpp"
+#include "RadicalCentreOracle.hpp"
 
 using namespace laguerre::core;
 
 namespace {
 
-using Q = boost::multiprecision::cpp_rational;
+using namespace laguerre::testing::oracle;  // Q, QCircle, sign, power, the oracle
 
 Q exact(double x) {  // the double's exact value
   if (x == 0) return Q(0);
@@ -36,37 +37,19 @@ Q exact(double x) {  // the double's exact value
   return e >= 0 ? Q(q * p) : Q(q / p);
 }
 
-int sign(const Q& q) { return q > 0 ? 1 : q < 0 ? -1 : 0; }
+// The oracle of RadicalCentreOracle.hpp on Circle circles, converted exactly.
+QCircle rational(const Circle& c) { return {exact(c.x), exact(c.y), exact(c.r) * exact(c.r)}; }
 
-struct QCircle {
-  Q x, y, r2, z;  // centre, squared radius, lifted height |p|² − r²
-  explicit QCircle(const Circle& c) : x(exact(c.x)), y(exact(c.y)), r2(exact(c.r) * exact(c.r)), z(x * x + y * y - r2) {}
-};
-
-// Radical centre by Cramer's rule on 2 c·(p_s − p_u) = z_s − z_u, s = a, b; false if collinear.
 bool oracle_centre(const Circle& u, const Circle& a, const Circle& b, Q& cx, Q& cy) {
-  const QCircle qu(u), qa(a), qb(b);
-  const Q a11 = 2 * (qa.x - qu.x), a12 = 2 * (qa.y - qu.y), a21 = 2 * (qb.x - qu.x), a22 = 2 * (qb.y - qu.y);
-  const Q r1 = qa.z - qu.z, r2 = qb.z - qu.z;
-  const Q det = a11 * a22 - a12 * a21;
-  if (det == 0) return false;
-  cx = (r1 * a22 - a12 * r2) / det;
-  cy = (a11 * r2 - r1 * a21) / det;
-  return true;
+  return radical_centre(rational(u), rational(a), rational(b), cx, cy);
 }
 
-Q power(const Q& cx, const Q& cy, const QCircle& s) { return (cx - s.x) * (cx - s.x) + (cy - s.y) * (cy - s.y) - s.r2; }
-
 int oracle_power_side(const Circle& u, const Circle& a, const Circle& b, const Circle& t) {
-  Q cx, cy;
-  if (!oracle_centre(u, a, b, cx, cy)) return 0;
-  return sign(power(cx, cy, QCircle(t)) - power(cx, cy, QCircle(u)));
+  return power_side(rational(u), rational(a), rational(b), rational(t));
 }
 
 int oracle_outside(const Circle& u, const Circle& a, const Circle& b) {
-  Q cx, cy;
-  if (!oracle_centre(u, a, b, cx, cy)) return 0;
-  return sign(cx * cx + cy * cy - 1);
+  return outside_unit_disc(rational(u), rational(a), rational(b));
 }
 
 double ulps(double x, int k) {  // x moved by k units in the last place
@@ -92,7 +75,7 @@ TEST(RadicalCentrePredicates, PowerSideMatchesTheExactOracleOnNearTies) {
       if (!oracle_centre(u, a, b, cx, cy)) continue;
       // t on the tie: r_t² = |c − p_t|² − pow(c, u), if positive (else try another centre).
       Circle t = circle();
-      const QCircle qu(u);
+      const QCircle qu = rational(u);
       const double pu = static_cast<double>(power(cx, cy, qu));
       const double dx = static_cast<double>(cx - exact(t.x)), dy = static_cast<double>(cy - exact(t.y));
       const double r2 = dx * dx + dy * dy - pu;
