@@ -167,26 +167,21 @@ void PackingAgent::start() {
   broadcast(DepthMsg{false, 0, id_});
 }
 
-void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
+bool PackingAgent::takes(bool radius) {
+  if (phase_ != PackingPhase::idle && phase_ != PackingPhase::finished) return true;
   // Asynchronous mode: the last round's updates do not wait for every neighbour's value, so a
   // neighbour's final RadiusMsg may still be on its way (e.g. retransmitted) when the stop decision
   // arrives. It is stale, not unexpected.
-  if (phase_ == PackingPhase::finished && params_.asynchronous && std::holds_alternative<RadiusMsg>(m)) return;
-  if (phase_ == PackingPhase::idle || phase_ == PackingPhase::finished) {
-    ++counters().unexpected;
-    return;
-  }
-  std::visit([&](const auto& msg) { handle(i, msg); }, m);
+  if (!(radius && asynchronous_ && phase_ == PackingPhase::finished)) ++counters().unexpected;
+  return false;
+}
+
+void PackingAgent::receive(std::size_t i, const PackingMessage& m) {
+  if (takes(std::holds_alternative<RadiusMsg>(m))) std::visit([&](const auto& msg) { handle(i, msg); }, m);
 }
 
 void PackingAgent::receive(std::size_t i, const RadiusMsg& m) {
-  // receive(i, PackingMessage) for its RadiusMsg alternative.
-  if (phase_ == PackingPhase::finished && asynchronous_) return;
-  if (phase_ == PackingPhase::idle || phase_ == PackingPhase::finished) {
-    ++counters().unexpected;
-    return;
-  }
-  handle(i, m);
+  if (takes(true)) handle(i, m);
 }
 
 // ---- Depth: event-driven BFS from the boundary (over K), Dijkstra–Scholten termination --------------

@@ -73,6 +73,11 @@ public:
   const core::Circle& neighbour_circle(std::size_t i) const { return peers_[i].circle[round_ & 1]; }
 
 private:
+  // Whether a message is taken now: none before the set-up starts or once finished (counted as
+  // unexpected), except a stale RadiusMsg after an asynchronous stop (dropped quietly). Both
+  // receive() overloads ask it.
+  bool takes(bool radius);
+
   static constexpr std::uint32_t unknown = 0xffffffffu;
 
   // Per K-neighbour state, one record each (set-up BFS and election, tree, the latest radius and circle tags).
