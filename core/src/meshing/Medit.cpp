@@ -149,6 +149,19 @@ void read_elements(Tokens& t, std::size_t vertex_count, const char* count, const
   }
 }
 
+/// Reads a `Vertices` section: the count, then per vertex its coordinates (`point(i)`, which reads them
+/// into a value of the mesh's point type) and its reference.
+template <class Point, class ReadPoint>
+void read_vertices(Tokens& t, std::vector<Point>& points, std::vector<int>& refs, const ReadPoint& point) {
+  const std::size_t n = t.count("a vertex count");
+  points.resize(n);
+  refs.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    points[i] = point(i);
+    refs[i] = static_cast<int>(t.integer("a vertex reference"));
+  }
+}
+
 /// Opens `path` and writes the header of a Medit file of `dimension`, at full precision.
 std::ofstream open_medit_output(const std::string& path, std::size_t dimension) {
   std::ofstream out(path);
@@ -221,17 +234,14 @@ TriangleMesh read_medit_mesh(const std::string& path) {
     if (t.header(key, " (only planar meshes are read)", dimension, {2, 3})) {
       have_dimension = have_dimension || key == "Dimension";
     } else if (key == "Vertices") {
-      const std::size_t n = t.count("a vertex count");
-      mesh.points.resize(n);
-      mesh.point_refs.resize(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        mesh.points[i] = {t.real("a vertex abscissa"), t.real("a vertex ordinate")};
+      read_vertices(t, mesh.points, mesh.point_refs, [&](std::size_t i) {
+        const decltype(mesh.points)::value_type p{t.real("a vertex abscissa"), t.real("a vertex ordinate")};
         if (dimension == 3)
           if (const double z = t.real("a vertex z"); z != 0)
             t.fail("vertex " + std::to_string(i + 1) + " has z = " + std::to_string(z) +
                    "; expected 0 (only planar meshes are read)");
-        mesh.point_refs[i] = static_cast<int>(t.integer("a vertex reference"));
-      }
+        return p;
+      });
     } else if (key == "Triangles") {
       read_elements(t, mesh.points.size(), "a triangle count", "a triangle reference", mesh.triangles, mesh.triangle_refs);
     } else if (key == "Edges") {
@@ -275,13 +285,9 @@ TetMesh read_medit_tet_mesh(const std::string& path) {
     if (long dimension = 0; t.header(key, " (a 3D mesh was expected)", dimension, {3})) {
       have_dimension = have_dimension || key == "Dimension";
     } else if (key == "Vertices") {
-      const std::size_t n = t.count("a vertex count");
-      mesh.points.resize(n);
-      mesh.point_refs.resize(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        mesh.points[i] = {t.real("a vertex x"), t.real("a vertex y"), t.real("a vertex z")};
-        mesh.point_refs[i] = static_cast<int>(t.integer("a vertex reference"));
-      }
+      read_vertices(t, mesh.points, mesh.point_refs, [&](std::size_t) {
+        return decltype(mesh.points)::value_type{t.real("a vertex x"), t.real("a vertex y"), t.real("a vertex z")};
+      });
     } else if (key == "Triangles") {
       read_elements(t, mesh.points.size(), "a triangle count", "a triangle reference", mesh.triangles,
                     mesh.triangle_refs, &mesh.triangle_lines);
