@@ -4,30 +4,33 @@
 # events/s, windows, copies exchanged per window, time in events vs in synchronisation, peak memory
 # per rank, the exchange latency τ and the coupling factor λ = L·E/(τ·P). The trace hashes of the
 # 10^5 runs are printed side by side: they must be equal (the parallel run is the sequential one).
-# Then the packing protocol (`laguerre simulate`, a Delaunay graph of --protocol nodes, 50 Thurston
-# steps, constant 1 ms latency, one forwarded pair) sequentially and on the same ranks: events, wall,
-# peak memory of the protocol phase (the largest over the ranks), on more than one rank the kernel's
-# windows, copies exchanged per window, cut links and the slowest rank's seconds in events and in
-# synchronization (`simulate --json`'s "mpi"), and a hash of the JSON without its wall-clock and
-# kernel fields (equal on every line: the same run).
+# Then the packing protocol (`laguerre simulate`, a Delaunay graph of each --protocol size, the set-up
+# then --steps Thurston steps, constant 1 ms latency, one forwarded pair) sequentially and on the same
+# ranks: events, wall, CPU seconds of the whole command (user + system, all ranks), peak memory of the
+# protocol phase (the largest over the ranks), on more than one rank the kernel's windows, copies
+# exchanged per window, cut links, and per rank (lists, rank 0 first) nodes, events, seconds in events
+# and in synchronization and peak memory (`simulate --json`'s "mpi"), and a hash of the JSON without
+# its wall-clock and kernel fields (equal on every line of a size: the same run).
 #   tools/bench/mpi.sh [--preset release] [--sizes "316 1000"] [--until "50 5"] [--ranks "1 2"]
-#                      [--protocol 10000] [--baseline DIR]
+#                      [--protocol "10000 1000000"] [--steps "50 5"] [--baseline DIR]
 # --sizes are torus sides (316² = 99 856, 1000² = 10^6 nodes); --until the simulated seconds of each;
-# --protocol 0 skips the protocol runs. --baseline DIR holds the phold_mpi and laguerre programs of
+# --protocol the protocol's graph sizes, --steps the Thurston steps of each (the last one repeats);
+# --protocol 0 (or "") skips the protocol runs, --sizes "" the PHOLD ones. --baseline DIR holds the phold_mpi and laguerre programs of
 # another commit (e.g. copied from main's build): every run is then made with it too, right before
 # this tree's, and each line starts with build=baseline or build=this.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-preset=release sides="316 1000" untils="50 5" ranks="1 2" protocol=10000 baseline=""
+preset=release sides="316 1000" untils="50 5" ranks="1 2" protocols=10000 steps=50 baseline=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --preset) preset="$2"; shift 2 ;;
     --sizes) sides="$2"; shift 2 ;;
     --until) untils="$2"; shift 2 ;;
     --ranks) ranks="$2"; shift 2 ;;
-    --protocol) protocol="$2"; shift 2 ;;
+    --protocol) protocols="$2"; shift 2 ;;
+    --steps) steps="$2"; shift 2 ;;
     --baseline) baseline="$2"; shift 2 ;;
-    *) echo "mpi.sh: unknown argument '$1' (expected --preset, --sizes, --until, --ranks, --protocol or --baseline)" >&2
+    *) echo "mpi.sh: unknown argument '$1' (expected --preset, --sizes, --until, --ranks, --protocol, --steps or --baseline)" >&2
        exit 2 ;;
   esac
 done
@@ -59,41 +62,52 @@ for i in "${!side_list[@]}"; do
     done
   done
 done
-if [[ "$protocol" -gt 0 ]]; then
-  graph="$work/delaunay-$protocol.txt"
-  "${laguerres[-1]}" generate delaunay -n "$protocol" --seed 1 -o "$graph" >/dev/null 2>&1
-  options=(--max-iterations 50 --pairs 1 --json)
-  protocol_line() {  # tag, ranks, JSON file
-    python3 - "$@" <<'PY'
+read -r -a protocol_list <<<"$protocols"
+read -r -a steps_list <<<"$steps"
+protocol_line() {  # tag, ranks, JSON file, /usr/bin/time file
+  python3 - "$@" <<'PY'
 import hashlib, json, sys
-tag, ranks, path = sys.argv[1], sys.argv[2], sys.argv[3]
+tag, ranks, path, timing = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4]
 d = json.load(open(path))
+user, system = (float(x) for x in open(timing).read().split()[-2:])
 peak = d.pop("peak_memory_bytes"); wall = d.pop("wall_seconds"); d.pop("events_per_second"); d.pop("mpi_ranks", None)
 mpi = d.pop("mpi", None)  # the parallel kernel's windows and timings (not part of the result)
 same = hashlib.sha256(json.dumps(d, sort_keys=True).encode()).hexdigest()[:16]
 kernel = ""
 if mpi:
     w = max(mpi["windows"], 1)
+    per_rank = lambda key, f: ",".join(f(x) for x in mpi[key])
     kernel = (f" windows={mpi['windows']} copies_per_window={mpi['remote_copies'] / w:.1f} cut_links={mpi['cut_links']} "
-              f"events_s_max_rank={max(mpi['event_seconds']):.3f} sync_s_max_rank={max(mpi['sync_seconds']):.3f}")
-print(f"{tag} mode=protocol ranks={ranks} nodes={d['nodes']} events={d['events']} wall_s={wall:.3f} "
+              f"events_s_max_rank={max(mpi['event_seconds']):.3f} sync_s_max_rank={max(mpi['sync_seconds']):.3f} "
+              f"rank_nodes={per_rank('nodes', str)} rank_events={per_rank('events', str)} "
+              f"rank_events_s={per_rank('event_seconds', lambda x: f'{x:.1f}')} "
+              f"rank_sync_s={per_rank('sync_seconds', lambda x: f'{x:.1f}')} "
+              f"rank_peak_mb={per_rank('peak_memory_bytes', lambda x: f'{x / 1e6:.0f}')}")
+print(f"{tag} mode=protocol ranks={ranks} nodes={d['nodes']} steps={d['iterations']} events={d['events']} "
+      f"wall_s={wall:.3f} events_per_s={d['events'] / wall:.0f} cpu_s={user + system:.1f} "
       f"peak_mb_max_rank={peak / 1e6:.1f}{kernel} result={same}")
 PY
-  }
+}
+for i in "${!protocol_list[@]}"; do
+  protocol=${protocol_list[$i]} step=${steps_list[$i]:-${steps_list[-1]}}
+  [[ "$protocol" -gt 0 ]] || continue
+  graph="$work/delaunay-$protocol.txt"
+  "${laguerres[-1]}" generate delaunay -n "$protocol" --seed 1 -o "$graph" >/dev/null 2>&1
+  options=(--max-iterations "$step" --pairs 1 --json)
   for b in "${!builds[@]}"; do
     tag="build=${builds[$b]}" lag="${laguerres[$b]}"
-    rc=0; "$lag" simulate "$graph" "${options[@]}" >"$work/out.json" || rc=$?
+    # 3 (not converged in the steps given) is expected; mpirun then talks on stderr
+    rc=0; /usr/bin/time -f "%U %S" -o "$work/time" "$lag" simulate "$graph" "${options[@]}" >"$work/out.json" || rc=$?
     [[ $rc -eq 0 || $rc -eq 3 ]] || { echo "mpi.sh: laguerre simulate failed (exit status $rc)" >&2; exit 1; }
-    protocol_line "$tag" sequential "$work/out.json"
+    protocol_line "$tag" sequential "$work/out.json" "$work/time"
     for np in $ranks; do
-      rc=0; mpirun -np "$np" --oversubscribe --bind-to none "$lag" simulate "$graph" "${options[@]}" >"$work/out.json" \
-        2>"$work/err" || rc=$?  # 3 (not converged in 50 steps) is expected; mpirun then talks on stderr
+      rc=0; /usr/bin/time -f "%U %S" -o "$work/time" mpirun -np "$np" --oversubscribe --bind-to none "$lag" simulate \
+        "$graph" "${options[@]}" >"$work/out.json" 2>"$work/err" || rc=$?
       [[ $rc -eq 0 || $rc -eq 3 ]] || { cat "$work/err" >&2; echo "mpi.sh: mpirun laguerre simulate failed ($rc)" >&2; exit 1; }
-      protocol_line "$tag" "$np" "$work/out.json"
+      protocol_line "$tag" "$np" "$work/out.json" "$work/time"
     done
   done
-fi
-
+done
 # The scaling model (README, "Scaling out"), fitted to this run: c_e = CPU ns per event of the
 # smallest sequential run; k from the METIS cut of the 2-rank runs (cut fraction = k·sqrt(P/n));
 # a remote copy costs c_m = c_e more (encode, exchange, decode); τ(P) = TAU0·log2 P + TAU1·P
