@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "Commands.hpp"
 #include "Common.hpp"
@@ -15,6 +16,7 @@
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/packing/PackingNames.hpp"
 #include "laguerre/core/power/LocalPowerDiagram.hpp"
+#include "laguerre/core/routing/RoutingMetrics.hpp"
 
 namespace laguerre::tools {
 
@@ -39,6 +41,8 @@ struct PackArgs {
   std::string newton_solver = "cholesky";
   std::string layout_method = "frames";
   std::string layout_arithmetic = "binary64";
+  std::string pairs;  // empty: no routing check
+  std::uint64_t seed = 1;
 };
 
 class ProgressPrinter : public core::PackVisitor {
@@ -92,6 +96,8 @@ int run_pack(const PackArgs& a) {
   opt.layout_method = core::parse_name(core::layout_method_names, a.layout_method, "--layout");
   opt.layout_arithmetic = core::parse_name(core::layout_arithmetic_names, a.layout_arithmetic, "--layout-arithmetic");
 
+  const std::optional<core::PairSelection> pairs =
+      a.pairs.empty() ? std::nullopt : std::optional(parse_pairs(a.pairs, a.seed, "--pairs"));
   const std::string stem = a.out.empty() ? file_stem(a.graph.path) + "-packing" : a.out;
   if (!a.json_stdout) check_writable(stem + ".json", a.force);
   if (!a.no_picture) {
@@ -171,6 +177,29 @@ int run_pack(const PackArgs& a) {
   }
   doc["face_circles"] = faces;
 
+  // Greedy power routing on the coordinates LPD was decided on (binary128 circles when the layout kept
+  // them): the check of the delivery theorem on this embedding, in the arithmetic a node would store.
+  std::optional<core::RoutingStats> routing;
+  if (pairs && r.layout.precision != core::Precision::unrepresentable) {
+    const core::CircleEmbedding128* phi128 = r.circles128.empty() ? nullptr : &r.circles128;
+    routing = core::evaluate_routing(g, r.circles, core::Scheme::greedy_power, *pairs, phi128);
+    nlohmann::json fails = nlohmann::json::array();
+    for (const auto& f : routing->failures)
+      fails.push_back({{"source", g.id(f.source)},
+                       {"target", g.id(f.target)},
+                       {"stuck", f.stuck == core::none ? nlohmann::json() : nlohmann::json(g.id(f.stuck))},
+                       {"outcome", std::string(core::to_string(f.outcome))}});
+    doc["routing"] = {{"scheme", "greedy_power"},
+                      {"seed", pairs->seed},
+                      {"pairs", routing->pairs},
+                      {"delivered", routing->delivered},
+                      {"bytes_per_coordinate", routing->coordinate_bytes},
+                      {"hops_mean", routing->hops_mean},
+                      {"stretch_mean", routing->stretch_mean},
+                      {"stretch_max", routing->stretch_max},
+                      {"failures", fails}};
+  }
+
   if (a.json_stdout) {
     write_embedding_json(std::cout, std::move(doc), g, r.circles, local);
     std::cout << '\n';
@@ -236,6 +265,13 @@ int run_pack(const PackArgs& a) {
   if (bits_needed > (bytes == 16 ? 113 : 53))
     os << "             coordinates with a " << bits_needed << "-bit significand would carry every circle to 2^-20"
        << (bytes == 16 ? "\n" : " (binary128 has 113: --layout-arithmetic binary128)\n");
+  if (routing)
+    os << "routing      greedy power on the " << routing->coordinate_bytes << "-byte coordinates: "
+       << routing->delivered << " / " << routing->pairs << " sampled pairs delivered (seed " << pairs->seed
+       << "), " << routing->hops_mean << " hops on average, stretch " << routing->stretch_mean << " (max "
+       << routing->stretch_max << ")\n";
+  else if (pairs)
+    os << "routing      not checked: the layout is unrepresentable\n";
   if (!a.json_stdout) os << "wrote        " << stem << ".json\n";
   for (const auto& p : pictures) os << "wrote        " << p << '\n';
   return r.status == core::PackStatus::converged ? 0 : 3;
@@ -271,6 +307,11 @@ Action add_pack_command(CLI::App& app) {
   add_choice(*c.cmd, "--layout-arithmetic", c.args->layout_arithmetic, core::layout_arithmetic_names,
              "Arithmetic of the layout wave: binary64 (doubles, what a network node computes) or binary128 "
              "(quadruple precision, the circles rounded once to doubles; docs/precision.md)");
+  c.cmd->add_option("--pairs", c.args->pairs,
+                    "After packing, route greedy power packets between 'all' ordered pairs or N sampled pairs, on "
+                    "the coordinates LPD was decided on (binary128 with --layout-arithmetic binary128); default: no routing")
+      ->type_name("all|N");
+  c.cmd->add_option("--seed", c.args->seed, "Seed of the --pairs sample")->check(seed_validator())->capture_default_str();
   c.cmd->add_flag("--json", c.args->json_stdout, "Print the embedding JSON on standard output instead of writing STEM.json");
   c.cmd->add_flag("--no-picture", c.args->no_picture, "Do not draw the SVG/PNG picture");
   return [args = c.args] { return run_pack(*args); };

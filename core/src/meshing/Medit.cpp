@@ -235,7 +235,7 @@ TriangleMesh read_medit_mesh(const std::string& path) {
       have_dimension = have_dimension || key == "Dimension";
     } else if (key == "Vertices") {
       read_vertices(t, mesh.points, mesh.point_refs, [&](std::size_t i) {
-        const decltype(mesh.points)::value_type p{t.real("a vertex abscissa"), t.real("a vertex ordinate")};
+        const std::array<double, 2> p{t.real("a vertex abscissa"), t.real("a vertex ordinate")};
         if (dimension == 3)
           if (const double z = t.real("a vertex z"); z != 0)
             t.fail("vertex " + std::to_string(i + 1) + " has z = " + std::to_string(z) +
@@ -286,7 +286,7 @@ TetMesh read_medit_tet_mesh(const std::string& path) {
       have_dimension = have_dimension || key == "Dimension";
     } else if (key == "Vertices") {
       read_vertices(t, mesh.points, mesh.point_refs, [&](std::size_t) {
-        return decltype(mesh.points)::value_type{t.real("a vertex x"), t.real("a vertex y"), t.real("a vertex z")};
+        return std::array<double, 3>{t.real("a vertex x"), t.real("a vertex y"), t.real("a vertex z")};
       });
     } else if (key == "Triangles") {
       read_elements(t, mesh.points.size(), "a triangle count", "a triangle reference", mesh.triangles,

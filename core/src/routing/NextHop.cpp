@@ -17,5 +17,7 @@ bool leaves_perimeter(Point2 holder, Point2 entry, Point2 t) {
 LAGUERRE_NEXT_HOP_INSTANTIATE(GraphView)
 LAGUERRE_NEXT_HOP_INSTANTIATE(NeighbourView)
 #undef LAGUERRE_NEXT_HOP_INSTANTIATE
+template std::size_t greedy_power_hop(const GraphView128&, Point128);
+template std::size_t greedy_euclid_hop(const GraphView128&, Point128);
 
 }  // namespace laguerre::core

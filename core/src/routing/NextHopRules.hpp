@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "../detail/FastFilter.hpp"
+#include "../detail/FastFilter128.hpp"
 #include "../detail/Filtered.hpp"
 #include "laguerre/core/routing/NextHop.hpp"
 
@@ -112,18 +113,21 @@ inline bool in_open_sector(Point2 p, Point2 a, Point2 b, Point2 t, bool same_ray
 
 enum class Metric { power, euclid };
 
-/// What the greedy rule compares for metric M: the circles (power) or the positions (Euclidean).
+/// What the greedy rule compares for metric M: the circles (power) or the positions (Euclidean), of
+/// either arithmetic (the approx_* filters and the exact predicates have double and binary128 overloads).
 template <Metric M>
 struct Sites;
 
 template <>
 struct Sites<Metric::power> {
   template <class View>
-  static const Circle& own(const View& v) { return v.circle(); }
+  static const auto& own(const View& v) { return v.circle(); }
   template <class View>
-  static const Circle& of(const View& v, std::size_t i) { return v.circle_of(i); }
-  static Approx approx(Point2 t, const Circle& c) { return approx_power(t, c); }
-  static Sign exact(Point2 t, const Circle& a, const Circle& b) {
+  static const auto& of(const View& v, std::size_t i) { return v.circle_of(i); }
+  template <class P, class C>
+  static Approx approx(P t, const C& c) { return approx_power(t, c); }
+  template <class P, class C>
+  static Sign exact(P t, const C& a, const C& b) {
     // Equal radii cancel exactly in pow(t, a) − pow(t, b): the distance comparison is the same exact
     // sign, and its interval filter settles exact ties of well-placed centres (grids, symmetric
     // layouts) without falling back to rational arithmetic, which ties with a radius like 0.3 would
@@ -135,17 +139,19 @@ struct Sites<Metric::power> {
 template <>
 struct Sites<Metric::euclid> {
   template <class View>
-  static Point2 own(const View& v) { return v.position(); }
+  static auto own(const View& v) { return v.position(); }
   template <class View>
-  static Point2 of(const View& v, std::size_t i) { return v.position_of(i); }
-  static Approx approx(Point2 t, Point2 p) { return approx_distance(t, p); }
-  static Sign exact(Point2 t, Point2 a, Point2 b) { return compare_distance(t, a, b); }
+  static auto of(const View& v, std::size_t i) { return v.position_of(i); }
+  template <class P>
+  static Approx approx(P t, P p) { return approx_distance(t, p); }
+  template <class P>
+  static Sign exact(P t, P a, P b) { return compare_distance(t, a, b); }
 };
 
 /// The greedy rule: argmin over neighbours (smallest key among ties), if strictly better than the
 /// holder. (A two-pass variant, approximate argmin then certification, measured slower than this loop.)
 template <Metric M, class View>
-std::size_t greedy_hop(const View& v, Point2 t) {
+std::size_t greedy_hop(const View& v, typename View::Point t) {
   using S = Sites<M>;
   const std::size_t deg = v.degree();
   auto compare = [&](const auto& a, const Approx& aa, const auto& b, const Approx& ab) {
@@ -171,12 +177,12 @@ std::size_t greedy_hop(const View& v, Point2 t) {
 }  // namespace next_hop_detail
 
 template <class View>
-std::size_t greedy_power_hop(const View& view, Point2 t) {
+std::size_t greedy_power_hop(const View& view, typename View::Point t) {
   return next_hop_detail::greedy_hop<next_hop_detail::Metric::power>(view, t);
 }
 
 template <class View>
-std::size_t greedy_euclid_hop(const View& view, Point2 t) {
+std::size_t greedy_euclid_hop(const View& view, typename View::Point t) {
   return next_hop_detail::greedy_hop<next_hop_detail::Metric::euclid>(view, t);
 }
 

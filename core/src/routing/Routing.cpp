@@ -31,6 +31,16 @@ void check_embedding(const PlanarGraph& g, const CircleEmbedding& phi) {
                               " is not finite (NaN or infinite): the embedding cannot be routed on.");
 }
 
+void check_embedding(const PlanarGraph& g, const CircleEmbedding128& phi) {
+  LAGUERRE_PRECONDITION(phi.size() == g.num_vertices(), "The binary128 embedding has " + std::to_string(phi.size()) +
+                                                            " circles for a graph of " +
+                                                            std::to_string(g.num_vertices()) + " vertices.");
+  for (Vertex v = 0; v < phi.size(); ++v)
+    LAGUERRE_PRECONDITION(detail::finite128(phi[v].x) && detail::finite128(phi[v].y) && detail::finite128(phi[v].r),
+                          "The binary128 circle of vertex " + std::to_string(g.id(v)) +
+                              " is not finite (NaN or infinite): the embedding cannot be routed on.");
+}
+
 std::size_t saturating_mul(std::size_t a, std::size_t b) {
   if (a != 0 && b > std::numeric_limits<std::size_t>::max() / a) return std::numeric_limits<std::size_t>::max();
   return a * b;
@@ -107,6 +117,18 @@ Route route(const PlanarGraph& g, const CircleEmbedding& phi, Scheme s, Vertex s
 
 Router::Router(const PlanarGraph& g, const CircleEmbedding& phi) : g_(&g), phi_(&phi) { check_embedding(g, phi); }
 
+Router::Router(const PlanarGraph& g, const CircleEmbedding& phi, const CircleEmbedding128& phi128)
+    : g_(&g), phi_(&phi), phi128_(&phi128) {
+  check_embedding(g, phi);
+  check_embedding(g, phi128);
+}
+
+void Router::check_scheme(Scheme s) const {
+  LAGUERRE_PRECONDITION(phi128_ == nullptr || s == Scheme::greedy_power || s == Scheme::greedy_euclid,
+                        "Only the greedy schemes decide on binary128 circles; " + std::string(to_string(s)) +
+                            " reads doubles: route it with a router without binary128 circles.");
+}
+
 void Router::check_vertex(Vertex v, const char* role) const {
   LAGUERRE_PRECONDITION(v < g_->num_vertices(), std::string("The ") + role + " vertex index " + std::to_string(v) +
                                                     " is out of range for a graph of " +
@@ -114,6 +136,12 @@ void Router::check_vertex(Vertex v, const char* role) const {
 }
 
 Vertex Router::hop(Scheme s, Vertex at, Vertex target) const {
+  if (phi128_ != nullptr) {  // check_scheme: a greedy scheme
+    const GraphView128 view(*g_, *phi128_, at);
+    const Point128 t = centre((*phi128_)[target]);
+    const std::size_t i = s == Scheme::greedy_power ? greedy_power_hop(view, t) : greedy_euclid_hop(view, t);
+    return i == view.degree() ? none : g_->neighbours(at)[i];
+  }
   const GraphView view = view_of(at);
   const Point2 t = centre((*phi_)[target]);
   std::size_t i = view.degree();
@@ -133,6 +161,7 @@ Vertex Router::next_hop(Scheme s, Vertex at, Vertex target) const {
   LAGUERRE_PRECONDITION(s != Scheme::gfg,
                         "Greedy-face-greedy routing has no memoryless next hop: its decisions depend on the "
                         "perimeter state carried by the packet.");
+  check_scheme(s);
   return at == target ? none : hop(s, at, target);
 }
 
@@ -145,6 +174,7 @@ Route Router::route(Scheme s, Vertex source, Vertex target, std::size_t ttl) {
 void Router::route(Scheme s, Vertex source, Vertex target, std::size_t ttl, Route& out) {
   check_vertex(source, "source");
   check_vertex(target, "target");
+  check_scheme(s);
   out.path.clear();
   out.path.push_back(source);
   out.stuck = none;

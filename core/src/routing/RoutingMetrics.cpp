@@ -82,11 +82,12 @@ double nearest_rank_percentile(std::vector<double>& values, unsigned percent) {
 }
 
 RoutingStats evaluate_routing(const PlanarGraph& g, const CircleEmbedding& phi, Scheme s,
-                              const PairSelection& pairs) {
-  Router router(g, phi);
+                              const PairSelection& pairs, const CircleEmbedding128* phi128) {
+  Router router = phi128 != nullptr ? Router(g, phi, *phi128) : Router(g, phi);
   const std::size_t n = g.num_vertices();
   RoutingStats stats;
   stats.scheme = s;
+  stats.coordinate_bytes = phi128 != nullptr ? 16 : 8;
 
   std::vector<std::uint32_t> dist(n);
   std::vector<Vertex> queue;

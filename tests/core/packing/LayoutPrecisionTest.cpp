@@ -11,6 +11,7 @@
 #include "laguerre/core/packing/Layout.hpp"
 #include "laguerre/core/packing/Packer.hpp"
 #include "laguerre/core/packing/PackingComplex.hpp"
+#include "laguerre/core/routing/RoutingMetrics.hpp"
 
 using namespace laguerre::core;
 
@@ -178,6 +179,12 @@ TEST(LayoutPrecision, Binary128KeepsTheCirclesThatDoublesCollapseAndDecidesOnThe
     double_ok += check_lpd(g, r.circles, v) == LocalCondition::holds;
   }
   EXPECT_LT(double_ok, g.num_vertices());
+  // LPD on the binary128 circles: greedy power routing decided on them delivers every ordered pair
+  // (thesis Theorem 5.3.1).
+  const RoutingStats routed = evaluate_routing(g, r.circles, Scheme::greedy_power, {}, &r.circles128);
+  EXPECT_EQ(routed.coordinate_bytes, 16);
+  EXPECT_EQ(routed.pairs, g.num_vertices() * (g.num_vertices() - 1));
+  EXPECT_EQ(routed.delivered, routed.pairs);
 }
 
 namespace {

@@ -11,6 +11,7 @@
 
 #include "laguerre/core/Error.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
+#include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/core/routing/Router.hpp"
 #include "laguerre/core/routing/Routing.hpp"
 #include "DrawingGraph.hpp"
@@ -293,4 +294,69 @@ TEST(Routing, FastDecisionsEqualExactPredicatesOnNearTies) {
     }
   }
   EXPECT_EQ(checked, 600u * 3u * 9u);
+}
+
+namespace {
+// The binary128 circles equal to the doubles (widening is exact).
+CircleEmbedding128 widened(const CircleEmbedding& phi) {
+  CircleEmbedding128 out;
+  for (const Circle& c : phi) out.push_back({c.x, c.y, c.r});
+  return out;
+}
+
+// Every ordered pair routed by `s` on the doubles and on their exact binary128 widening: the same
+// decisions (the binary128 predicates are exact on the same numbers), so the same paths and outcomes.
+void expect_same_routes(const PlanarGraph& g, const CircleEmbedding& phi, Scheme s) {
+  const CircleEmbedding128 phi128 = widened(phi);
+  Router doubles(g, phi), quads(g, phi, phi128);
+  for (Vertex a = 0; a < g.num_vertices(); ++a)
+    for (Vertex b = 0; b < g.num_vertices(); ++b) {
+      const Route r = doubles.route(s, a, b), q = quads.route(s, a, b);
+      ASSERT_EQ(r.path, q.path) << to_string(s) << " " << a << " -> " << b;
+      ASSERT_EQ(r.outcome, q.outcome);
+      ASSERT_EQ(r.stuck, q.stuck);
+    }
+}
+}  // namespace
+
+TEST(Binary128Routing, ExactWideningDecidesAsTheDoublesIncludingTiesAndSubUlpDifferences) {
+  // The hand-built cases above: exact power ties, mirror ties (smallest index), a difference of one
+  // part in 2^-60 that only the exact stage sees.
+  const double e = std::ldexp(1.0, -30);
+  const std::vector<std::pair<CircleEmbedding, std::vector<std::pair<Vertex, Vertex>>>> cases = {
+      {{{0, 0, 0}, {4, 0, 0}, {4, 5, 3}, {-4, 9, 0}}, {{0, 2}, {2, 1}, {0, 3}, {3, 2}}},
+      {{{0, 0, 0.25}, {1, -1, 0.5}, {2, 0, 0.25}, {1, 1, 0.5}}, {{0, 1}, {0, 3}, {1, 2}, {3, 2}}},
+      {{{-5, -5, 0}, {1 + e, 0, 0}, {0, 1 + e, e}, {0, 0, 0}}, {{0, 1}, {0, 2}, {1, 3}, {2, 3}}},
+  };
+  for (const auto& [phi, edges] : cases)
+    for (const Scheme s : {Scheme::greedy_power, Scheme::greedy_euclid}) expect_same_routes(graph_of(phi, edges), phi, s);
+  const CircleEmbedding128 sub = widened(cases[2].first);
+  EXPECT_EQ(Router(graph_of(cases[2].first, cases[2].second), cases[2].first, sub).next_hop(Scheme::greedy_power, 0, 3), 2u);
+}
+
+TEST(Binary128Routing, RandomDelaunayDrawingsRouteAsTheDoubles) {
+  // Random Delaunay triangulations with random radii (greedy power dead ends included): same paths for
+  // every ordered pair.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> radius(0, 0.05);
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const GraphInput in = random_delaunay_triangulation(60, seed);
+    CircleEmbedding phi;
+    for (const Point2& p : in.positions) phi.push_back({p.x, p.y, radius(rng)});
+    for (const Scheme s : {Scheme::greedy_power, Scheme::greedy_euclid}) expect_same_routes(in.graph, phi, s);
+  }
+}
+
+TEST(Binary128Routing, OnlyTheGreedySchemesDecideOnBinary128) {
+  const CircleEmbedding phi{{0, 0, 1}, {2, 0, 1}};
+  const PlanarGraph g = graph_of(phi, {{0, 1}});
+  const CircleEmbedding128 phi128 = widened(phi);
+  Router router(g, phi, phi128);
+  EXPECT_EQ(router.route(Scheme::greedy_power, 0, 1).outcome, RouteOutcome::delivered);
+  for (const Scheme s : {Scheme::compass, Scheme::gfg, Scheme::hyperbolic})
+    EXPECT_THROW(router.route(s, 0, 1), laguerre::core::InternalError) << to_string(s);
+  EXPECT_THROW(Router(g, phi, CircleEmbedding128{{0, 0, 1}}), laguerre::core::InternalError);
+  CircleEmbedding128 bad = phi128;
+  bad[1].r = bad[1].r / Float128(0);  // +inf
+  EXPECT_THROW(Router(g, phi, bad), laguerre::core::InternalError);
 }

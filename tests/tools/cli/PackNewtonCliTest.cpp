@@ -90,3 +90,32 @@ TEST_F(PackNewtonCli, TimeLimitEndsWithItsStatusAndThePhasesAreWritten) {
   EXPECT_NE(help.out.find("--time-limit"), std::string::npos);
   EXPECT_NE(help.out.find("time limit"), std::string::npos);
 }
+
+TEST_F(PackNewtonCli, PairsRouteGreedyPowerOnTheCoordinatesLpdWasDecidedOn) {
+  // --pairs checks delivery after the pack, on the doubles or (binary128 layout) on the 16-byte
+  // circles; the same sample on both arithmetics delivers everything (LPD holds on both here).
+  for (const char* arithmetic : {"binary64", "binary128"}) {
+    const std::string stem = path(std::string("r-") + arithmetic);
+    const Outcome r = run("pack " + example + " --accelerate newton --layout-arithmetic " + arithmetic +
+                          " --pairs 200 --seed 3 --no-picture -o " + stem);
+    ASSERT_EQ(r.status, 0) << r.out;
+    const int bytes = std::string(arithmetic) == "binary128" ? 16 : 8;
+    EXPECT_NE(r.out.find("greedy power on the " + std::to_string(bytes) + "-byte coordinates: 200 / 200 sampled pairs"),
+              std::string::npos)
+        << r.out;
+    std::ifstream in(stem + ".json");
+    const nlohmann::json routing = nlohmann::json::parse(in)["routing"];
+    EXPECT_EQ(routing["pairs"], 200);
+    EXPECT_EQ(routing["delivered"], 200);
+    EXPECT_EQ(routing["seed"], 3);
+    EXPECT_EQ(routing["bytes_per_coordinate"], bytes);
+    EXPECT_TRUE(routing["failures"].empty());
+  }
+  const Outcome none = run("pack " + example + " --no-picture -o " + path("no-routing"));
+  ASSERT_EQ(none.status, 0) << none.out;
+  std::ifstream in(path("no-routing") + ".json");
+  EXPECT_FALSE(nlohmann::json::parse(in).contains("routing"));
+  const Outcome bad = run("pack " + example + " --pairs 0 --no-picture -o " + path("bad-pairs"));
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--pairs"), std::string::npos) << bad.out;
+}

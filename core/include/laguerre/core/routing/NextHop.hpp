@@ -6,7 +6,7 @@
 /// per-node protocols::ForwardingNode both decide with these functions, so a packet routed hop by hop
 /// takes core::route's path bit for bit: never re-implement a rule inline.
 ///
-/// Every decision is exact on the stored doubles (Routing.hpp). A decision returns the index of the
+/// Every decision is exact on the stored coordinates, doubles or binary128 (Routing.hpp). A decision returns the index of the
 /// next hop in the view's neighbour order (counter-clockwise), or `view.degree()` when there is none;
 /// among equally good neighbours the smallest key wins. The callers check
 /// "the holder is the target" before asking.
@@ -14,6 +14,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
+#include <vector>
 
 #include "laguerre/core/geometry/Circle.hpp"
 #include "laguerre/core/geometry/Predicates.hpp"
@@ -21,36 +23,49 @@
 
 namespace laguerre::core {
 
-/// Vertex `at` of an embedded graph as it knows itself: what core::Router decides on. Keeps
-/// references: `g` and `phi` must outlive it.
-class GraphView {
+/// Vertex `at` of an embedded graph as it knows itself: what core::Router decides on. `C` is the
+/// circle type of the embedding: Circle (doubles) or Circle128 (the binary128 circles of a
+/// LayoutArithmetic::binary128 layout, on which the greedy rules decide with the binary128 predicates).
+/// Keeps references: `g` and `phi` must outlive it.
+template <class C>
+class BasicGraphView {
 public:
+  /// The circle type, and the point type of its centres (Point2 or Point128).
+  using Circle = C;
+  using Point = decltype(centre(std::declval<const C&>()));
   /// The view of vertex `at` (an index of `g`; `phi` has one circle per vertex).
-  GraphView(const PlanarGraph& g, const CircleEmbedding& phi, Vertex at)
+  BasicGraphView(const PlanarGraph& g, const std::vector<C>& phi, Vertex at)
       : phi_(&phi), at_(at), neighbours_(g.neighbours(at)) {}
   /// Number of neighbours.
   std::size_t degree() const { return neighbours_.size(); }
   /// Own circle.
-  const Circle& circle() const { return (*phi_)[at_]; }
+  const C& circle() const { return (*phi_)[at_]; }
   /// Own position: the circle's centre.
-  Point2 position() const { return centre(circle()); }
+  Point position() const { return centre(circle()); }
   /// Circle of neighbour i (counter-clockwise order of g's rotation).
-  const Circle& circle_of(std::size_t i) const { return (*phi_)[neighbours_[i]]; }
+  const C& circle_of(std::size_t i) const { return (*phi_)[neighbours_[i]]; }
   /// Position of neighbour i: its circle's centre.
-  Point2 position_of(std::size_t i) const { return centre(circle_of(i)); }
+  Point position_of(std::size_t i) const { return centre(circle_of(i)); }
   /// Tie-break key of neighbour i: its vertex index.
   std::uint64_t key(std::size_t i) const { return neighbours_[i]; }
 
 private:
-  const CircleEmbedding* phi_;
+  const std::vector<C>* phi_;
   Vertex at_;
   std::span<const Vertex> neighbours_;
 };
+
+/// The view of a double embedding (every scheme decides on it).
+using GraphView = BasicGraphView<Circle>;
+/// The view of a binary128 embedding (the greedy schemes decide on it).
+using GraphView128 = BasicGraphView<Circle128>;
 
 /// What a node of the forwarding protocol knows (protocols::ForwardingNode). Keeps spans: the data
 /// must outlive it.
 class NeighbourView {
 public:
+  using Circle = core::Circle;
+  using Point = Point2;
   /// Own circle and position; neighbours' circles, positions and tie-break keys (node ids), all in
   /// counter-clockwise order and of equal sizes.
   NeighbourView(const Circle& circle, Point2 position, std::span<const Circle> circles,
@@ -77,17 +92,17 @@ private:
   std::span<const std::uint64_t> keys_;
 };
 
-// The rules below take a View, GraphView or NeighbourView; both are instantiated (and compiled once)
-// in NextHop.cpp.
+// The rules below take a View: GraphView, NeighbourView or (the greedy rules) GraphView128, each
+// instantiated (and compiled once) in NextHop.cpp. The target t is a View::Point.
 
 /// Greedy power: the neighbour u minimising pow(t, u) (smallest key among ties) if that is strictly
 /// less than pow(t, own circle); otherwise a dead end.
 template <class View>
-std::size_t greedy_power_hop(const View& view, Point2 t);
+std::size_t greedy_power_hop(const View& view, typename View::Point t);
 
 /// Greedy Euclidean: like greedy_power_hop with |t − position|².
 template <class View>
-std::size_t greedy_euclid_hop(const View& view, Point2 t);
+std::size_t greedy_euclid_hop(const View& view, typename View::Point t);
 
 /// Compass: the neighbour whose direction from the own position makes the smallest angle with the
 /// direction of t (smallest key among ties); none only without neighbours.

@@ -21,6 +21,11 @@ public:
   /// Binds the router to `g` and `phi`. Preconditions (InternalError otherwise): phi.size() ==
   /// g.num_vertices() and every circle finite.
   Router(const PlanarGraph& g, const CircleEmbedding& phi);
+  /// Same, and the greedy schemes (greedy_power, greedy_euclid) decide on `phi128`, the binary128
+  /// circles of the same embedding (Layout::circles128), exactly on them; the other schemes are then
+  /// refused (InternalError), since their rules read doubles. `phi128` must outlive the router;
+  /// preconditions as above for `phi128` too.
+  Router(const PlanarGraph& g, const CircleEmbedding& phi, const CircleEmbedding128& phi128);
 
   /// Routes one packet; see route() for the meaning of the arguments and of the result.
   Route route(Scheme s, Vertex source, Vertex target, std::size_t ttl = 0);
@@ -41,17 +46,21 @@ public:
   const PlanarGraph& graph() const { return *g_; }
   /// The embedding routed on.
   const CircleEmbedding& embedding() const { return *phi_; }
+  /// The binary128 circles the greedy schemes decide on, or null (they decide on embedding()).
+  const CircleEmbedding128* embedding128() const { return phi128_; }
 
 private:
   void route_memoryless(Scheme s, Vertex target, std::size_t ttl, Route& out);
   void route_gfg(Vertex target, std::size_t ttl, Route& out) const;
   void route_hyperbolic(Vertex target, std::size_t ttl, Route& out) const;
   void check_vertex(Vertex v, const char* role) const;
+  void check_scheme(Scheme s) const;
   Vertex hop(Scheme s, Vertex at, Vertex target) const;
   GraphView view_of(Vertex v) const { return {*g_, *phi_, v}; }
 
   const PlanarGraph* g_;
   const CircleEmbedding* phi_;
+  const CircleEmbedding128* phi128_ = nullptr;
   std::vector<std::uint32_t> visit_mark_;  // compass loop detection: == epoch_ when visited this route
   std::uint32_t epoch_ = 0;
   mutable std::unique_ptr<HyperbolicTreeEmbedding> hyperbolic_;  // built on first use

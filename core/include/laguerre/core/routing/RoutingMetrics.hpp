@@ -40,6 +40,7 @@ struct RoutingStats {
   double hops_mean = 0;                  ///< mean hop count over delivered pairs
   std::vector<RoutingFailure> failures;  ///< the first (at most 100) failures, in routing order
   std::size_t failures_total = 0;        ///< number of failures (pairs − delivered)
+  int coordinate_bytes = 8;              ///< bytes per coordinate the decisions read: 8 (doubles), 16 (binary128)
 };
 
 /// The pairs `selection` designates on a graph of n vertices, sorted by (source, target):
@@ -54,9 +55,11 @@ std::vector<std::pair<Vertex, Vertex>> select_pairs(std::size_t n, const PairSel
 double nearest_rank_percentile(std::vector<double>& values, unsigned percent);
 
 /// Routes every selected pair with scheme `s` and aggregates the results. Hop distances come from one
-/// breadth-first search per distinct source. Deterministic. Preconditions (InternalError otherwise):
-/// phi.size() == g.num_vertices() and every circle finite.
+/// breadth-first search per distinct source. Deterministic. With `phi128` (the binary128 circles of
+/// the same embedding) the greedy schemes decide on it (Router); other schemes are then refused.
+/// Preconditions (InternalError otherwise): phi.size() == g.num_vertices() and every circle finite,
+/// and the same for `phi128`.
 RoutingStats evaluate_routing(const PlanarGraph& g, const CircleEmbedding& phi, Scheme s,
-                              const PairSelection& pairs = {});
+                              const PairSelection& pairs = {}, const CircleEmbedding128* phi128 = nullptr);
 
 }  // namespace laguerre::core
