@@ -41,6 +41,7 @@ struct PackArgs {
   std::string newton_solver = "cholesky";
   std::string layout_method = "frames";
   std::string layout_arithmetic = "binary64";
+  std::string termination = "layout";
   std::string pairs;  // empty: no routing check
   std::uint64_t seed = 1;
 };
@@ -95,6 +96,11 @@ int run_pack(const PackArgs& a) {
   opt.newton_solver = core::parse_name(core::newton_solver_names, a.newton_solver, "--newton-solver");
   opt.layout_method = core::parse_name(core::layout_method_names, a.layout_method, "--layout");
   opt.layout_arithmetic = core::parse_name(core::layout_arithmetic_names, a.layout_arithmetic, "--layout-arithmetic");
+  opt.termination = core::parse_name(core::termination_names, a.termination, "--termination");
+  if (opt.termination != core::Termination::layout && opt.stop != core::StopRule::lpd)
+    throw core::InputError("--termination", 0,
+                           "found '" + a.termination + "' with --stop " + a.stop +
+                               "; expected layout (the radius-only gate serves the LPD/GLPD rule only)");
 
   const std::optional<core::PairSelection> pairs =
       a.pairs.empty() ? std::nullopt : std::optional(parse_pairs(a.pairs, a.seed, "--pairs"));
@@ -141,6 +147,8 @@ int run_pack(const PackArgs& a) {
                                                            {"tree_sums", r.tree_sums}}
                                           : nlohmann::json()},
                     {"sweep", a.sweep},
+                    {"termination", a.termination},
+                    {"layouts", r.layouts},
                     {"angle_error", r.angle_error},
                     {"max_tangency_error", r.max_tangency_error},
                     {"local_ok", r.local_ok},
@@ -244,6 +252,9 @@ int run_pack(const PackArgs& a) {
                   p.setup, p.sweeps, p.jacobian, p.solve, p.line_search, p.layout, p.checks, p.final);
     os << text;
   }
+  if (opt.termination != core::Termination::layout)
+    os << "termination  " << a.termination << ": " << r.layouts << " layouts and exact checks for " << r.iterations
+       << " iterations\n";
   if (r.skipped_checks > 0)
     os << "             " << r.skipped_checks << " collapsed or unrepresentable layouts mid-run were not checked (the final one is)\n";
   if (opt.acceleration == core::Acceleration::newton)
@@ -307,6 +318,10 @@ Action add_pack_command(CLI::App& app) {
   add_choice(*c.cmd, "--layout-arithmetic", c.args->layout_arithmetic, core::layout_arithmetic_names,
              "Arithmetic of the layout wave: binary64 (doubles, what a network node computes) or binary128 "
              "(quadruple precision, the circles rounded once to doubles; docs/precision.md)");
+  add_choice(*c.cmd, "--termination", c.args->termination, core::termination_names,
+             "layout: lay out and check LPD/GLPD after every sweep or Newton step; radius-only: only once every "
+             "vertex's angle sum is within a gap of 2π (halved at each failed check), which skips the costly "
+             "layouts of far-from-converged radii (docs/radius-only.md); radius-flood: the protocol's variant");
   c.cmd->add_option("--pairs", c.args->pairs,
                     "After packing, route greedy power packets between 'all' ordered pairs or N sampled pairs, on "
                     "the coordinates LPD was decided on (binary128 with --layout-arithmetic binary128); default: no routing")

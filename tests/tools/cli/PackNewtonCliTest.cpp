@@ -119,3 +119,21 @@ TEST_F(PackNewtonCli, PairsRouteGreedyPowerOnTheCoordinatesLpdWasDecidedOn) {
   EXPECT_EQ(bad.status, 2) << bad.out;
   EXPECT_NE(bad.out.find("--pairs"), std::string::npos) << bad.out;
 }
+
+TEST_F(PackNewtonCli, RadiusOnlyTerminationReachesLpdWithFewerLayouts) {
+  const std::string every = path("t-layout"), gated = path("t-radius");
+  const Outcome a = run("pack " + example + " --accelerate newton --no-picture -o " + every);
+  const Outcome b = run("pack " + example + " --accelerate newton --termination radius-only --no-picture -o " + gated);
+  ASSERT_EQ(a.status, 0) << a.out;
+  ASSERT_EQ(b.status, 0) << b.out;
+  EXPECT_NE(b.out.find("termination  radius-only: "), std::string::npos) << b.out;
+  std::ifstream ia(every + ".json"), ib(gated + ".json");
+  const nlohmann::json pa = nlohmann::json::parse(ia)["packing"], pb = nlohmann::json::parse(ib)["packing"];
+  EXPECT_EQ(pb["termination"], "radius-only");
+  EXPECT_EQ(pb["local_ok"], 60);
+  EXPECT_EQ(pa["layouts"], pa["iterations"]);
+  EXPECT_LT(pb["layouts"].get<int>(), pb["iterations"].get<int>());
+  const Outcome bad = run("pack " + example + " --termination radius-only --stop exact --no-picture -o " + path("t-bad"));
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--termination"), std::string::npos) << bad.out;
+}
