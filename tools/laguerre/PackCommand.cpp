@@ -97,6 +97,10 @@ int run_pack(const PackArgs& a) {
   opt.layout_method = core::parse_name(core::layout_method_names, a.layout_method, "--layout");
   opt.layout_arithmetic = core::parse_name(core::layout_arithmetic_names, a.layout_arithmetic, "--layout-arithmetic");
   opt.termination = core::parse_name(core::termination_names, a.termination, "--termination");
+  if (opt.layout_arithmetic == core::LayoutArithmetic::mixed && opt.layout_method != core::LayoutMethod::frames)
+    throw core::InputError("--layout-arithmetic", 0,
+                           "found 'mixed' with --layout " + a.layout_method + "; expected --layout frames (the mixed "
+                           "arithmetic computes the frames' local steps in doubles; the wave has no frames)");
   if (opt.termination != core::Termination::layout && opt.stop != core::StopRule::lpd)
     throw core::InputError("--termination", 0,
                            "found '" + a.termination + "' with --stop " + a.stop +
@@ -275,7 +279,7 @@ int run_pack(const PackArgs& a) {
      << '\n';
   if (bits_needed > (bytes == 16 ? 113 : 53))
     os << "             coordinates with a " << bits_needed << "-bit significand would carry every circle to 2^-20"
-       << (bytes == 16 ? "\n" : " (binary128 has 113: --layout-arithmetic binary128)\n");
+       << (bytes == 16 ? "\n" : " (binary128 has 113: --layout-arithmetic mixed or binary128)\n");
   if (routing)
     os << "routing      greedy power on the " << routing->coordinate_bytes << "-byte coordinates: "
        << routing->delivered << " / " << routing->pairs << " sampled pairs delivered (seed " << pairs->seed
@@ -316,15 +320,17 @@ Action add_pack_command(CLI::App& app) {
              "the depth) or wave (from two placed positions, what a network node computes; rounding grows "
              "exponentially with the depth, docs/precision.md)");
   add_choice(*c.cmd, "--layout-arithmetic", c.args->layout_arithmetic, core::layout_arithmetic_names,
-             "Arithmetic of the layout wave: binary64 (doubles, what a network node computes) or binary128 "
-             "(quadruple precision, the circles rounded once to doubles; docs/precision.md)");
+             "Arithmetic of the layout: binary64 (doubles, what a network node computes), binary128 (quadruple "
+             "precision throughout; the circles kept in binary128, LPD decided on them) or mixed (frames only: "
+             "frames and circles in binary128, the steps computed from the radii in doubles, several times "
+             "faster than binary128; docs/precision.md)");
   add_choice(*c.cmd, "--termination", c.args->termination, core::termination_names,
              "layout: lay out and check LPD/GLPD after every sweep or Newton step; radius-only: only once every "
              "vertex's angle sum is within a gap of 2π (halved at each failed check), which skips the costly "
              "layouts of far-from-converged radii (docs/radius-only.md); radius-flood: the protocol's variant");
   c.cmd->add_option("--pairs", c.args->pairs,
                     "After packing, route greedy power packets between 'all' ordered pairs or N sampled pairs, on "
-                    "the coordinates LPD was decided on (binary128 with --layout-arithmetic binary128); default: no routing")
+                    "the coordinates LPD was decided on (binary128 with --layout-arithmetic binary128 or mixed); default: no routing")
       ->type_name("all|N");
   c.cmd->add_option("--seed", c.args->seed, "Seed of the --pairs sample")->check(seed_validator())->capture_default_str();
   c.cmd->add_flag("--json", c.args->json_stdout, "Print the embedding JSON on standard output instead of writing STEM.json");

@@ -9,6 +9,7 @@
 #include <utility>
 #include <stdexcept>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/packing/HyperbolicTriangle.hpp"
 #include "laguerre/core/packing/Placement.hpp"
 
@@ -276,6 +277,10 @@ Frame<T> frame_at(const Cx<T>& c, const Cx<T>& zeta) {
   return {e * k, conj(e) * (c * k)};
 }
 
+// A local quantity (LayoutArithmetic::mixed: a double) in the arithmetic of the frames (exact).
+template <class T, class L> Cx<T> widen(const Cx<L>& z) { return {T(z.re), T(z.im)}; }
+template <class T, class L> Frame<T> widen(const Frame<L>& f) { return {widen<T>(f.alpha), widen<T>(f.beta)}; }
+
 // The double interface of Placement.hpp.
 PlacedT<double> in(const PlacedCircle& p) { return {{p.centre.real(), p.centre.imag()}, {p.circle.x, p.circle.y, p.circle.r}}; }
 PlacedCircle out(const PlacedT<double>& p) { return {{p.centre.re, p.centre.im}, Circle{p.circle.x, p.circle.y, p.circle.r}}; }
@@ -327,7 +332,12 @@ Vertex choose_root(const PackingComplex& k, RootRule rule) {
 }
 
 namespace {
-template <class T>
+// T: the arithmetic of the positions, the frames M_v and the coordinates. L: the arithmetic of the
+// frames method's local quantities, functions of the radii only (the triangle angles of a flower and
+// each step from a parent's frame to its child's): T, or double for LayoutArithmetic::mixed, where
+// they are scale-free hyperbolic quantities that doubles carry to 2^-53 whatever the Euclidean size
+// of the circles, while the composed frames and the coordinates need binary128 (docs/precision.md).
+template <class T, class L = T>
 Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool frames, bool stop_when_collapsed) {
   const PlanarGraph& g = k.graph;
   const std::size_t n = g.num_vertices();
@@ -344,13 +354,13 @@ Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool fram
   // Frames: M_v, and the neighbour (index into v's rotation) whose direction in v's frame is known.
   std::vector<Frame<T>> frame(frames ? n : 0);
   std::vector<std::uint32_t> ref_index(frames ? n : 0, 0);
-  std::vector<T> ref_dir(frames ? n : 0, T(0));
+  std::vector<L> ref_dir(frames ? n : 0, L(0));
   auto index_of = [&](Vertex v, Vertex w) { return g.find_dart(v, w) - g.first_dart(v); };
   // Direction of neighbour i in interior v's frame: the reference direction plus the triangle angles
   // at v counter-clockwise from the reference neighbour; the whole flower once per vertex, per dart.
-  std::vector<detail::LiftT<T>> lifts(frames ? n : 0);  // each radius lifted once, not once per angle
-  for (Vertex v = 0; v < lifts.size(); ++v) lifts[v] = detail::lift_t(T(h[v]));
-  std::vector<T> dart_dir(frames ? g.num_darts() : 0);
+  std::vector<detail::LiftT<L>> lifts(frames ? n : 0);  // each radius lifted once, not once per angle
+  for (Vertex v = 0; v < lifts.size(); ++v) lifts[v] = detail::lift_t(L(h[v]));
+  std::vector<L> dart_dir(frames ? g.num_darts() : 0);
   std::vector<std::uint8_t> flower_done(frames ? n : 0, 0);
   auto direction_in_frame = [&](Vertex v, std::uint32_t i) {
     const Dart first = g.first_dart(v);
@@ -358,7 +368,7 @@ Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool fram
       flower_done[v] = 1;
       const auto nb = g.neighbours(v);
       const std::uint32_t deg = g.degree(v);
-      T dir = ref_dir[v];
+      L dir = ref_dir[v];
       for (std::uint32_t j = ref_index[v], count = 0; count < deg; ++count, j = j + 1 == deg ? 0 : j + 1) {
         dart_dir[first + j] = dir;
         if (count + 1 == deg) break;  // the last wedge closes the flower: not needed
@@ -370,20 +380,20 @@ Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool fram
   };
   // Places w from its interior parent p through p's frame (frames only).
   auto place_from_frame = [&](Vertex w, Vertex p) {
-    const T dir = direction_in_frame(p, index_of(p, w));
+    const L dir = direction_in_frame(p, index_of(p, w));
     const Frame<T>& m = frame[p];
     if (interior(w)) {
-      frame[w] = m.then(step_frame(T(h[p]), T(h[w]), cos_of(p, w), dir));
+      frame[w] = m.then(widen<T>(step_frame(L(h[p]), L(h[w]), cos_of(p, w), dir)));
       ref_index[w] = index_of(w, p);
-      ref_dir[w] = boost::math::constants::pi<T>();
+      ref_dir[w] = boost::math::constants::pi<L>();
       const Cx<T> z = frame[w](Cx<T>(T(0)));
-      at[w] = {z, euclidean_circle(z, origin_radius(T(h[w])))};
+      at[w] = {z, euclidean_circle(z, T(origin_radius(L(h[w]))))};
     } else {
-      const T rho = horocycle_radius(origin_radius(T(h[p])), cos_of(p, w));
-      const Cx<T> e = polar(T(1), dir);
-      const Cx<T> zeta = m(e);
+      const L rho = horocycle_radius(origin_radius(L(h[p])), cos_of(p, w));
+      const Cx<L> e = polar(L(1), dir);
+      const Cx<T> zeta = m(widen<T>(e));
       at[w].centre = zeta / abs(zeta);
-      at[w].circle = horocycle_through(at[w].centre, m(e * T(1 - 2 * rho)));
+      at[w].circle = horocycle_through(at[w].centre, m(widen<T>(Cx<L>(e * L(1 - 2 * rho)))));
     }
   };
 
@@ -457,7 +467,7 @@ Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool fram
       if (frames && interior(w)) {  // from two horocycles: the frame at w's centre, a's ideal point at 0
         frame[w] = frame_at(at[w].centre, at[a].centre);
         ref_index[w] = index_of(w, a);
-        ref_dir[w] = T(0);
+        ref_dir[w] = L(0);
       }
     }
     for (const auto& [w, ab] : placements) {
@@ -515,7 +525,11 @@ double circle_resolution(const Circle& c) {
 Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root, LayoutMethod method, LayoutArithmetic arithmetic,
                bool stop_when_collapsed) {
   const bool frames = method == LayoutMethod::frames;
+  LAGUERRE_PRECONDITION(arithmetic != LayoutArithmetic::mixed || frames,
+                        "The mixed layout arithmetic needs the frames layout (the wave measures directions between "
+                        "placed positions, which need the positions' arithmetic).");
   Layout out = arithmetic == LayoutArithmetic::binary128 ? lay_out_t<Quad>(k, h, root, frames, stop_when_collapsed)
+               : arithmetic == LayoutArithmetic::mixed   ? lay_out_t<Quad, double>(k, h, root, frames, stop_when_collapsed)
                                                          : lay_out_t<double>(k, h, root, frames, stop_when_collapsed);
   out.method = method;
   out.arithmetic = arithmetic;

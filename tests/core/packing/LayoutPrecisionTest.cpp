@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "laguerre/core/Error.hpp"
 #include "laguerre/core/graph/Embedding.hpp"
 #include "laguerre/core/graph/RandomGraphs.hpp"
 #include "laguerre/core/packing/Layout.hpp"
@@ -287,4 +288,54 @@ TEST(LayoutPrecision, StopWhenCollapsedStopsOnlyCollapsedLayoutsAndKeepsThePlace
     EXPECT_TRUE(first.complete);
     EXPECT_NE(first.precision, Precision::collapsed);
   }
+}
+
+TEST(LayoutPrecision, MixedArithmeticKeepsBinary128sCirclesWithLocalStepsInDoubles) {
+  // LayoutArithmetic::mixed: frames and circles in binary128, the steps from the radii in doubles.
+  // Where doubles suffice it is the frames layout to ~1e-10 of the radii, on the same tree ...
+  {
+    const PlanarGraph g = random_delaunay_triangulation(400, 11).graph;
+    const PackingComplex pc = PackingComplex::from_graph(g);
+    const Radii h = newton_radii(g);
+    const Vertex root = choose_root(pc, RootRule::deepest);
+    const Layout ref = lay_out(pc, h, root, LayoutMethod::frames, LayoutArithmetic::binary128);
+    const Layout mix = lay_out(pc, h, root, LayoutMethod::frames, LayoutArithmetic::mixed);
+    EXPECT_EQ(mix.arithmetic, LayoutArithmetic::mixed);
+    EXPECT_EQ(mix.parent, ref.parent);
+    EXPECT_EQ(bytes_per_coordinate(mix), 16);
+    EXPECT_LT(max_tangency_error(g, mix.circles128), 1e-10);
+    for (Vertex v = 0; v < g.num_vertices(); ++v) {
+      const Circle &c = mix.circles[v], &r = ref.circles[v];
+      EXPECT_LT(std::hypot(c.x - r.x, c.y - r.y) / r.r, 1e-10) << v;
+      EXPECT_LT(std::abs(c.r - r.r) / r.r, 1e-10) << v;
+    }
+  }
+  // ... and where they do not (the 45 nested circles below 1e-18 near 0.3), it keeps binary128's
+  // circles to ~1e-9 of each radius, decided on in binary128: LPD everywhere, every pair delivered.
+  const PlanarGraph g = nested_chain(45);
+  PackOptions opt;
+  opt.acceleration = Acceleration::newton;
+  opt.stop = StopRule::angle;
+  opt.angle_epsilon = 1e-12;
+  opt.max_iterations = 80;
+  opt.layout_method = LayoutMethod::frames;
+  opt.layout_arithmetic = LayoutArithmetic::mixed;
+  opt.root = RootRule::smallest_id;
+  const PackResult r = pack(g, opt);
+  EXPECT_EQ(r.status, PackStatus::converged);
+  EXPECT_EQ(r.layout.precision, Precision::ok);
+  EXPECT_EQ(r.local_ok, g.num_vertices());
+  EXPECT_LT(r.layout.smallest_radius, 1e-18);
+  const PackingComplex pc = PackingComplex::from_graph(g);
+  const Layout quad = lay_out(pc, r.radii, r.layout.root, LayoutMethod::frames, LayoutArithmetic::binary128);
+  ASSERT_EQ(r.circles128.size(), g.num_vertices());
+  for (Vertex v = 0; v < g.num_vertices(); ++v) {
+    const Circle128 &m = r.circles128[v], &q = quad.circles128[v];
+    const Float128 dx = m.x - q.x, dy = m.y - q.y, dr = m.r - q.r;
+    EXPECT_LT(static_cast<double>((dx * dx + dy * dy + dr * dr) / (q.r * q.r)), 1e-18) << v;
+  }
+  const RoutingStats routed = evaluate_routing(g, r.circles, Scheme::greedy_power, {}, &r.circles128);
+  EXPECT_EQ(routed.delivered, routed.pairs);
+  EXPECT_THROW(lay_out(pc, r.radii, r.layout.root, LayoutMethod::wave, LayoutArithmetic::mixed),
+               laguerre::core::InternalError);
 }

@@ -28,9 +28,13 @@ enum class Precision {
 /// Names: `layout_arithmetic_names` (PackingNames.hpp).
 enum class LayoutArithmetic {
   binary64,  ///< doubles: what a network node computes (Placement.hpp), bit for bit
-  binary128  ///< IEEE quadruple (113-bit significand, float128 in software, ~10x slower): the wave's
-             ///< rounding is 2^60 times smaller; the circles are kept in binary128 (16 bytes per
-             ///< coordinate) and also rounded once to doubles
+  binary128,  ///< IEEE quadruple (113-bit significand, float128 in software, ~10x slower): the wave's
+              ///< rounding is 2^60 times smaller; the circles are kept in binary128 (16 bytes per
+              ///< coordinate) and also rounded once to doubles
+  mixed       ///< LayoutMethod::frames only: the frames, positions and circles in binary128 (kept as
+              ///< with binary128), the local quantities computed from the radii alone (triangle angles,
+              ///< each step from a parent's frame to a child's) in doubles: binary128's range at a
+              ///< fraction of its cost (docs/precision.md)
 };
 
 /// How the layout wave computes each placement (docs/precision.md). Both place the same vertices in

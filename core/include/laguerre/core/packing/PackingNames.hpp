@@ -34,8 +34,8 @@ inline constexpr EnumNames<NewtonSolver, 3> newton_solver_names{
 inline constexpr EnumNames<LayoutMethod, 2> layout_method_names{
     {{LayoutMethod::wave, "wave"}, {LayoutMethod::frames, "frames"}}};
 /// LayoutArithmetic: binary64, binary128.
-inline constexpr EnumNames<LayoutArithmetic, 2> layout_arithmetic_names{
-    {{LayoutArithmetic::binary64, "binary64"}, {LayoutArithmetic::binary128, "binary128"}}};
+inline constexpr EnumNames<LayoutArithmetic, 3> layout_arithmetic_names{
+    {{LayoutArithmetic::binary64, "binary64"}, {LayoutArithmetic::binary128, "binary128"}, {LayoutArithmetic::mixed, "mixed"}}};
 /// Precision: ok, degraded, collapsed, unrepresentable.
 inline constexpr EnumNames<Precision, 4> precision_names{{{Precision::ok, "ok"},
                                                           {Precision::degraded, "degraded"},
