@@ -310,8 +310,12 @@ TEST(LayoutPrecision, MixedArithmeticKeepsBinary128sCirclesWithLocalStepsInDoubl
       EXPECT_LT(std::abs(c.r - r.r) / r.r, 1e-10) << v;
     }
   }
-  // ... and where they do not (the 45 nested circles below 1e-18 near 0.3), it keeps binary128's
-  // circles to ~1e-9 of each radius, decided on in binary128: LPD everywhere, every pair delivered.
+  // ... and where they do not (the 45 nested circles below 1e-18 near 0.3), its circles are tangent
+  // as well as binary128's to a factor of 10 (the angle error bounds both), and decided on in binary128: LPD everywhere,
+  // every pair delivered. (They are not binary128's circles to 1e-12: a rounding in a step moves the
+  // whole subtree below it by a near-identity disc automorphism, which deep in the chain displaces
+  // the tiny circles by many radii while keeping their tangencies; binary128's own layout is such a
+  // displaced copy too, 2^60 times less.)
   const PlanarGraph g = nested_chain(45);
   PackOptions opt;
   opt.acceleration = Acceleration::newton;
@@ -326,14 +330,12 @@ TEST(LayoutPrecision, MixedArithmeticKeepsBinary128sCirclesWithLocalStepsInDoubl
   EXPECT_EQ(r.layout.precision, Precision::ok);
   EXPECT_EQ(r.local_ok, g.num_vertices());
   EXPECT_LT(r.layout.smallest_radius, 1e-18);
+  ASSERT_EQ(r.circles128.size(), g.num_vertices());
   const PackingComplex pc = PackingComplex::from_graph(g);
   const Layout quad = lay_out(pc, r.radii, r.layout.root, LayoutMethod::frames, LayoutArithmetic::binary128);
-  ASSERT_EQ(r.circles128.size(), g.num_vertices());
-  for (Vertex v = 0; v < g.num_vertices(); ++v) {
-    const Circle128 &m = r.circles128[v], &q = quad.circles128[v];
-    const Float128 dx = m.x - q.x, dy = m.y - q.y, dr = m.r - q.r;
-    EXPECT_LT(static_cast<double>((dx * dx + dy * dy + dr * dr) / (q.r * q.r)), 1e-18) << v;
-  }
+  const double mixed_error = max_tangency_error(g, r.circles128), quad_error = max_tangency_error(g, quad.circles128);
+  EXPECT_LT(mixed_error, 1e-5);
+  EXPECT_LT(mixed_error, 10 * quad_error);  // measured 5.2e-7 against 1.3e-7 (angle error 1e-12)
   const RoutingStats routed = evaluate_routing(g, r.circles, Scheme::greedy_power, {}, &r.circles128);
   EXPECT_EQ(routed.delivered, routed.pairs);
   EXPECT_THROW(lay_out(pc, r.radii, r.layout.root, LayoutMethod::wave, LayoutArithmetic::mixed),
