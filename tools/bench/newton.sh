@@ -5,7 +5,8 @@
 # (incomplete-Cholesky conjugate gradients), on random Delaunay triangulations and uniform random
 # triangulations, stopped at LPD.
 #   tools/bench/newton.sh [--huge] [--solvers "lu cholesky pcg"] [--families "delaunay uniform-triangulation"]
-#                         [--layouts "frames"] [--max-steps K] [--time-limit S] [--blas-dir DIR] [--seed S] [SIZES…]
+#                         [--layouts "frames"] [--arithmetics "binary64"] [--termination layout] [--pairs N]
+#                         [--max-steps K] [--time-limit S] [--blas-dir DIR] [--seed S] [SIZES…]
 # Defaults: sizes 10000 100000; --huge adds 1000000 (the lu solver is skipped there: ~40 s per step).
 # Per row: steps as iterations/improving Newton steps (an iteration whose Newton step cannot improve is
 # a plain sweep; capped at --max-steps, default 60), status (converged / iteration_cap / precision_loss, never hidden), vertices
@@ -18,6 +19,11 @@
 # Columns read_s (the command's wall time outside core::pack: reading and checking the graph, writing
 # the JSON) and phases (core::pack's wall seconds by phase, packing.phase_seconds: Jacobian assembly /
 # factorization and solve / line search / layouts / LPD checks; sweeps and set-up are not shown).
+# --arithmetics "binary64 mixed binary128" runs each layout arithmetic side by side (mixed with the
+# frames only; the layout column then reads frames/mixed), --termination passes pack's --termination
+# (radius-only: layouts only once the angle sums are near 2π), --pairs N routes N sampled pairs by
+# greedy power after each pack on the coordinates LPD was decided on (column routed: delivered/pairs
+# and bytes per coordinate).
 # --time-limit S passes `--time-limit S` to pack (status time_limit when it is hit). --blas-dir DIR
 # puts DIR first on LD_LIBRARY_PATH for the pack runs, e.g. the directory of an unpacked
 # libopenblas0-pthread (`apt-get download libopenblas0-pthread && dpkg -x …`: its libblas.so.3 then
@@ -32,13 +38,16 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 
 solvers="lu cholesky pcg" families="delaunay uniform-triangulation" layouts=frames max_steps=60 huge=0 sizes=()
-time_limit=() blas_dir="" seed=42
+time_limit=() blas_dir="" seed=42 arithmetics=binary64 termination=layout pairs=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --huge) huge=1; shift ;;
     --solvers) solvers=$2; shift 2 ;;
     --families) families=$2; shift 2 ;;
     --layouts) layouts=$2; shift 2 ;;
+    --arithmetics) arithmetics=$2; shift 2 ;;
+    --termination) termination=$2; shift 2 ;;
+    --pairs) pairs=(--pairs "$2" --seed 7); shift 2 ;;
     --max-steps) max_steps=$2; shift 2 ;;
     --time-limit) time_limit=(--time-limit "$2"); shift 2 ;;
     --blas-dir) blas_dir=$2; shift 2 ;;
@@ -68,7 +77,7 @@ if [ -n "$blas_dir" ]; then
 fi
 blas=$(ldd "$laguerre" | awk '/libblas/ {print $3}')
 echo "# $(date -u '+%Y-%m-%d %H:%M UTC'), $(getconf _NPROCESSORS_ONLN) cores, load:$(uptime | sed 's/.*load average://'), OPENBLAS_NUM_THREADS=$OPENBLAS_NUM_THREADS, libblas $(readlink -f "$blas")"
-printf '%-22s %8s %-9s %-7s %7s %-15s %9s %10s %-16s %9s %9s %9s %9s %7s  %s\n' family n solver layout steps status LPD min_radius precision pack_s pack_cpu_s wall_s peak_MiB read_s 'phases(jac/solve/ls/layout/checks)'
+printf '%-22s %8s %-9s %-16s %7s %-15s %9s %10s %-16s %9s %9s %9s %9s %7s %-11s %s\n' family n solver layout steps status LPD min_radius precision pack_s pack_cpu_s wall_s peak_MiB read_s routed 'phases(jac/solve/ls/layout/checks)'
 rows=$dir/rows.tsv
 : > "$rows"
 for family in $families; do
@@ -80,19 +89,26 @@ for family in $families; do
     [ -s "$graph" ] || "$laguerre" generate "$family" -n "$n" --seed "$seed" --format "$format" -o "$graph" --force >/dev/null 2>&1
     for solver in $solvers; do
      for layout in $layouts; do
+      for arith in $arithmetics; do
       if [ "$solver" = lu ] && [ "$n" -ge 1000000 ]; then continue; fi
+      if [ "$arith" = mixed ] && [ "$layout" != frames ]; then continue; fi
+      label=$layout; [ "$arith" != binary64 ] && label=$layout/$arith
       rc=0
       /usr/bin/time -f '%e %M' -o "$dir/time" "$laguerre" pack "$graph" --accelerate newton --newton-solver "$solver" \
-        --layout "$layout" --max-iterations "$max_steps" "${time_limit[@]}" --no-picture -o "$dir/out" --force > "$dir/log" 2>&1 || rc=$?
+        --layout "$layout" --layout-arithmetic "$arith" --termination "$termination" --max-iterations "$max_steps" \
+        "${time_limit[@]}" "${pairs[@]}" --no-picture -o "$dir/out" --force > "$dir/log" 2>&1 || rc=$?
       # Exit status 3: not converged (cap, time limit or precision loss), reported in the row; anything else fails.
       if [ "$rc" -ne 0 ] && [ "$rc" -ne 3 ]; then
         echo "newton.sh: laguerre pack failed on $graph with $solver (exit status $rc)" >&2
         cat "$dir/log" >&2
         exit "$rc"
       fi
-      python3 - "$dir/out.json" "$dir/time" "$family" "$n" "$solver" "$layout" >> "$rows" <<'PY'
+      python3 - "$dir/out.json" "$dir/time" "$family" "$n" "$solver" "$label" >> "$rows" <<'PY'
 import json, sys
-p = json.load(open(sys.argv[1]))["packing"]
+doc = json.load(open(sys.argv[1]))
+p = doc["packing"]
+rt = doc.get("routing")
+routed = f"{rt['delivered']}/{rt['pairs']}@{rt['bytes_per_coordinate']}B" if rt else "-"
 wall, peak_kib = open(sys.argv[2]).read().split()[-2:]
 pr = p["precision"]
 ph = p["phase_seconds"]
@@ -100,9 +116,10 @@ phases = "/".join(f"{ph[k]:.1f}" for k in ("jacobian", "solve", "line_search", "
 print("\t".join([sys.argv[3], sys.argv[4], sys.argv[5], f"{p['iterations']}/{p['accelerated_jumps']}", p["status"], str(p["local_ok"]),
                  f"{p['smallest_radius']:.3g}", f"{p['seconds']:.2f}", f"{p['cpu_seconds']:.2f}", wall,
                  f"{int(peak_kib) / 1024:.0f}", sys.argv[6], f"{pr['status']}:{pr['resolution']:.1e}",
-                 f"{float(wall) - p['seconds']:.1f}", phases]))
+                 f"{float(wall) - p['seconds']:.1f}", phases, routed]))
 PY
-      tail -n 1 "$rows" | awk -F'\t' '{printf "%-22s %8s %-9s %-7s %7s %-15s %9s %10s %-16s %9s %9s %9s %9s %7s  %s\n", $1,$2,$3,$12,$4,$5,$6,$7,$13,$8,$9,$10,$11,$14,$15}'
+      tail -n 1 "$rows" | awk -F'\t' '{printf "%-22s %8s %-9s %-16s %7s %-15s %9s %10s %-16s %9s %9s %9s %9s %7s %-11s %s\n", $1,$2,$3,$12,$4,$5,$6,$7,$13,$8,$9,$10,$11,$14,$16,$15}'
+      done
      done
     done
   done

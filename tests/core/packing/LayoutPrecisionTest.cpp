@@ -148,20 +148,29 @@ TEST(LayoutPrecision, CirclesBelowTheDoublesResolutionAreNeverClaimed) {
   EXPECT_NE(r.layout.precision, Precision::collapsed);
 }
 
-TEST(LayoutPrecision, Binary128KeepsTheCirclesThatDoublesCollapseAndDecidesOnThem) {
-  // The same 45 nested circles laid out in binary128: the circles are kept in binary128, where the
-  // smallest (< 1e-18 near 0.3) still span ~10^16 ulps; precision, LPD and the tangency error are
-  // decided on them, and the run converges where binary64 ends precision_loss (above).
-  const PlanarGraph g = nested_chain(45);
+namespace {
+// The 45 nested circles packed by Newton to an angle error of 1e-12, rooted at the chain's first
+// vertex (its smallest circles then sit near 0.3, where doubles cannot resolve them), in the frames
+// layout of arithmetic `a`.
+PackOptions nested_chain_options(LayoutArithmetic a) {
   PackOptions opt;
   opt.acceleration = Acceleration::newton;
   opt.stop = StopRule::angle;
   opt.angle_epsilon = 1e-12;
   opt.max_iterations = 80;
   opt.layout_method = LayoutMethod::frames;
-  opt.layout_arithmetic = LayoutArithmetic::binary128;
+  opt.layout_arithmetic = a;
   opt.root = RootRule::smallest_id;
-  const PackResult r = pack(g, opt);
+  return opt;
+}
+}  // namespace
+
+TEST(LayoutPrecision, Binary128KeepsTheCirclesThatDoublesCollapseAndDecidesOnThem) {
+  // The same 45 nested circles laid out in binary128: the circles are kept in binary128, where the
+  // smallest (< 1e-18 near 0.3) still span ~10^16 ulps; precision, LPD and the tangency error are
+  // decided on them, and the run converges where binary64 ends precision_loss (above).
+  const PlanarGraph g = nested_chain(45);
+  const PackResult r = pack(g, nested_chain_options(LayoutArithmetic::binary128));
   ASSERT_EQ(r.circles128.size(), g.num_vertices());
   EXPECT_EQ(bytes_per_coordinate(r.layout), 16);
   EXPECT_LT(r.layout.smallest_radius, 1e-18);
@@ -317,15 +326,7 @@ TEST(LayoutPrecision, MixedArithmeticKeepsBinary128sCirclesWithLocalStepsInDoubl
   // the tiny circles by many radii while keeping their tangencies; binary128's own layout is such a
   // displaced copy too, 2^60 times less.)
   const PlanarGraph g = nested_chain(45);
-  PackOptions opt;
-  opt.acceleration = Acceleration::newton;
-  opt.stop = StopRule::angle;
-  opt.angle_epsilon = 1e-12;
-  opt.max_iterations = 80;
-  opt.layout_method = LayoutMethod::frames;
-  opt.layout_arithmetic = LayoutArithmetic::mixed;
-  opt.root = RootRule::smallest_id;
-  const PackResult r = pack(g, opt);
+  const PackResult r = pack(g, nested_chain_options(LayoutArithmetic::mixed));
   EXPECT_EQ(r.status, PackStatus::converged);
   EXPECT_EQ(r.layout.precision, Precision::ok);
   EXPECT_EQ(r.local_ok, g.num_vertices());
