@@ -337,8 +337,9 @@ namespace {
 // each step from a parent's frame to its child's): T, or double for LayoutArithmetic::mixed, where
 // they are scale-free hyperbolic quantities that doubles carry to 2^-53 whatever the Euclidean size
 // of the circles, while the composed frames and the coordinates need binary128 (docs/precision.md).
-template <class T, class L = T>
-Layout lay_out_t(const PackingComplex& k, const Radii& h, Vertex root, bool frames, bool stop_when_collapsed) {
+// H: the radii's container (Radii, or Radii128 for refined radii).
+template <class T, class L = T, class H = Radii>
+Layout lay_out_t(const PackingComplex& k, const H& h, Vertex root, bool frames, bool stop_when_collapsed) {
   const PlanarGraph& g = k.graph;
   const std::size_t n = g.num_vertices();
   Layout out;
@@ -522,15 +523,9 @@ double circle_resolution(const Circle& c) {
   return c.r / ulp;
 }
 
-Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root, LayoutMethod method, LayoutArithmetic arithmetic,
-               bool stop_when_collapsed) {
-  const bool frames = method == LayoutMethod::frames;
-  LAGUERRE_PRECONDITION(arithmetic != LayoutArithmetic::mixed || frames,
-                        "The mixed layout arithmetic needs the frames layout (the wave measures directions between "
-                        "placed positions, which need the positions' arithmetic).");
-  Layout out = arithmetic == LayoutArithmetic::binary128 ? lay_out_t<Quad>(k, h, root, frames, stop_when_collapsed)
-               : arithmetic == LayoutArithmetic::mixed   ? lay_out_t<Quad, double>(k, h, root, frames, stop_when_collapsed)
-                                                         : lay_out_t<double>(k, h, root, frames, stop_when_collapsed);
+namespace {
+// The method, arithmetic, smallest radius, resolution and precision status of a computed layout.
+void finish_layout(Layout& out, LayoutMethod method, LayoutArithmetic arithmetic) {
   out.method = method;
   out.arithmetic = arithmetic;
   out.smallest_radius = std::numeric_limits<double>::infinity();
@@ -546,6 +541,48 @@ Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root, LayoutMetho
                   : out.resolution < Layout::collapsed_resolution ? Precision::collapsed
                   : out.resolution < Layout::degraded_resolution  ? Precision::degraded
                                                                   : Precision::ok;
+}
+}  // namespace
+
+Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root, LayoutMethod method, LayoutArithmetic arithmetic,
+               bool stop_when_collapsed) {
+  const bool frames = method == LayoutMethod::frames;
+  LAGUERRE_PRECONDITION(arithmetic != LayoutArithmetic::mixed || frames,
+                        "The mixed layout arithmetic needs the frames layout (the wave measures directions between "
+                        "placed positions, which need the positions' arithmetic).");
+  Layout out = arithmetic == LayoutArithmetic::binary128 ? lay_out_t<Quad>(k, h, root, frames, stop_when_collapsed)
+               : arithmetic == LayoutArithmetic::mixed   ? lay_out_t<Quad, double>(k, h, root, frames, stop_when_collapsed)
+                                                         : lay_out_t<double>(k, h, root, frames, stop_when_collapsed);
+  finish_layout(out, method, arithmetic);
+  return out;
+}
+
+Layout lay_out(const PackingComplex& k, const Radii128& h, Vertex root, LayoutMethod method, bool stop_when_collapsed) {
+  Layout out = lay_out_t<Quad, Quad, Radii128>(k, h, root, method == LayoutMethod::frames, stop_when_collapsed);
+  finish_layout(out, method, LayoutArithmetic::binary128);
+  return out;
+}
+
+std::vector<double> angle_residuals128(const PackingComplex& k, const Radii128& h) {
+  const PlanarGraph& g = k.graph;
+  const std::size_t n = g.num_vertices();
+  const bool overlap = k.has_face_vertices();
+  auto cos_of = [&](Vertex u, Vertex v) { return overlap ? k.cos_angle[g.find_dart(u, v)] : 1.0; };
+  std::vector<detail::LiftT<Quad>> lifts(n);
+  for (Vertex v = 0; v < n; ++v) lifts[v] = detail::lift_t(Quad(h[v]));
+  const Quad two_pi = 2 * boost::math::constants::pi<Quad>();
+  std::vector<double> out(n, 0.0);
+  for (Vertex v = 0; v < n; ++v) {
+    if (g.is_boundary(v)) continue;
+    const auto nb = g.neighbours(v);
+    const std::size_t deg = nb.size();
+    Quad sum = 0;
+    for (std::size_t j = 0; j < deg; ++j) {
+      const Vertex x = nb[j], y = nb[j + 1 == deg ? 0 : j + 1];
+      sum += triangle_angle(lifts[v], lifts[x], lifts[y], cos_of(v, x), cos_of(v, y), cos_of(x, y), overlap);
+    }
+    out[v] = static_cast<double>(sum - two_pi);
+  }
   return out;
 }
 

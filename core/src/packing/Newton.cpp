@@ -9,6 +9,8 @@
 #endif
 
 #include <algorithm>
+
+#include <quadmath.h>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -368,7 +370,7 @@ NewtonStep NewtonMethod::step(const PackingComplex& k, Radii& h) {
   return out;
 }
 
-void NewtonMethod::step_in(const PackingComplex& k, Radii& h, NewtonStep& out, const std::function<void(int)>& phase) {
+void NewtonMethod::bind(const PackingComplex& k) {
   State& st = *state_;
   if (st.complex != &k || st.num_vertices != k.graph.num_vertices()) {
     st.complex = &k;
@@ -378,6 +380,56 @@ void NewtonMethod::step_in(const PackingComplex& k, Radii& h, NewtonStep& out, c
     st.pattern.reset();
     st.residual_radii.clear();
   }
+}
+
+Radii128 NewtonMethod::refine128(const PackingComplex& k, const Radii& h, int iterations, double tolerance) {
+  Radii128 q(h.size());
+  for (std::size_t v = 0; v < h.size(); ++v) q[v] = h[v];
+  bind(k);
+  State& st = *state_;
+  const std::vector<Vertex>& interior = st.interior.vertices;
+  if (interior.empty()) return q;
+  const auto n = static_cast<Eigen::Index>(interior.size());
+  if (!st.pattern) {
+    st.pattern = jacobian_pattern(k, st.interior);
+    std::vector<double> zeros(st.pattern->inner.size(), 0.0);
+    st.a = Eigen::Map<const SpMat>(n, n, static_cast<Eigen::Index>(zeros.size()), st.pattern->outer.data(),
+                                   st.pattern->inner.data(), zeros.data());
+  }
+  SpMat& a = st.a;
+  double* values = a.valuePtr();
+  assemble_jacobian(k, h, st.interior, *st.pattern, values);
+  for (Eigen::Index p = 0; p < a.nonZeros(); ++p) values[p] = -values[p];  // A = −J, as in step_in
+  const SubnormalsFlushed flushed;
+  if (!st.cholesky) {
+    st.cholesky.emplace();
+    st.cholesky->analyzePattern(a);
+  }
+  st.cholesky->factorize(a);
+  if (st.cholesky->info() != Eigen::Success) return q;
+  Eigen::VectorXd r(n);
+  for (int it = 0; it < iterations; ++it) {
+    const std::vector<double> residual = angle_residuals128(k, q);
+    double worst = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      r[i] = residual[interior[static_cast<std::size_t>(i)]];
+      worst = std::max(worst, std::abs(r[i]));
+    }
+    if (!(worst > tolerance)) break;  // converged (or NaN: nothing to refine)
+    const Eigen::VectorXd du = st.cholesky->solve(r);
+    if (st.cholesky->info() != Eigen::Success || !du.allFinite()) break;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Vertex v = interior[static_cast<std::size_t>(i)];
+      const double ds = du[i] * (h[v] < 1e-8 ? 1.0 : std::sinh(h[v]) / h[v]);  // δs = δu · ds/du, s = log h
+      q[v] *= expq(static_cast<Float128>(ds));
+    }
+  }
+  return q;
+}
+
+void NewtonMethod::step_in(const PackingComplex& k, Radii& h, NewtonStep& out, const std::function<void(int)>& phase) {
+  bind(k);
+  State& st = *state_;
   const std::vector<Vertex>& interior = st.interior.vertices;
   if (interior.empty()) return;
   Eigen::VectorXd r;

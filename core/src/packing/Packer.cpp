@@ -91,6 +91,9 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     return result.circles128.empty() ? max_tangency_error(g, result.circles) : max_tangency_error(g, result.circles128);
   };
   const bool radius_only = options.termination != Termination::layout && options.stop == StopRule::lpd;
+  NewtonMethod newton_method(options.newton_solver);
+  const bool refine_radii =
+      options.acceleration == Acceleration::newton && options.layout_arithmetic == LayoutArithmetic::binary128;
   double gap = options.radius_only_gap;
   auto lay_out_and_check = [&](int iteration, bool final) {
     // Returns whether the requested rule holds; records first occurrences of tracked rules.
@@ -100,7 +103,13 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     // on it: the wave may stop at its first collapsed circle. Not for the angle rule (decided on the
     // radii: the run may end with this layout) nor Newton–Krylov (its steps read the whole tree).
     const bool may_stop = !final && options.stop != StopRule::angle && options.acceleration != Acceleration::newton_krylov;
-    result.layout = lay_out(k, result.radii, root, options.layout_method, options.layout_arithmetic, may_stop);
+    // binary128 with Newton: the radii themselves refined in binary128 first, so that the flowers
+    // close to ~1e-30 rad instead of the doubles' ~1e-15, which the deep tiny circles of large uniform
+    // maps amplify past their size (docs/precision.md, "Where both stop").
+    if (refine_radii)
+      result.layout = lay_out(k, newton_method.refine128(k, result.radii), root, options.layout_method, may_stop);
+    else
+      result.layout = lay_out(k, result.radii, root, options.layout_method, options.layout_arithmetic, may_stop);
     result.circles.assign(result.layout.circles.begin(), result.layout.circles.begin() + static_cast<long>(n));
     if (result.layout.circles128.empty()) result.circles128.clear();
     else result.circles128.assign(result.layout.circles128.begin(), result.layout.circles128.begin() + static_cast<long>(n));
@@ -160,7 +169,6 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
 
   int it = 0;
   Accelerator accelerator(options.acceleration);
-  NewtonMethod newton_method(options.newton_solver);
   const bool newton = options.acceleration == Acceleration::newton;
   const bool krylov = options.acceleration == Acceleration::newton_krylov;
   NewtonKrylovMethod krylov_method;

@@ -103,6 +103,19 @@ Vertex choose_root(const PackingComplex& k, RootRule rule);
 Layout lay_out(const PackingComplex& k, const Radii& h, Vertex root, LayoutMethod method = LayoutMethod::wave,
                LayoutArithmetic arithmetic = LayoutArithmetic::binary64, bool stop_when_collapsed = false);
 
+/// Hyperbolic radii in binary128, per vertex of the complex (∞ on the boundary): Newton's radii refined
+/// by NewtonMethod::refine128 when doubles cannot close the flowers finely enough (docs/precision.md).
+using Radii128 = std::vector<Float128>;
+
+/// lay_out in LayoutArithmetic::binary128 from binary128 radii: the same rounds, tree and placements,
+/// every local quantity computed from the binary128 radii.
+Layout lay_out(const PackingComplex& k, const Radii128& h, Vertex root, LayoutMethod method,
+               bool stop_when_collapsed = false);
+
+/// θ(v) − 2π for every interior vertex of the complex from binary128 radii, each angle and the sum in
+/// binary128 and the difference rounded once to a double (0 on the boundary).
+std::vector<double> angle_residuals128(const PackingComplex& k, const Radii128& h);
+
 /// r / ulp(max(|x|, |y|, r)) of a stored circle: how many units in the last place of its coordinates
 /// its radius spans (0 if a coordinate is not finite or r ≤ 0).
 double circle_resolution(const Circle& c);

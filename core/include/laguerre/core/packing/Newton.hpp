@@ -26,6 +26,7 @@
 #include <string_view>
 #include <vector>
 
+#include "laguerre/core/packing/Layout.hpp"
 #include "laguerre/core/packing/PackingComplex.hpp"
 #include "laguerre/core/packing/Thurston.hpp"
 
@@ -69,7 +70,15 @@ public:
   /// A solver failure (factorization or non-finite direction) is a step that does not improve.
   NewtonStep step(const PackingComplex& k, Radii& h);
 
+  /// `h` refined in binary128 (mixed-precision iterative refinement): up to `iterations` Newton
+  /// corrections, each from the angle residuals evaluated in binary128 (angle_residuals128), solved
+  /// with the Jacobian at `h` factorized in doubles (sparse Cholesky) and applied in binary128; stops
+  /// once max |θ − 2π| ≤ `tolerance` (or a solve fails). Boundary entries stay ∞. For layouts whose
+  /// deep tiny circles amplify the doubles' 10^-15 rad of flower closure (docs/precision.md).
+  Radii128 refine128(const PackingComplex& k, const Radii& h, int iterations = 4, double tolerance = 1e-30);
+
 private:
+  void bind(const PackingComplex& k);
   struct State;
   // The step itself; `phase(p)` is called when it enters assembly (0), solve (1), line search (2).
   void step_in(const PackingComplex& k, Radii& h, NewtonStep& out, const std::function<void(int)>& phase);
