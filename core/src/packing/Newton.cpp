@@ -382,9 +382,11 @@ void NewtonMethod::bind(const PackingComplex& k) {
   }
 }
 
-Radii128 NewtonMethod::refine128(const PackingComplex& k, const Radii& h, int iterations, double tolerance) {
+Radii128 NewtonMethod::refine128(const PackingComplex& k, const Radii& h, double* angle_error, int iterations,
+                                 double tolerance) {
   Radii128 q(h.size());
   for (std::size_t v = 0; v < h.size(); ++v) q[v] = h[v];
+  if (angle_error) *angle_error = 0;
   bind(k);
   State& st = *state_;
   const std::vector<Vertex>& interior = st.interior.vertices;
@@ -408,14 +410,15 @@ Radii128 NewtonMethod::refine128(const PackingComplex& k, const Radii& h, int it
   st.cholesky->factorize(a);
   if (st.cholesky->info() != Eigen::Success) return q;
   Eigen::VectorXd r(n);
-  for (int it = 0; it < iterations; ++it) {
+  for (int it = 0;; ++it) {
     const std::vector<double> residual = angle_residuals128(k, q);
     double worst = 0;
     for (Eigen::Index i = 0; i < n; ++i) {
       r[i] = residual[interior[static_cast<std::size_t>(i)]];
       worst = std::max(worst, std::abs(r[i]));
     }
-    if (!(worst > tolerance)) break;  // converged (or NaN: nothing to refine)
+    if (angle_error) *angle_error = worst;
+    if (!(worst > tolerance) || it == iterations) break;  // converged (or NaN), or out of corrections
     const Eigen::VectorXd du = st.cholesky->solve(r);
     if (st.cholesky->info() != Eigen::Success || !du.allFinite()) break;
     for (Eigen::Index i = 0; i < n; ++i) {

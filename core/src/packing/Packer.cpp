@@ -106,9 +106,14 @@ PackResult pack(const PlanarGraph& g, const PackOptions& options, PackVisitor* v
     // binary128 with Newton: the radii themselves refined in binary128 first, so that the flowers
     // close to ~1e-30 rad instead of the doubles' ~1e-15, which the deep tiny circles of large uniform
     // maps amplify past their size (docs/precision.md, "Where both stop").
-    if (refine_radii)
-      result.layout = lay_out(k, newton_method.refine128(k, result.radii), root, options.layout_method, may_stop);
-    else
+    if (refine_radii) {
+      double refined_error = 0;
+      const Radii128 q = newton_method.refine128(k, result.radii, &refined_error);
+      result.layout = lay_out(k, q, root, options.layout_method, may_stop);
+      // The run goes on from the refined radii, rounded, and reports their angle error.
+      for (Vertex v = 0; v < q.size(); ++v) result.radii[v] = static_cast<double>(q[v]);
+      known_angle_error = refined_error;
+    } else
       result.layout = lay_out(k, result.radii, root, options.layout_method, options.layout_arithmetic, may_stop);
     result.circles.assign(result.layout.circles.begin(), result.layout.circles.begin() + static_cast<long>(n));
     if (result.layout.circles128.empty()) result.circles128.clear();

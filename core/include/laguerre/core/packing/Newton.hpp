@@ -75,7 +75,9 @@ public:
   /// with the Jacobian at `h` factorized in doubles (sparse Cholesky) and applied in binary128; stops
   /// once max |θ − 2π| ≤ `tolerance` (or a solve fails). Boundary entries stay ∞. For layouts whose
   /// deep tiny circles amplify the doubles' 10^-15 rad of flower closure (docs/precision.md).
-  Radii128 refine128(const PackingComplex& k, const Radii& h, int iterations = 4, double tolerance = 1e-30);
+  /// `angle_error`, when given, receives max |θ − 2π| of the returned radii (evaluated in binary128).
+  Radii128 refine128(const PackingComplex& k, const Radii& h, double* angle_error = nullptr, int iterations = 4,
+                     double tolerance = 1e-30);
 
 private:
   void bind(const PackingComplex& k);
