@@ -347,6 +347,31 @@ struct NewtonMethod::State {
   Radii residual_radii;
   Eigen::VectorXd residual;
   double residual_norm = 0;
+
+  // A = −J at h (symmetric positive definite) on the pattern, made on first use.
+  SpMat& assemble(const PackingComplex& k, const Radii& h) {
+    const auto n = static_cast<Eigen::Index>(interior.vertices.size());
+    if (!pattern) {
+      pattern = jacobian_pattern(k, interior);
+      std::vector<double> zeros(pattern->inner.size(), 0.0);
+      a = Eigen::Map<const SpMat>(n, n, static_cast<Eigen::Index>(zeros.size()), pattern->outer.data(),
+                                  pattern->inner.data(), zeros.data());
+    }
+    double* values = a.valuePtr();
+    assemble_jacobian(k, h, interior, *pattern, values);
+    for (Eigen::Index p = 0; p < a.nonZeros(); ++p) values[p] = -values[p];
+    return a;
+  }
+  // The sparse Cholesky factorization of `a` (symbolic analysis once); whether it succeeded. Callers
+  // hold a SubnormalsFlushed over it and the solves.
+  bool factorize() {
+    if (!cholesky) {
+      cholesky.emplace();
+      cholesky->analyzePattern(a);
+    }
+    cholesky->factorize(a);
+    return cholesky->info() == Eigen::Success;
+  }
 };
 
 NewtonMethod::NewtonMethod(NewtonSolver solver) : solver_(solver), state_(std::make_unique<State>()) {}
@@ -392,23 +417,9 @@ Radii128 NewtonMethod::refine128(const PackingComplex& k, const Radii& h, double
   const std::vector<Vertex>& interior = st.interior.vertices;
   if (interior.empty()) return q;
   const auto n = static_cast<Eigen::Index>(interior.size());
-  if (!st.pattern) {
-    st.pattern = jacobian_pattern(k, st.interior);
-    std::vector<double> zeros(st.pattern->inner.size(), 0.0);
-    st.a = Eigen::Map<const SpMat>(n, n, static_cast<Eigen::Index>(zeros.size()), st.pattern->outer.data(),
-                                   st.pattern->inner.data(), zeros.data());
-  }
-  SpMat& a = st.a;
-  double* values = a.valuePtr();
-  assemble_jacobian(k, h, st.interior, *st.pattern, values);
-  for (Eigen::Index p = 0; p < a.nonZeros(); ++p) values[p] = -values[p];  // A = −J, as in step_in
+  st.assemble(k, h);
   const SubnormalsFlushed flushed;
-  if (!st.cholesky) {
-    st.cholesky.emplace();
-    st.cholesky->analyzePattern(a);
-  }
-  st.cholesky->factorize(a);
-  if (st.cholesky->info() != Eigen::Success) return q;
+  if (!st.factorize()) return q;
   Eigen::VectorXd r(n);
   for (int it = 0;; ++it) {
     const std::vector<double> residual = angle_residuals128(k, q);
@@ -460,26 +471,12 @@ void NewtonMethod::step_in(const PackingComplex& k, Radii& h, NewtonStep& out, c
     if (lu.info() != Eigen::Success) return;
   } else {
     phase(0);
-    if (!st.pattern) {
-      st.pattern = jacobian_pattern(k, st.interior);
-      std::vector<double> zeros(st.pattern->inner.size(), 0.0);
-      st.a = Eigen::Map<const SpMat>(n, n, static_cast<Eigen::Index>(zeros.size()), st.pattern->outer.data(),
-                                     st.pattern->inner.data(), zeros.data());
-    }
-    SpMat& a = st.a;
-    double* values = a.valuePtr();
-    assemble_jacobian(k, h, st.interior, *st.pattern, values);
-    for (Eigen::Index p = 0; p < a.nonZeros(); ++p) values[p] = -values[p];  // A = −J, symmetric positive definite
+    const SpMat& a = st.assemble(k, h);  // A = −J, symmetric positive definite
     phase(1);
     Eigen::VectorXd du;
     if (solver_ == NewtonSolver::cholesky) {
       const SubnormalsFlushed flushed;  // the factorization and the triangular solves (see the class)
-      if (!st.cholesky) {
-        st.cholesky.emplace();
-        st.cholesky->analyzePattern(a);
-      }
-      st.cholesky->factorize(a);
-      if (st.cholesky->info() != Eigen::Success) return;
+      if (!st.factorize()) return;
       du = st.cholesky->solve(r);
       if (st.cholesky->info() != Eigen::Success) return;
     } else {
