@@ -61,7 +61,8 @@ struct PackOptions {
   Acceleration acceleration = Acceleration::plain;  ///< sweep acceleration (see Accelerator)
   NewtonSolver newton_solver = NewtonSolver::cholesky;  ///< linear solver of Acceleration::newton
   Termination termination = Termination::layout;  ///< for StopRule::lpd: see Termination
-  double radius_only_gap = 1e-2;                  ///< the radius-only gate's initial closing gap (radians); at most 1e-8 for binary128 layouts under Newton (refined radii)
+  double radius_only_gap = 1e-2;                  ///< the radius-only gate's initial closing gap (radians);
+                                                  ///< at most 1e-8 for binary128 layouts under Newton (refined radii)
   LayoutMethod layout_method = LayoutMethod::wave;   ///< placements of the checks' layouts (wave: the network's)
   LayoutArithmetic layout_arithmetic = LayoutArithmetic::binary64;  ///< arithmetic of the checks' layouts
   double time_limit = 0;  ///< > 0: wall seconds after which the run stops, tested after every sweep or Newton

@@ -6,10 +6,10 @@
 /// per-node protocols::ForwardingNode both decide with these functions, so a packet routed hop by hop
 /// takes core::route's path bit for bit: never re-implement a rule inline.
 ///
-/// Every decision is exact on the stored coordinates, doubles or binary128 (Routing.hpp). A decision returns the index of the
-/// next hop in the view's neighbour order (counter-clockwise), or `view.degree()` when there is none;
-/// among equally good neighbours the smallest key wins. The callers check
-/// "the holder is the target" before asking.
+/// Every decision is exact on the stored coordinates, doubles or binary128 (Routing.hpp). A decision
+/// returns the index of the next hop in the view's neighbour order (counter-clockwise), or
+/// `view.degree()` when there is none; among equally good neighbours the smallest key wins. The
+/// callers check "the holder is the target" before asking.
 
 #include <cstddef>
 #include <cstdint>
@@ -64,6 +64,7 @@ using GraphView128 = BasicGraphView<Circle128>;
 /// must outlive it.
 class NeighbourView {
 public:
+  /// The circle and point types (doubles).
   using Circle = core::Circle;
   using Point = Point2;
   /// Own circle and position; neighbours' circles, positions and tie-break keys (node ids), all in
