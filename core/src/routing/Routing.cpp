@@ -19,25 +19,21 @@ namespace laguerre::core {
 
 namespace {
 
-void check_embedding(const PlanarGraph& g, const CircleEmbedding& phi) {
-  LAGUERRE_PRECONDITION(phi.size() == g.num_vertices(), "The circle embedding has " + std::to_string(phi.size()) +
-                                                            " circles for a graph of " +
-                                                            std::to_string(g.num_vertices()) + " vertices.");
-  // Routing decisions are exact on the stored doubles: a NaN or infinite circle (an unrepresentable
+bool finite(double x) { return std::isfinite(x); }
+bool finite(Float128 x) { return detail::finite128(x); }
+
+// `phi` (doubles, or binary128 with `what` = "binary128 " in messages) has a circle per vertex, every
+// one finite.
+template <class Embedding>
+void check_embedding(const PlanarGraph& g, const Embedding& phi, const std::string& what) {
+  LAGUERRE_PRECONDITION(phi.size() == g.num_vertices(),
+                        "The " + what + "circle embedding has " + std::to_string(phi.size()) +
+                            " circles for a graph of " + std::to_string(g.num_vertices()) + " vertices.");
+  // Routing decisions are exact on the stored coordinates: a NaN or infinite circle (an unrepresentable
   // layout) has no answer, so it is refused here with the vertex named rather than deep in a predicate.
   for (Vertex v = 0; v < phi.size(); ++v)
-    LAGUERRE_PRECONDITION(std::isfinite(phi[v].x) && std::isfinite(phi[v].y) && std::isfinite(phi[v].r),
-                          "The circle of vertex " + std::to_string(g.id(v)) +
-                              " is not finite (NaN or infinite): the embedding cannot be routed on.");
-}
-
-void check_embedding(const PlanarGraph& g, const CircleEmbedding128& phi) {
-  LAGUERRE_PRECONDITION(phi.size() == g.num_vertices(), "The binary128 embedding has " + std::to_string(phi.size()) +
-                                                            " circles for a graph of " +
-                                                            std::to_string(g.num_vertices()) + " vertices.");
-  for (Vertex v = 0; v < phi.size(); ++v)
-    LAGUERRE_PRECONDITION(detail::finite128(phi[v].x) && detail::finite128(phi[v].y) && detail::finite128(phi[v].r),
-                          "The binary128 circle of vertex " + std::to_string(g.id(v)) +
+    LAGUERRE_PRECONDITION(finite(phi[v].x) && finite(phi[v].y) && finite(phi[v].r),
+                          "The " + what + "circle of vertex " + std::to_string(g.id(v)) +
                               " is not finite (NaN or infinite): the embedding cannot be routed on.");
 }
 
@@ -115,12 +111,12 @@ Route route(const PlanarGraph& g, const CircleEmbedding& phi, Scheme s, Vertex s
 // Router.
 // -----------------------------------------------------------------------------------------------------
 
-Router::Router(const PlanarGraph& g, const CircleEmbedding& phi) : g_(&g), phi_(&phi) { check_embedding(g, phi); }
+Router::Router(const PlanarGraph& g, const CircleEmbedding& phi) : g_(&g), phi_(&phi) { check_embedding(g, phi, ""); }
 
 Router::Router(const PlanarGraph& g, const CircleEmbedding& phi, const CircleEmbedding128& phi128)
     : g_(&g), phi_(&phi), phi128_(&phi128) {
-  check_embedding(g, phi);
-  check_embedding(g, phi128);
+  check_embedding(g, phi, "");
+  check_embedding(g, phi128, "binary128 ");
 }
 
 void Router::check_scheme(Scheme s) const {
