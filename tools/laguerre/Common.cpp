@@ -63,6 +63,26 @@ std::vector<core::Scheme> parse_schemes(const std::string& text, const std::stri
                          "found '" + text + "', expected " + core::listed_names(scenarios::scheme_names) + ", or all.");
 }
 
+nlohmann::json routing_stats_json(const core::PlanarGraph& g, const core::RoutingStats& st) {
+  nlohmann::json fails = nlohmann::json::array();
+  for (const auto& f : st.failures)
+    fails.push_back({{"source", g.id(f.source)},
+                     {"target", g.id(f.target)},
+                     {"stuck", f.stuck == core::none ? nlohmann::json() : nlohmann::json(g.id(f.stuck))},
+                     {"outcome", std::string(core::to_string(f.outcome))}});
+  return {{"scheme", std::string(core::to_string(st.scheme))},
+          {"pairs", st.pairs},
+          {"delivered", st.delivered},
+          {"delivery_rate", st.delivery_rate},
+          {"hops_mean", st.hops_mean},
+          {"stretch_mean", st.stretch_mean},
+          {"stretch_p95", st.stretch_p95},
+          {"stretch_max", st.stretch_max},
+          {"bytes_per_coordinate", st.coordinate_bytes},
+          {"failures_total", st.failures_total},
+          {"failures", fails}};
+}
+
 core::PairSelection parse_pairs(const std::string& text, std::uint64_t seed, const std::string& option) {
   if (text == "all") return {0, seed};
   std::uint64_t n = 0;

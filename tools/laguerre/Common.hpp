@@ -4,6 +4,7 @@
 /// the option parsers and validators several commands use, output paths, the terminal progress line.
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cstdint>
@@ -77,6 +78,10 @@ LoadedGraph load_graph(const GraphArgs& args);
 /// --scheme (named `option` in messages): one scheme by name (dashes or underscores), or "all".
 /// Throws core::InputError.
 std::vector<core::Scheme> parse_schemes(const std::string& text, const std::string& option);
+
+/// The routing metrics of one scheme as written by `route --json` and `pack --pairs`: scheme, pairs,
+/// delivered, rates, hops, stretch, bytes per coordinate, and the kept failures with g's vertex ids.
+nlohmann::json routing_stats_json(const core::PlanarGraph& g, const core::RoutingStats& st);
 
 /// --pairs (named `option` in messages): "all", or a number of pairs in [1, 10^9] sampled with `seed`
 /// (as the scenario key routing.pairs). Throws core::InputError.

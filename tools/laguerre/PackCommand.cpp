@@ -195,21 +195,8 @@ int run_pack(const PackArgs& a) {
   if (pairs && r.layout.precision != core::Precision::unrepresentable) {
     const core::CircleEmbedding128* phi128 = r.circles128.empty() ? nullptr : &r.circles128;
     routing = core::evaluate_routing(g, r.circles, core::Scheme::greedy_power, *pairs, phi128);
-    nlohmann::json fails = nlohmann::json::array();
-    for (const auto& f : routing->failures)
-      fails.push_back({{"source", g.id(f.source)},
-                       {"target", g.id(f.target)},
-                       {"stuck", f.stuck == core::none ? nlohmann::json() : nlohmann::json(g.id(f.stuck))},
-                       {"outcome", std::string(core::to_string(f.outcome))}});
-    doc["routing"] = {{"scheme", "greedy_power"},
-                      {"seed", pairs->seed},
-                      {"pairs", routing->pairs},
-                      {"delivered", routing->delivered},
-                      {"bytes_per_coordinate", routing->coordinate_bytes},
-                      {"hops_mean", routing->hops_mean},
-                      {"stretch_mean", routing->stretch_mean},
-                      {"stretch_max", routing->stretch_max},
-                      {"failures", fails}};
+    doc["routing"] = routing_stats_json(g, *routing);
+    doc["routing"]["seed"] = pairs->seed;
   }
 
   if (a.json_stdout) {

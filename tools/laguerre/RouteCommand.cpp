@@ -73,22 +73,7 @@ int run_route(const RouteArgs& a) {
     const core::RoutingStats st = core::evaluate_routing(g, phi, s, selection);
     all_delivered &= st.delivered == st.pairs;
     if (a.json) {
-      nlohmann::json fails = nlohmann::json::array();
-      for (const auto& f : st.failures)
-        fails.push_back({{"source", g.id(f.source)},
-                         {"target", g.id(f.target)},
-                         {"stuck", f.stuck == core::none ? nlohmann::json() : nlohmann::json(g.id(f.stuck))},
-                         {"outcome", std::string(core::to_string(f.outcome))}});
-      out.push_back({{"scheme", std::string(core::to_string(s))},
-                     {"pairs", st.pairs},
-                     {"delivered", st.delivered},
-                     {"delivery_rate", st.delivery_rate},
-                     {"hops_mean", st.hops_mean},
-                     {"stretch_mean", st.stretch_mean},
-                     {"stretch_p95", st.stretch_p95},
-                     {"stretch_max", st.stretch_max},
-                     {"failures_total", st.failures_total},
-                     {"failures", fails}});
+      out.push_back(routing_stats_json(g, st));
       continue;
     }
     std::printf("%-14s %9zu %9zu %8.2f%% %9.2f %9.3f %9.3f %9.3f\n", std::string(core::to_string(s)).c_str(), st.pairs,

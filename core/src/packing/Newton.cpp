@@ -9,8 +9,6 @@
 #endif
 
 #include <algorithm>
-
-#include <quadmath.h>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -19,6 +17,7 @@
 #include <optional>
 #include <vector>
 #if defined(__SSE__) || defined(_M_X64)
+#include <quadmath.h>
 #include <xmmintrin.h>
 #define LAGUERRE_HAVE_MXCSR 1
 #endif

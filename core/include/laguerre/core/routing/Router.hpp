@@ -46,8 +46,6 @@ public:
   const PlanarGraph& graph() const { return *g_; }
   /// The embedding routed on.
   const CircleEmbedding& embedding() const { return *phi_; }
-  /// The binary128 circles the greedy schemes decide on, or null (they decide on embedding()).
-  const CircleEmbedding128* embedding128() const { return phi128_; }
 
 private:
   void route_memoryless(Scheme s, Vertex target, std::size_t ttl, Route& out);
